@@ -1,0 +1,55 @@
+// Host side of the closest-hit and any-hit traversal kernels (shaders/trace_closest.comp,
+// trace_any.comp). A ray whose traversal spends its step budget is parked in a resume pool and continued
+// by further indirect dispatches; a ray still unfinished after the last round is flagged
+// HIT_FLAG_RAN_OUT, never silently wrong.
+#pragma once
+
+#include "core/scene/Scene.h"
+#include "core/vk/Buffer.h"
+#include "core/vk/ComputePipeline.h"
+#include "shaders/shared/ray.h"
+
+#include <span>
+#include <vector>
+
+namespace ripple::core {
+
+struct TraceOptions {
+    uint32_t workgroupSize = 64;
+    // Node visits plus primitive tests per invocation before it parks its state. lavapipe silently ends
+    // an invocation after 65,535 loop iterations, so the default keeps clear of that.
+    uint32_t stepBudget = 60000;
+    uint32_t resumeRounds = 4;          // extra dispatches for parked traversals
+    uint32_t resumeCapacity = 1u << 14; // parked traversals per round; overflow is flagged RAN_OUT
+};
+
+class TraceKernels {
+public:
+    TraceKernels(const vk::Context& context, const TraceOptions& options = {});
+
+    // Device-side batch: rays and results already in GPU buffers (the wavefront path tracer's use).
+    void traceClosest(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& hits,
+                      uint32_t rayCount);
+    void traceAny(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& occluded,
+                  uint32_t rayCount);
+
+    // Host convenience for tests and benchmarks: upload, trace, wait, download.
+    std::vector<gpu::Hit> traceClosest(const Scene& scene, std::span<const gpu::Ray> rays);
+    // One uint per ray: HIT_MISS or HIT_FOUND in the low byte, HIT_FLAG_* above.
+    std::vector<uint32_t> traceAny(const Scene& scene, std::span<const gpu::Ray> rays);
+
+    const TraceOptions& options() const { return options_; }
+
+private:
+    void dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, const Scene& scene, const vk::Buffer& rays,
+                  const vk::Buffer& results, uint32_t rayCount);
+    void ensureResumePools();
+
+    const vk::Context& context_;
+    TraceOptions options_;
+    vk::ComputePipeline closest_;
+    vk::ComputePipeline any_;
+    vk::Buffer resumePools_[2];
+};
+
+}  // namespace ripple::core

@@ -1,0 +1,50 @@
+// A compute pipeline from embedded SPIR-V: push constants only (every buffer is reached by device
+// address, so there are no descriptor sets), specialization constants for compile-time knobs, built
+// through the context's pipeline cache.
+#pragma once
+
+#include "core/vk/Context.h"
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ripple::vk {
+
+struct SpecializationConstant {
+    uint32_t id;
+    uint32_t value;
+};
+
+class ComputePipeline {
+public:
+    ComputePipeline() = default;
+    ComputePipeline(const Context& context, std::span<const uint32_t> spirv, const std::string& name,
+                    uint32_t pushConstantBytes, std::span<const SpecializationConstant> constants = {});
+    ~ComputePipeline();
+    ComputePipeline(ComputePipeline&& other) noexcept;
+    ComputePipeline& operator=(ComputePipeline&& other) noexcept;
+    ComputePipeline(const ComputePipeline&) = delete;
+    ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+    VkPipeline handle() const { return pipeline_; }
+    VkPipelineLayout layout() const { return layout_; }
+    const std::string& name() const { return name_; }
+
+    void bind(VkCommandBuffer cmd) const;
+    void pushConstants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const;
+
+private:
+    void release();
+
+    const Context* context_ = nullptr;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    std::string name_;
+};
+
+// Barrier between dependent compute dispatches (and transfers) on the one queue.
+void computeBarrier(VkCommandBuffer cmd);
+
+}  // namespace ripple::vk

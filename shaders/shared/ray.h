@@ -1,0 +1,67 @@
+// Rays and hits as the trace kernels read and write them, and the state of a suspended traversal.
+#ifndef RIPPLE_SHARED_RAY_H
+#define RIPPLE_SHARED_RAY_H
+#include "common.h"
+#include "bvh.h"
+
+RIPPLE_GPU_BEGIN
+
+struct Ray {
+    vec4 origin;     // w: tmin
+    vec4 direction;  // w: tmax; need not be normalised, t is in units of this vector
+};
+
+// Hit.status and occlusion results: the low byte says what was found, the flags say when the answer
+// could not be completed (never silently wrong: a ray with a flag set has no trustworthy answer).
+RIPPLE_CONST uint HIT_MISS = 0u;
+RIPPLE_CONST uint HIT_FOUND = 1u;
+RIPPLE_CONST uint HIT_FLAG_RAN_OUT = 0x100u;        // step budget spent and no resume slot or round left
+RIPPLE_CONST uint HIT_FLAG_STACK_OVERFLOW = 0x200u; // deeper than the traversal stack (builder bug)
+
+struct Hit {
+    float t;
+    float u;  // barycentrics of v1 and v2 for triangles; 0 for spheres
+    float v;
+    uint instanceId;
+    uint primId;
+    uint status;
+};
+
+// Traversal stack depth: one TLAS path plus a sentinel plus one BLAS path.
+RIPPLE_CONST uint TRAVERSAL_STACK_SIZE = 2u * BVH_MAX_DEPTH + 2u;
+
+// A traversal that spent its step budget: enough to continue exactly where it stopped.
+struct TraversalState {
+    uint rayIndex;
+    uint stackSize;
+    uint instanceSlot;  // TLAS-order instance being traversed, or ~0u while in the TLAS
+    uint pad0;
+    Hit best;           // closest hit so far (closest-hit) or the occlusion flag in status (any-hit)
+    uint pad1;
+    uint pad2;
+    uint stack[TRAVERSAL_STACK_SIZE];
+};
+
+// Header of a resume pool: count of suspended traversals and the indirect dispatch that resumes them.
+struct ResumeHeader {
+    uint count;
+    uint groupsX;
+    uint groupsY;
+    uint groupsZ;
+};
+
+// Everything one trace dispatch needs, passed as push constants.
+struct TraceParams {
+    uint64_t scene;       // SceneDesc
+    uint64_t rays;        // Ray[rayCount]
+    uint64_t hits;        // Hit[rayCount] (closest) or uint[rayCount] (any-hit)
+    uint64_t resumeIn;    // ResumeHeader then TraversalState[]: the traversals to continue (0: fresh rays)
+    uint64_t resumeOut;   // where traversals that run out of budget are parked
+    uint rayCount;
+    uint resumeCapacity;  // TraversalState slots in resumeOut
+    uint stepBudget;      // node visits + primitive tests per invocation before suspending
+    uint pad0;
+};
+
+RIPPLE_GPU_END
+#endif
