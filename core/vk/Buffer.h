@@ -12,11 +12,13 @@ namespace ripple::vk {
 
 class Buffer {
 public:
+    enum class Placement { Device, HostStaging };
+
     Buffer() = default;
     // Device-local storage buffer with a device address. Throws VulkanError naming `name` and the size when
     // the allocation fails (VK_ERROR_OUT_OF_DEVICE_MEMORY and friends).
     Buffer(const Context& context, VkDeviceSize size, const std::string& name,
-           VkBufferUsageFlags extraUsage = 0);
+           VkBufferUsageFlags extraUsage = 0, Placement placement = Placement::Device);
     ~Buffer();
     Buffer(Buffer&& other) noexcept;
     Buffer& operator=(Buffer&& other) noexcept;

@@ -1,0 +1,233 @@
+// Formats ripple-bench results: fixed-width tables for people, JSON for scripts and the README's numbers.
+#include "apps/ripple-bench/Report.h"
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace ripple::bench {
+
+namespace {
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* fmt, ...) {
+    char buffer[512];
+    va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(buffer, sizeof buffer, fmt, args);
+    va_end(args);
+    return buffer;
+}
+
+double perSecond(double count, double seconds) { return seconds > 0.0 ? count / seconds : 0.0; }
+
+// "12.34" or "-" when the tracer did not run; keeps columns aligned either way.
+std::string number(bool present, double value, const char* fmt = "%.3g") {
+    return present ? format(fmt, value) : std::string("-");
+}
+
+std::string withCommas(uint64_t n) {
+    std::string digits = std::to_string(n), out;
+    for (size_t i = 0; i < digits.size(); ++i) {
+        if (i && (digits.size() - i) % 3 == 0) out += ',';
+        out += digits[i];
+    }
+    return out;
+}
+
+// A small streaming JSON writer: enough for nested objects of numbers, strings and booleans.
+class Json {
+public:
+    explicit Json(std::ostream& out) : out_(out) {}
+    void open(const char* key, char bracket) { prefix(key); out_ << bracket; first_ = true; ++depth_; }
+    void close(char bracket) { --depth_; out_ << '\n' << std::string(2 * depth_, ' ') << bracket; first_ = false; }
+    void value(const char* key, double v) {
+        prefix(key);
+        if (std::isfinite(v)) out_ << format("%.9g", v); else out_ << "null";
+    }
+    void value(const char* key, uint64_t v) { prefix(key); out_ << v; }
+    void value(const char* key, bool v) { prefix(key); out_ << (v ? "true" : "false"); }
+    void value(const char* key, const std::string& v) { prefix(key); quoted(v); }
+    void valueOrNull(const char* key, const std::string& v) {
+        if (v.empty()) { prefix(key); out_ << "null"; } else { value(key, v); }
+    }
+
+private:
+    void prefix(const char* key) {
+        if (!first_) out_ << ',';
+        first_ = false;
+        if (depth_ > 0) out_ << '\n' << std::string(2 * depth_, ' ');
+        if (key) { quoted(key); out_ << ": "; }
+    }
+    void quoted(const std::string& s) {
+        out_ << '"';
+        for (char c : s) {
+            if (c == '"' || c == '\\') out_ << '\\' << c;
+            else if (static_cast<unsigned char>(c) < 0x20) out_ << format("\\u%04x", c);
+            else out_ << c;
+        }
+        out_ << '"';
+    }
+    std::ostream& out_;
+    bool first_ = true;
+    int depth_ = 0;
+};
+
+void writeSample(Json& j, const char* key, const Sample& s) {
+    j.open(key, '{');
+    j.value("wallSeconds", s.wall);
+    j.value("cpuSeconds", s.cpu);
+    j.value("gpuSeconds", s.gpu);
+    j.close('}');
+}
+
+void writeRuns(Json& j, const char* key, const TracerRuns& t, uint64_t rays, bool ripple) {
+    j.open(key, '{');
+    j.value("ran", t.ran);
+    if (t.ran) {
+        const Sample median = medianOf(t.runs), best = bestOf(t.runs);
+        j.value("mraysPerSecondWall", perSecond(double(rays), median.wall) * 1e-6);
+        j.value("mraysPerCpuSecond", perSecond(double(rays), median.cpu) * 1e-6);
+        if (ripple) j.value("mraysPerSecondGpu", perSecond(double(rays), median.gpu) * 1e-6);
+        writeSample(j, "median", median);
+        writeSample(j, "best", best);
+        j.open("runs", '[');
+        for (const Sample& s : t.runs) writeSample(j, nullptr, s);
+        j.close(']');
+        if (ripple) j.value("roundTripWallSeconds", t.roundTripSeconds);
+    }
+    j.close('}');
+}
+
+}  // namespace
+
+void printTables(std::ostream& out, const RunInfo& info, const std::vector<SceneResult>& scenes) {
+    out << format("ripple-bench: Ripple on \"%s\" vs %s; %u hardware threads, %ux%u rays, median of %u runs\n",
+                  info.vkDevice.c_str(),
+                  info.embreeVersion.empty() ? "no Embree" : ("Embree " + info.embreeVersion).c_str(),
+                  info.hardwareThreads, info.width, info.height, info.repeat);
+    out << "Ripple trace times: device-side launch incl. submit+wait, excluding upload/download.\n"
+           "Secondary rays start from Embree's primary hits (Ripple's with --no-embree).\n\n";
+
+    out << format("%-11s %11s %22s %10s %18s\n", "scene", "triangles", "build ms Ripple(BLAS)", "Embree",
+                  "Mtri/s Ripple/Emb");
+    for (const SceneResult& s : scenes) {
+        if (s.status != "ok") {
+            out << format("%-11s %s: %s\n", s.name.c_str(), s.status.c_str(), s.message.c_str());
+            continue;
+        }
+        const std::string ripple = s.rippleBuild.ran
+            ? format("%.1f (%.1f)", 1e3 * s.rippleBuild.time.wall, 1e3 * s.rippleBlasSeconds) : std::string("-");
+        const double tris = double(s.triangles);
+        out << format("%-11s %11s %22s %10s %8s / %-8s\n", s.name.c_str(), withCommas(s.triangles).c_str(),
+                      ripple.c_str(), number(s.embreeBuild.ran, 1e3 * s.embreeBuild.time.wall, "%.1f").c_str(),
+                      number(s.rippleBuild.ran, perSecond(tris, s.rippleBuild.time.wall) * 1e-6).c_str(),
+                      number(s.embreeBuild.ran, perSecond(tris, s.embreeBuild.time.wall) * 1e-6).c_str());
+    }
+
+    out << format("\n%-11s %-8s %10s %19s %19s %9s %9s %6s %7s\n", "scene", "rays", "count", "Mrays/s wall R / E",
+                  "Mrays/CPU-s R / E", "R/E CPU", "agree %", "ties", "flagged");
+    for (const SceneResult& s : scenes) {
+        for (const KindResult& k : s.kinds) {
+            const Sample r = medianOf(k.ripple.runs), e = medianOf(k.embree.runs);
+            const double n = double(k.rays);
+            const double rCpu = perSecond(n, r.cpu), eCpu = perSecond(n, e.cpu);
+            const bool both = k.ripple.ran && k.embree.ran;
+            out << format("%-11s %-8s %10s %8s / %-8s %8s / %-8s %9s %9s %6s %7s\n", s.name.c_str(), k.kind.c_str(),
+                          withCommas(k.rays).c_str(), number(k.ripple.ran, perSecond(n, r.wall) * 1e-6).c_str(),
+                          number(k.embree.ran, perSecond(n, e.wall) * 1e-6).c_str(),
+                          number(k.ripple.ran, rCpu * 1e-6).c_str(), number(k.embree.ran, eCpu * 1e-6).c_str(),
+                          number(both && eCpu > 0.0, rCpu / eCpu, "%.3f").c_str(),
+                          number(k.compared, k.agreement.percent(), "%.3f").c_str(),
+                          number(k.compared, double(k.agreement.ties), "%.0f").c_str(),
+                          number(k.compared, double(k.agreement.flagged), "%.0f").c_str());
+        }
+    }
+}
+
+void writeJson(const std::filesystem::path& path, const RunInfo& info, const std::vector<SceneResult>& scenes) {
+    std::ofstream file(path);
+    if (!file) throw std::runtime_error("cannot write " + path.string());
+    Json j(file);
+    j.open(nullptr, '{');
+    j.open("machine", '{');
+    j.value("vkDevice", info.vkDevice);
+    j.valueOrNull("embreeVersion", info.embreeVersion);
+    j.value("cpuModel", info.cpuModel);
+    j.value("hardwareThreads", uint64_t(info.hardwareThreads));
+    j.value("tbbThreads", uint64_t(info.tbbThreads));
+    j.valueOrNull("LP_NUM_THREADS", info.lpNumThreads);
+    j.valueOrNull("LP_NATIVE_VECTOR_WIDTH", info.lpNativeVectorWidth);
+    j.close('}');
+    j.open("settings", '{');
+    j.value("width", uint64_t(info.width));
+    j.value("height", uint64_t(info.height));
+    j.value("repeat", uint64_t(info.repeat));
+    j.value("workgroupSize", uint64_t(info.workgroup));
+    j.value("quick", info.quick);
+    j.value("rippleTiming", std::string("device-side launch incl. submit+wait, excluding upload/download"));
+    j.value("tieRelative", double(kTieRelative));
+    j.close('}');
+    j.open("scenes", '[');
+    for (const SceneResult& s : scenes) {
+        j.open(nullptr, '{');
+        j.value("name", s.name);
+        j.value("source", s.source);
+        j.value("status", s.status);
+        j.value("message", s.message);
+        j.value("triangles", s.triangles);
+        j.value("vertices", s.vertices);
+        j.open("rippleBuild", '{');
+        j.value("ran", s.rippleBuild.ran);
+        writeSample(j, "time", s.rippleBuild.time);
+        j.value("blasSeconds", s.rippleBlasSeconds);
+        j.value("tlasSeconds", s.rippleTlasSeconds);
+        j.value("trianglesSkipped", s.rippleTrianglesSkipped);
+        j.value("gpuBytes", s.rippleGpuBytes);
+        j.value("mtrisPerSecond", perSecond(double(s.triangles), s.rippleBuild.time.wall) * 1e-6);
+        j.close('}');
+        j.open("embreeBuild", '{');
+        j.value("ran", s.embreeBuild.ran);
+        writeSample(j, "time", s.embreeBuild.time);
+        j.value("mtrisPerSecond", perSecond(double(s.triangles), s.embreeBuild.time.wall) * 1e-6);
+        j.close('}');
+        j.value("secondaryRaysFrom", s.secondaryFrom);
+        j.open("rays", '[');
+        for (const KindResult& k : s.kinds) {
+            j.open(nullptr, '{');
+            j.value("kind", k.kind);
+            j.value("anyHit", k.anyHit);
+            j.value("count", k.rays);
+            writeRuns(j, "ripple", k.ripple, k.rays, true);
+            writeRuns(j, "embree", k.embree, k.rays, false);
+            if (k.ripple.ran && k.embree.ran) {
+                const double r = perSecond(double(k.rays), medianOf(k.ripple.runs).cpu);
+                const double e = perSecond(double(k.rays), medianOf(k.embree.runs).cpu);
+                j.value("rippleOverEmbreePerCpuSecond", e > 0.0 ? r / e : 0.0);
+            }
+            j.value("rippleRunMismatches", k.rippleRunMismatches);
+            if (k.compared) {
+                j.open("agreement", '{');
+                j.value("percent", k.agreement.percent());
+                j.value("rays", k.agreement.rays);
+                j.value("agree", k.agreement.agree);
+                j.value("ties", k.agreement.ties);
+                j.value("flagged", k.agreement.flagged);
+                j.value("embreeHits", k.agreement.referenceHits);
+                j.value("rippleHits", k.agreement.testHits);
+                j.close('}');
+            }
+            j.close('}');
+        }
+        j.close(']');
+        j.close('}');
+    }
+    j.close(']');
+    j.close('}');
+    file << '\n';
+    if (!file) throw std::runtime_error("error while writing " + path.string());
+}
+
+}  // namespace ripple::bench

@@ -1,0 +1,68 @@
+// What ripple-bench measured, and its two outputs: the stdout tables and the JSON file with every number.
+#pragma once
+
+#include "apps/ripple-bench/Agreement.h"
+#include "apps/ripple-bench/Timing.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace ripple::bench {
+
+// One tracer on one ray set. The tables use the median of `runs`; the JSON has each run.
+struct TracerRuns {
+    bool ran = false;
+    std::vector<Sample> runs;        // timed runs, warm-up excluded
+    double roundTripSeconds = 0.0;   // Ripple: the host convenience call, upload and download included (wall)
+};
+
+struct KindResult {
+    std::string kind;                // "primary", "shadow" or "bounce"
+    bool anyHit = false;
+    uint64_t rays = 0;
+    TracerRuns ripple, embree;
+    bool compared = false;           // both ran: `agreement` holds
+    Agreement agreement;
+    uint64_t rippleRunMismatches = 0;  // device-side launch vs host convenience call: should be 0
+};
+
+struct BuildResult {
+    bool ran = false;
+    Sample time;                     // wall and CPU of the whole construction
+};
+
+struct SceneResult {
+    std::string name;
+    std::string source;              // the glTF path, or "generated"
+    std::string status = "ok";       // "ok", "skipped" or "failed"
+    std::string message;             // why it was skipped or failed
+    uint64_t triangles = 0;
+    uint64_t vertices = 0;
+    BuildResult rippleBuild, embreeBuild;
+    double rippleBlasSeconds = 0.0;  // core::SceneReport
+    double rippleTlasSeconds = 0.0;
+    uint64_t rippleTrianglesSkipped = 0;
+    uint64_t rippleGpuBytes = 0;
+    std::string secondaryFrom;       // whose primary hits seeded the shadow and bounce rays
+    std::vector<KindResult> kinds;
+};
+
+struct RunInfo {
+    std::string vkDevice;
+    std::string embreeVersion;       // empty with --no-embree
+    std::string cpuModel;
+    unsigned hardwareThreads = 0;
+    int tbbThreads = 0;
+    std::string lpNumThreads;        // LP_NUM_THREADS, empty when unset
+    std::string lpNativeVectorWidth; // LP_NATIVE_VECTOR_WIDTH, empty when unset
+    uint32_t width = 0, height = 0, repeat = 0, workgroup = 0;
+    bool quick = false;
+};
+
+void printTables(std::ostream& out, const RunInfo& info, const std::vector<SceneResult>& scenes);
+void writeJson(const std::filesystem::path& path, const RunInfo& info, const std::vector<SceneResult>& scenes);
+
+}  // namespace ripple::bench

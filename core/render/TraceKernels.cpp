@@ -1,0 +1,122 @@
+// Host side of the trace kernels: launches closest-hit or any-hit traversal over a batch of rays, then
+// up to `resumeRounds` indirect dispatches that continue traversals which spent their step budget.
+#include "core/render/TraceKernels.h"
+
+#include "shaders/trace_any.spv.h"
+#include "shaders/trace_closest.spv.h"
+
+#include <algorithm>
+
+namespace ripple::core {
+
+namespace {
+
+constexpr uint32_t kWorkgroupSizeConstant = 0;  // layout(local_size_x_id = 0) in traverse.glsl
+
+}  // namespace
+
+TraceKernels::TraceKernels(const vk::Context& context, const TraceOptions& options)
+    : context_(context), options_(options) {
+    if (options_.stepBudget < 2 * gpu::BVH_MAX_LEAF_SIZE + 2)
+        throw std::invalid_argument("TraceOptions::stepBudget must be at least " +
+                                    std::to_string(2 * gpu::BVH_MAX_LEAF_SIZE + 2) + " (one node and two leaves)");
+    const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options_.workgroupSize}};
+    closest_ = vk::ComputePipeline(context, shaders::trace_closest, "trace_closest", sizeof(gpu::TraceParams), constants);
+    any_ = vk::ComputePipeline(context, shaders::trace_any, "trace_any", sizeof(gpu::TraceParams), constants);
+}
+
+void TraceKernels::ensureResumePools() {
+    if (options_.resumeRounds == 0 || resumePools_[0]) return;
+    const VkDeviceSize bytes = sizeof(gpu::ResumeHeader) + VkDeviceSize(options_.resumeCapacity) * sizeof(gpu::TraversalState);
+    for (int i = 0; i < 2; ++i)
+        resumePools_[i] = vk::Buffer(context_, bytes, "trace resume pool " + std::to_string(i),
+                                     VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+}
+
+void TraceKernels::dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, const Scene& scene,
+                            const vk::Buffer& rays, const vk::Buffer& results, uint32_t rayCount) {
+    if (rayCount == 0) return;
+    ensureResumePools();
+    const bool resumable = options_.resumeRounds > 0;
+    const gpu::ResumeHeader emptyHeader{0, 0, 1, 1};
+    auto resetPool = [&](int i) {
+        vkCmdUpdateBuffer(cmd, resumePools_[i].handle(), 0, sizeof(emptyHeader), &emptyHeader);
+        vk::computeBarrier(cmd);
+    };
+    const VkDeviceSize resultStride = &pipeline == &any_ ? sizeof(uint32_t) : sizeof(gpu::Hit);
+
+    pipeline.bind(cmd);
+    if (resumable) resetPool(0);
+
+    // Fresh rays, in chunks that respect the device's limit on workgroups per dispatch.
+    const uint64_t maxRaysPerDispatch = uint64_t(context_.properties().limits.maxComputeWorkGroupCount[0]) * options_.workgroupSize;
+    for (uint64_t first = 0; first < rayCount; first += maxRaysPerDispatch) {
+        const uint32_t count = static_cast<uint32_t>(std::min<uint64_t>(maxRaysPerDispatch, rayCount - first));
+        gpu::TraceParams params{};
+        params.scene = scene.descAddress();
+        params.rays = rays.address() + first * sizeof(gpu::Ray);
+        params.hits = results.address() + first * resultStride;
+        params.resumeOut = resumable ? resumePools_[0].address() : 0;
+        params.rayCount = count;
+        params.resumeCapacity = options_.resumeCapacity;
+        params.stepBudget = options_.stepBudget;
+        // Parked states hold ray indices relative to this chunk's base addresses, which the resume rounds
+        // do not know; so with more than one chunk each chunk resumes before the next starts.
+        pipeline.pushConstants(cmd, &params, sizeof(params));
+        vkCmdDispatch(cmd, (count + options_.workgroupSize - 1) / options_.workgroupSize, 1, 1);
+
+        // Resume rounds: indirect dispatches sized by the kernel itself, so the host never reads a count.
+        for (uint32_t round = 1; round <= options_.resumeRounds; ++round) {
+            const int in = (round - 1) % 2, out = round % 2;
+            const bool last = round == options_.resumeRounds;
+            vk::computeBarrier(cmd);
+            if (!last) resetPool(out);
+            params.resumeIn = resumePools_[in].address();
+            params.resumeOut = last ? 0 : resumePools_[out].address();
+            pipeline.pushConstants(cmd, &params, sizeof(params));
+            vkCmdDispatchIndirect(cmd, resumePools_[in].handle(), offsetof(gpu::ResumeHeader, groupsX));
+        }
+        if (resumable && first + count < rayCount) {
+            vk::computeBarrier(cmd);
+            resetPool(0);
+        }
+    }
+}
+
+void TraceKernels::traceClosest(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& hits,
+                                uint32_t rayCount) {
+    dispatch(cmd, closest_, scene, rays, hits, rayCount);
+}
+
+void TraceKernels::traceAny(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& occluded,
+                            uint32_t rayCount) {
+    dispatch(cmd, any_, scene, rays, occluded, rayCount);
+}
+
+std::vector<gpu::Hit> TraceKernels::traceClosest(const Scene& scene, std::span<const gpu::Ray> rays) {
+    std::vector<gpu::Hit> hits(rays.size());
+    if (rays.empty()) return hits;
+    vk::Buffer rayBuffer(context_, rays.size_bytes(), "trace rays");
+    vk::Buffer hitBuffer(context_, hits.size() * sizeof(gpu::Hit), "trace hits");
+    rayBuffer.upload(rays);
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        traceClosest(cmd, scene, rayBuffer, hitBuffer, static_cast<uint32_t>(rays.size()));
+    });
+    hitBuffer.download(std::span(hits));
+    return hits;
+}
+
+std::vector<uint32_t> TraceKernels::traceAny(const Scene& scene, std::span<const gpu::Ray> rays) {
+    std::vector<uint32_t> occluded(rays.size());
+    if (rays.empty()) return occluded;
+    vk::Buffer rayBuffer(context_, rays.size_bytes(), "trace rays");
+    vk::Buffer resultBuffer(context_, occluded.size() * sizeof(uint32_t), "trace occlusion");
+    rayBuffer.upload(rays);
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        traceAny(cmd, scene, rayBuffer, resultBuffer, static_cast<uint32_t>(rays.size()));
+    });
+    resultBuffer.download(std::span(occluded));
+    return occluded;
+}
+
+}  // namespace ripple::core

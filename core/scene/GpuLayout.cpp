@@ -1,0 +1,36 @@
+// Compile-time checks that the C++ view of every struct in shaders/shared/*.h has the std430 layout the
+// kernels read. A failing assert here means a shared header was edited without keeping the two in step.
+#include "shaders/shared/bvh.h"
+#include "shaders/shared/ray.h"
+#include "shaders/shared/scene.h"
+
+#include <cstddef>
+
+namespace ripple::gpu {
+
+static_assert(sizeof(vec4) == 16);
+static_assert(sizeof(BvhNode) == 64);
+static_assert(offsetof(BvhNode, rightMin) == 32);
+
+static_assert(sizeof(TrianglePrim) == 48);
+static_assert(sizeof(SpherePrim) == 32);
+static_assert(offsetof(SpherePrim, primId) == 16);
+static_assert(sizeof(InstancePrim) == 112);
+static_assert(offsetof(InstancePrim, objectToWorld) == 48);
+static_assert(offsetof(InstancePrim, blasNodeOffset) == 96);
+static_assert(offsetof(InstancePrim, instanceId) == 108);
+static_assert(sizeof(SceneDesc) == 48);
+static_assert(offsetof(SceneDesc, instanceCount) == 32);
+
+static_assert(sizeof(Ray) == 32);
+static_assert(sizeof(Hit) == 24);
+static_assert(offsetof(Hit, status) == 20);
+static_assert(offsetof(TraversalState, best) == 16);
+static_assert(offsetof(TraversalState, stack) == 48);
+static_assert(sizeof(TraversalState) == 48 + 4 * TRAVERSAL_STACK_SIZE);
+static_assert(sizeof(ResumeHeader) == 16);
+static_assert(sizeof(TraceParams) == 56);
+static_assert(offsetof(TraceParams, rayCount) == 40);
+static_assert(sizeof(TraceParams) <= 128, "push constants: 128 bytes is all Vulkan guarantees");
+
+}  // namespace ripple::gpu

@@ -1,0 +1,95 @@
+// Compute pipelines from embedded SPIR-V, with push constants and specialization constants.
+#include "core/vk/ComputePipeline.h"
+
+#include <utility>
+
+namespace ripple::vk {
+
+ComputePipeline::ComputePipeline(const Context& context, std::span<const uint32_t> spirv, const std::string& name,
+                                 uint32_t pushConstantBytes, std::span<const SpecializationConstant> constants)
+    : context_(&context), name_(name) {
+    const VkDevice device = context.device();
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = spirv.size_bytes();
+    moduleInfo.pCode = spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    RIPPLE_VK_CHECK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
+
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &range;
+    const VkResult layoutResult = vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout_);
+    if (layoutResult != VK_SUCCESS) {
+        vkDestroyShaderModule(device, module, nullptr);
+        throwVulkanError("vkCreatePipelineLayout", layoutResult, __FILE__, __LINE__);
+    }
+
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<uint32_t> values;
+    for (const auto& c : constants) {
+        entries.push_back({c.id, static_cast<uint32_t>(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
+        values.push_back(c.value);
+    }
+    VkSpecializationInfo specialization{static_cast<uint32_t>(entries.size()), entries.data(),
+                                        values.size() * sizeof(uint32_t), values.data()};
+
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
+    info.layout = layout_;
+    const VkResult result = vkCreateComputePipelines(device, context.pipelineCache(), 1, &info, nullptr, &pipeline_);
+    vkDestroyShaderModule(device, module, nullptr);
+    if (result != VK_SUCCESS) {
+        release();
+        throw VulkanError("creating compute pipeline '" + name + "': vkCreateComputePipelines returned " +
+                              resultName(result), result);
+    }
+    context.setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline_), name);
+    context.setName(VK_OBJECT_TYPE_PIPELINE_LAYOUT, reinterpret_cast<uint64_t>(layout_), name + " layout");
+}
+
+ComputePipeline::~ComputePipeline() { release(); }
+
+ComputePipeline::ComputePipeline(ComputePipeline&& other) noexcept { *this = std::move(other); }
+
+ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
+    if (this != &other) {
+        release();
+        context_ = other.context_;
+        pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
+        layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
+        name_ = std::move(other.name_);
+    }
+    return *this;
+}
+
+void ComputePipeline::release() {
+    if (!context_) return;
+    if (pipeline_) vkDestroyPipeline(context_->device(), pipeline_, nullptr);
+    if (layout_) vkDestroyPipelineLayout(context_->device(), layout_, nullptr);
+    pipeline_ = VK_NULL_HANDLE;
+    layout_ = VK_NULL_HANDLE;
+}
+
+void ComputePipeline::bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_); }
+
+void ComputePipeline::pushConstants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const {
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, data);
+}
+
+void computeBarrier(VkCommandBuffer cmd) {
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
+                            VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                             VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                         0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace ripple::vk

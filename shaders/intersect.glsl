@@ -1,0 +1,110 @@
+// Ray/box, ray/triangle and ray/sphere tests used by the traversal kernels. The triangle test is
+// watertight (Woop, Benthin & Wald 2013): rays through shared edges and vertices never slip between
+// triangles. The box test is conservative (Ize 2013): tmax is widened by 2*gamma(3) so rounding never
+// culls a box the ray really enters. The sphere roots are the stable form of Haines et al. (Ray Tracing
+// Gems, ch. 7).
+#ifndef RIPPLE_INTERSECT_GLSL
+#define RIPPLE_INTERSECT_GLSL
+
+// Per-ray constants of the watertight test: the axis permutation and shear.
+struct TriangleRay {
+    vec3 origin;
+    ivec3 k;       // kx, ky, kz: kz is the dominant axis of the direction
+    vec3 shear;    // Sx, Sy, Sz
+};
+
+TriangleRay makeTriangleRay(vec3 origin, vec3 direction) {
+    TriangleRay r;
+    r.origin = origin;
+    vec3 a = abs(direction);
+    int kz = (a.x > a.y) ? ((a.x > a.z) ? 0 : 2) : ((a.y > a.z) ? 1 : 2);
+    int kx = (kz + 1) % 3;
+    int ky = (kx + 1) % 3;
+    if (direction[kz] < 0.0) { int t = kx; kx = ky; ky = t; }  // keep the winding
+    r.k = ivec3(kx, ky, kz);
+    r.shear = vec3(direction[kx] / direction[kz], direction[ky] / direction[kz], 1.0 / direction[kz]);
+    return r;
+}
+
+// Returns true and updates (t, u, v) when the triangle is hit with tmin < t < tBest.
+bool intersectTriangle(TriangleRay r, vec3 v0, vec3 v1, vec3 v2, float tmin, inout float tBest, out float u,
+                       out float v) {
+    u = 0.0;
+    v = 0.0;
+    vec3 A = v0 - r.origin;
+    vec3 B = v1 - r.origin;
+    vec3 C = v2 - r.origin;
+    float Ax = A[r.k.x] - r.shear.x * A[r.k.z];
+    float Ay = A[r.k.y] - r.shear.y * A[r.k.z];
+    float Bx = B[r.k.x] - r.shear.x * B[r.k.z];
+    float By = B[r.k.y] - r.shear.y * B[r.k.z];
+    float Cx = C[r.k.x] - r.shear.x * C[r.k.z];
+    float Cy = C[r.k.y] - r.shear.y * C[r.k.z];
+    float U = Cx * By - Cy * Bx;
+    float V = Ax * Cy - Ay * Cx;
+    float W = Bx * Ay - By * Ax;
+    if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+    float det = U + V + W;
+    if (det == 0.0) return false;
+    float Az = r.shear.z * A[r.k.z];
+    float Bz = r.shear.z * B[r.k.z];
+    float Cz = r.shear.z * C[r.k.z];
+    float T = U * Az + V * Bz + W * Cz;
+    // Compare T against the interval scaled by det, so no division happens for misses.
+    float sgn = det < 0.0 ? -1.0 : 1.0;
+    float absDet = abs(det);
+    float sT = T * sgn;
+    if (sT <= tmin * absDet || sT >= tBest * absDet) return false;
+    float inv = 1.0 / det;
+    float t = T * inv;
+    if (!(t > tmin && t < tBest)) return false;  // the division may round across the bounds
+    tBest = t;
+    u = V * inv;
+    v = W * inv;
+    return true;
+}
+
+// Returns true and updates tBest with the nearest root in (tmin, tBest).
+bool intersectSphere(vec3 origin, vec3 direction, vec4 centerRadius, float tmin, inout float tBest) {
+    vec3 f = origin - centerRadius.xyz;
+    float a = dot(direction, direction);
+    float b = dot(f, direction);  // half the linear coefficient
+    float r = centerRadius.w;
+    float c = dot(f, f) - r * r;
+    // b^2 - a*c computed as a*(r^2 - |f - (b/a) d|^2): no cancellation for distant spheres.
+    vec3 l = f - (b / a) * direction;
+    float disc = a * (r * r - dot(l, l));
+    if (disc < 0.0) return false;
+    float q = -b - (b < 0.0 ? -1.0 : 1.0) * sqrt(disc);
+    float t0 = c / q;
+    float t1 = q / a;
+    if (t0 > t1) { float s = t0; t0 = t1; t1 = s; }
+    float t = t0 > tmin ? t0 : t1;
+    if (!(t > tmin && t < tBest)) return false;
+    tBest = t;
+    return true;
+}
+
+// 1 + 2*gamma(3) with gamma(n) = n*u/(1-n*u), u = 2^-24: the widening that makes the slab test conservative.
+const float BOX_TMAX_SCALE = 1.0000003576;
+
+// Entry distance of the ray into the box, or +inf when it misses or lies beyond tFar.
+float intersectBox(vec3 lo, vec3 hi, vec3 origin, vec3 invDirection, float tmin, float tFar) {
+    vec3 t0 = (lo - origin) * invDirection;
+    vec3 t1 = (hi - origin) * invDirection;
+    vec3 tn = min(t0, t1);
+    vec3 tf = max(t0, t1);
+    float enter = max(max(tn.x, tn.y), max(tn.z, tmin));
+    float leave = min(min(tf.x, tf.y), min(tf.z, tFar)) * BOX_TMAX_SCALE;
+    return enter <= leave ? enter : uintBitsToFloat(0x7f800000u);
+}
+
+// Reciprocal direction with zero components replaced by a huge finite value of the right sign, so
+// 0 * inf never produces NaN in the slab test.
+vec3 safeReciprocal(vec3 d) {
+    const float tiny = 1e-30;
+    vec3 s = vec3(d.x < 0.0 ? -tiny : tiny, d.y < 0.0 ? -tiny : tiny, d.z < 0.0 ? -tiny : tiny);
+    return 1.0 / mix(d, s, lessThan(abs(d), vec3(tiny)));
+}
+
+#endif

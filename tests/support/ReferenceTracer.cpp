@@ -1,0 +1,299 @@
+// Brute-force double-precision reference tracer: validity rules shared with core::Scene, watertight
+// triangle test, stable sphere test, and oneTBB loops over rays.
+#include "tests/support/ReferenceTracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace ripple::test {
+
+using glm::dvec3;
+
+// ---------------------------------------------------------------------------------------------------
+// Validity
+
+uint32_t triangleCount(const core::TriangleMesh& mesh) {
+    if (!mesh.indices.empty()) return static_cast<uint32_t>(mesh.indices.size());
+    return static_cast<uint32_t>(mesh.positions.size() / 3);
+}
+
+glm::uvec3 triangleIndices(const core::TriangleMesh& mesh, uint32_t tri) {
+    if (!mesh.indices.empty()) return mesh.indices[tri];
+    return glm::uvec3(3u * tri, 3u * tri + 1u, 3u * tri + 2u);
+}
+
+bool isFinite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool isTriangleValid(const core::TriangleMesh& mesh, uint32_t tri) {
+    if (tri >= triangleCount(mesh)) return false;
+    const glm::uvec3 idx = triangleIndices(mesh, tri);
+    const size_t n = mesh.positions.size();
+    if (idx.x >= n || idx.y >= n || idx.z >= n) return false;
+    const glm::vec3& a = mesh.positions[idx.x];
+    const glm::vec3& b = mesh.positions[idx.y];
+    const glm::vec3& c = mesh.positions[idx.z];
+    if (!isFinite(a) || !isFinite(b) || !isFinite(c)) return false;
+    // Differences of floats and their products are far inside double's range, so a zero here means the
+    // vertices really are collinear (or coincident), not that something underflowed.
+    const dvec3 n3 = glm::cross(dvec3(b) - dvec3(a), dvec3(c) - dvec3(a));
+    return glm::dot(n3, n3) != 0.0;
+}
+
+uint32_t sphereCount(const core::SphereSet& set) { return static_cast<uint32_t>(set.centers.size()); }
+
+float sphereRadius(const core::SphereSet& set, uint32_t i) {
+    if (set.radii.empty()) return 0.0f;
+    return set.radii.size() == set.centers.size() ? set.radii[i] : set.radii[0];
+}
+
+bool isSphereValid(const core::SphereSet& set, uint32_t i) {
+    if (i >= sphereCount(set)) return false;
+    const float r = sphereRadius(set, i);
+    return isFinite(set.centers[i]) && std::isfinite(r) && r > 0.0f;
+}
+
+bool isTransformValid(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    return std::abs(glm::determinant(glm::dmat3(m))) >= kSingularDeterminant;
+}
+
+bool hasValidPrimitive(const core::SceneDescription& scene, const core::GeometryRef& geometry) {
+    switch (geometry.kind) {
+    case core::GeometryKind::Triangles: {
+        if (geometry.index >= scene.meshes.size()) return false;
+        const core::TriangleMesh& mesh = scene.meshes[geometry.index];
+        for (uint32_t t = 0; t < triangleCount(mesh); ++t)
+            if (isTriangleValid(mesh, t)) return true;
+        return false;
+    }
+    case core::GeometryKind::Spheres: {
+        if (geometry.index >= scene.sphereSets.size()) return false;
+        const core::SphereSet& set = scene.sphereSets[geometry.index];
+        for (uint32_t s = 0; s < sphereCount(set); ++s)
+            if (isSphereValid(set, s)) return true;
+        return false;
+    }
+    }
+    return false;  // a kind value outside the enum
+}
+
+bool isInstanceValid(const core::SceneDescription& scene, const core::InstanceDescription& instance) {
+    return isTransformValid(instance.transform) && hasValidPrimitive(scene, instance.geometry);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Intersection
+
+namespace {
+
+struct ObjectRay {
+    dvec3 origin;
+    dvec3 direction;
+    double tmin;
+    double tmax;
+};
+
+double tripleProduct(const dvec3& d, const dvec3& p, const dvec3& q) { return glm::dot(d, glm::cross(p, q)); }
+
+bool lexLess(const dvec3& p, const dvec3& q) {
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    return p.z < q.z;
+}
+
+// d . (p x q) for the edge p-q (vertices relative to the ray origin), evaluated with the endpoints in a
+// canonical order. The neighbouring triangle lists the shared edge the other way round and so gets
+// exactly the negated value; without the canonical order, operand order or FMA contraction could make
+// the two disagree by a rounding and let a ray slip through the crack between them.
+double edgeFunction(const dvec3& d, const dvec3& p, const dvec3& q) {
+    return lexLess(q, p) ? -tripleProduct(d, q, p) : tripleProduct(d, p, q);
+}
+
+struct TriangleHit {
+    double t, u, v;
+};
+
+// Scaled-barycentric test (the edge-function form of a Plücker test) in double. Returns false on a miss
+// or when the ray lies in the triangle's plane.
+bool intersectTriangle(const ObjectRay& ray, const dvec3& a, const dvec3& b, const dvec3& c, TriangleHit& hit) {
+    const dvec3 A = a - ray.origin, B = b - ray.origin, C = c - ray.origin;
+    const dvec3& d = ray.direction;
+    const double ea = edgeFunction(d, B, C);  // weight of a: the edge opposite it
+    const double eb = edgeFunction(d, C, A);
+    const double ec = edgeFunction(d, A, B);
+    // Inside when all weights share a sign (either winding); zeros count as inside so edges are covered.
+    const bool anyNegative = ea < 0.0 || eb < 0.0 || ec < 0.0;
+    const bool anyPositive = ea > 0.0 || eb > 0.0 || ec > 0.0;
+    if (anyNegative && anyPositive) return false;
+    const double det = ea + eb + ec;
+    if (det == 0.0) return false;
+    const dvec3 n = glm::cross(b - a, c - a);
+    const double nd = glm::dot(n, d);
+    if (nd == 0.0) return false;
+    hit.t = glm::dot(n, A) / nd;
+    hit.u = eb / det;
+    hit.v = ec / det;
+    return true;
+}
+
+// Nearest root of |o + t d - c|^2 = r^2 in (tmin, tmax). The discriminant is formed as r^2 - |l|^2 with l
+// the offset from the center to the closest point on the line (Haines et al. 2019, §7.2), which keeps it
+// accurate for small spheres far away; the roots come from the cancellation-free pair c/q and q/a.
+bool intersectSphere(const ObjectRay& ray, const dvec3& center, double radius, double& tHit) {
+    const dvec3 f = ray.origin - center;
+    const dvec3& d = ray.direction;
+    const double a = glm::dot(d, d);
+    if (a == 0.0) return false;
+    const double beta = glm::dot(f, d);
+    const dvec3 l = f - (beta / a) * d;
+    const double r2 = radius * radius;
+    const double disc = r2 - glm::dot(l, l);
+    if (disc < 0.0) return false;
+    const double c = glm::dot(f, f) - r2;
+    const double q = -(beta + std::copysign(std::sqrt(a * disc), beta));
+    double t0, t1;
+    if (q == 0.0) {  // beta == 0 and disc == 0: origin on the surface, ray tangent to it
+        t0 = t1 = 0.0;
+    } else {
+        t0 = c / q;
+        t1 = q / a;
+        if (t0 > t1) std::swap(t0, t1);
+    }
+    const double t = t0 > ray.tmin ? t0 : t1;
+    if (!(t > ray.tmin && t < ray.tmax)) return false;
+    tHit = t;
+    return true;
+}
+
+bool isRayUsable(const gpu::Ray& ray) {
+    return isFinite(glm::vec3(ray.origin)) && isFinite(glm::vec3(ray.direction)) && std::isfinite(ray.origin.w) &&
+           !std::isnan(ray.direction.w);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------
+// ReferenceScene
+
+ReferenceScene::ReferenceScene(const core::SceneDescription& scene) {
+    meshes_.resize(scene.meshes.size());
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const core::TriangleMesh& mesh = scene.meshes[m];
+        for (uint32_t t = 0; t < triangleCount(mesh); ++t) {
+            if (!isTriangleValid(mesh, t)) continue;
+            const glm::uvec3 idx = triangleIndices(mesh, t);
+            meshes_[m].push_back({dvec3(mesh.positions[idx.x]), dvec3(mesh.positions[idx.y]),
+                                  dvec3(mesh.positions[idx.z]), t});
+        }
+        validTriangles_ += meshes_[m].size();
+    }
+    sphereSets_.resize(scene.sphereSets.size());
+    for (size_t s = 0; s < scene.sphereSets.size(); ++s) {
+        const core::SphereSet& set = scene.sphereSets[s];
+        for (uint32_t i = 0; i < sphereCount(set); ++i) {
+            if (!isSphereValid(set, i)) continue;
+            sphereSets_[s].push_back({dvec3(set.centers[i]), double(sphereRadius(set, i)), i});
+        }
+        validSpheres_ += sphereSets_[s].size();
+    }
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const core::InstanceDescription& inst = scene.instances[i];
+        if (!isTransformValid(inst.transform)) continue;
+        // Same rule as hasValidPrimitive, read from the already validated lists.
+        const core::GeometryRef& g = inst.geometry;
+        const bool nonEmpty =
+            (g.kind == core::GeometryKind::Triangles && g.index < meshes_.size() && !meshes_[g.index].empty()) ||
+            (g.kind == core::GeometryKind::Spheres && g.index < sphereSets_.size() && !sphereSets_[g.index].empty());
+        if (!nonEmpty) continue;
+        instances_.push_back({glm::inverse(glm::dmat3(inst.transform)), dvec3(inst.transform[3]), g.kind, g.index,
+                              static_cast<uint32_t>(i)});
+    }
+}
+
+// Calls visit(t, u, v, instanceId, primId) for every primitive hit in (tmin, tmax), in instance then
+// primitive order; stops early when visit returns true.
+template <typename Visit>
+void ReferenceScene::forEachHit(const gpu::Ray& ray, Visit&& visit) const {
+    if (!isRayUsable(ray)) return;
+    const dvec3 worldOrigin(ray.origin);
+    const dvec3 worldDirection(ray.direction);
+    for (const Instance& inst : instances_) {
+        const ObjectRay local{inst.worldToObject * (worldOrigin - inst.translation), inst.worldToObject * worldDirection,
+                              double(ray.origin.w), double(ray.direction.w)};
+        if (inst.kind == core::GeometryKind::Triangles) {
+            for (const Triangle& tri : meshes_[inst.geometry]) {
+                TriangleHit h;
+                if (!intersectTriangle(local, tri.a, tri.b, tri.c, h)) continue;
+                if (!(h.t > local.tmin && h.t < local.tmax)) continue;
+                if (visit(h.t, h.u, h.v, inst.instanceId, tri.primId)) return;
+            }
+        } else {
+            for (const Sphere& sphere : sphereSets_[inst.geometry]) {
+                double t;
+                if (!intersectSphere(local, sphere.center, sphere.radius, t)) continue;
+                if (visit(t, 0.0, 0.0, inst.instanceId, sphere.primId)) return;
+            }
+        }
+    }
+}
+
+RefHit ReferenceScene::traceClosest(const gpu::Ray& ray) const {
+    RefHit best;
+    std::vector<double> hitTs;  // every hit, to count ties against the final nearest t
+    forEachHit(ray, [&](double t, double u, double v, uint32_t instanceId, uint32_t primId) {
+        hitTs.push_back(t);
+        if (t < best.t) best = RefHit{true, t, instanceId, primId, u, v, 0};
+        return false;
+    });
+    if (best.found) {
+        const double tolerance = kTieRelativeTolerance * std::abs(best.t);
+        best.hitCount = static_cast<int>(
+            std::count_if(hitTs.begin(), hitTs.end(), [&](double t) { return std::abs(t - best.t) <= tolerance; }));
+    }
+    return best;
+}
+
+bool ReferenceScene::traceAny(const gpu::Ray& ray) const {
+    bool hit = false;
+    forEachHit(ray, [&](double, double, double, uint32_t, uint32_t) { return hit = true; });
+    return hit;
+}
+
+std::vector<RefHit> ReferenceScene::traceClosest(std::span<const gpu::Ray> rays) const {
+    std::vector<RefHit> hits(rays.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) hits[i] = traceClosest(rays[i]);
+    });
+    return hits;
+}
+
+std::vector<uint8_t> ReferenceScene::traceAny(std::span<const gpu::Ray> rays) const {
+    std::vector<uint8_t> hits(rays.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) hits[i] = traceAny(rays[i]) ? 1 : 0;
+    });
+    return hits;
+}
+
+RefHit traceClosest(const core::SceneDescription& scene, const gpu::Ray& ray) {
+    return ReferenceScene(scene).traceClosest(ray);
+}
+
+bool traceAny(const core::SceneDescription& scene, const gpu::Ray& ray) { return ReferenceScene(scene).traceAny(ray); }
+
+std::vector<RefHit> traceClosestAll(const core::SceneDescription& scene, std::span<const gpu::Ray> rays) {
+    return ReferenceScene(scene).traceClosest(rays);
+}
+
+std::vector<uint8_t> traceAnyAll(const core::SceneDescription& scene, std::span<const gpu::Ray> rays) {
+    return ReferenceScene(scene).traceAny(rays);
+}
+
+}  // namespace ripple::test

@@ -1,0 +1,280 @@
+// GPU traversal (closest-hit and any-hit) against the double-precision brute-force reference, plus the
+// edge cases of the foundation issue: watertightness, empty and huge scenes, far-from-origin geometry,
+// bad input, out-of-memory, and traversals longer than lavapipe's loop cap.
+#include "core/render/TraceKernels.h"
+#include "tests/support/ReferenceTracer.h"
+#include "tests/support/SceneGenerators.h"
+#include "tests/support/TestContext.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+using namespace ripple;
+using ripple::test::testContext;
+
+namespace {
+
+// Agreement of one GPU hit with the reference. Metric: same primitive and |t_gpu - t_ref| * |d| within
+// 1e-5 of the largest coordinate magnitude of the hit point (at least 1): float positions carry a relative
+// error of 6e-8, so this allows ~150 ulps of the hit's own coordinates. A different primitive is accepted
+// only as a tie: the reference saw several primitives at the nearest t, or the GPU's t is within the same
+// tolerance of the reference t (rays through shared edges and vertices, coplanar overlaps).
+struct Agreement {
+    uint64_t exact = 0, ties = 0, wrong = 0, flagged = 0;
+    double fraction() const {
+        const double n = double(exact + ties + wrong + flagged);
+        return n == 0 ? 1.0 : double(exact + ties) / n;
+    }
+};
+
+double tolerance(const gpu::Ray& ray, double t) {
+    const glm::dvec3 o(ray.origin), d(ray.direction);
+    const glm::dvec3 p = o + (std::isfinite(t) ? t : 0.0) * d;
+    const double scale = std::max({1.0, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    return 1e-5 * scale / glm::length(d);
+}
+
+Agreement compareClosest(std::span<const gpu::Ray> rays, std::span<const gpu::Hit> gpuHits,
+                         std::span<const test::RefHit> ref) {
+    Agreement a;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const gpu::Hit& g = gpuHits[i];
+        const test::RefHit& r = ref[i];
+        if ((g.status & ~0xFFu) != 0) { ++a.flagged; continue; }
+        const bool gpuFound = g.status == gpu::HIT_FOUND;
+        if (!gpuFound && !r.found) { ++a.exact; continue; }
+        if (gpuFound != r.found) { ++a.wrong; continue; }
+        const bool closeT = std::abs(double(g.t) - r.t) <= tolerance(rays[i], r.t);
+        if (g.instanceId == r.instanceId && g.primId == r.primId && closeT) ++a.exact;
+        else if (closeT || r.hitCount > 1) ++a.ties;
+        else ++a.wrong;
+    }
+    return a;
+}
+
+struct TraceResults {
+    std::vector<gpu::Hit> closest;
+    std::vector<uint32_t> any;
+};
+
+TraceResults traceOnGpu(const core::SceneDescription& description, std::span<const gpu::Ray> rays,
+                        const core::TraceOptions& options = {}) {
+    core::Scene scene(testContext(), description);
+    core::TraceKernels kernels(testContext(), options);
+    return {kernels.traceClosest(scene, rays), kernels.traceAny(scene, rays)};
+}
+
+// Closest hits agree on at least `minFraction` of rays, and any-hit answers agree exactly with the
+// reference except where the reference's nearest hit grazes tmax (none here: tmax is infinite).
+void checkAgainstReference(const core::SceneDescription& description, std::span<const gpu::Ray> rays,
+                           double minFraction = 0.999) {
+    test::ValidationGuard guard;
+    const TraceResults gpuResults = traceOnGpu(description, rays);
+    const std::vector<test::RefHit> ref = test::traceClosestAll(description, rays);
+    const Agreement a = compareClosest(rays, gpuResults.closest, ref);
+    INFO("exact " << a.exact << ", ties " << a.ties << ", wrong " << a.wrong << ", flagged " << a.flagged);
+    CHECK(a.flagged == 0);
+    CHECK(a.fraction() >= minFraction);
+    uint64_t anyMismatch = 0;
+    for (size_t i = 0; i < rays.size(); ++i)
+        anyMismatch += (gpuResults.any[i] == gpu::HIT_FOUND) != ref[i].found;
+    CHECK(double(anyMismatch) <= (1.0 - minFraction) * double(rays.size()));
+}
+
+}  // namespace
+
+TEST_CASE("random triangle soup: closest and any hit equal the reference") {
+    const auto scene = test::sceneOf(test::randomTriangleSoup(3000, 1));
+    const auto rays = test::raysTowardPoints(scene, 4096, 2);
+    checkAgainstReference(scene, rays);
+    const auto random = test::randomRays(4096, 3, glm::vec3(-1), glm::vec3(1));
+    checkAgainstReference(scene, random);
+    checkAgainstReference(scene, test::raysTowardPoints(scene, 2048, 4, /*normalised=*/false));
+}
+
+TEST_CASE("degenerate and needle triangles: invalid ones skipped, the rest equal the reference") {
+    test::ValidationGuard guard;
+    const auto scene = test::sceneOf(test::degenerateAndNeedleMesh(5));
+    core::Scene gpuScene(testContext(), scene);
+    CHECK(gpuScene.report().trianglesKept == test::DegenerateMeshLayout::kept);
+    CHECK(gpuScene.report().trianglesSkipped == test::DegenerateMeshLayout::total - test::DegenerateMeshLayout::kept);
+    checkAgainstReference(scene, test::raysTowardPoints(scene, 4096, 6));
+}
+
+TEST_CASE("spheres from outside and inside equal the reference") {
+    const auto scene = test::sceneOf(test::randomSpheres(400, 7, 1.0f, 0.01f, 0.2f));
+    checkAgainstReference(scene, test::raysTowardPoints(scene, 4096, 8));
+    checkAgainstReference(scene, test::randomRays(4096, 9, glm::vec3(-1), glm::vec3(1)));
+}
+
+TEST_CASE("instanced copies of meshes and spheres equal the reference") {
+    core::SceneDescription base = test::sceneOf(test::randomTriangleSoup(500, 10, 0.5f));
+    base.sphereSets.push_back(test::randomSpheres(100, 11, 0.5f, 0.02f, 0.1f));
+    base.instances.push_back({{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f)});
+    const auto scene = test::instancedCopies(base, 12, 12);
+    checkAgainstReference(scene, test::raysTowardPoints(scene, 4096, 13));
+    checkAgainstReference(scene, test::raysTowardPoints(scene, 2048, 14, /*normalised=*/false));
+}
+
+TEST_CASE("watertight: rays from inside a closed perturbed sphere never miss") {
+    test::ValidationGuard guard;
+    const core::TriangleMesh mesh = test::perturbedSphereMesh(5, 15, 0.1f);
+    REQUIRE(test::isClosedManifold(mesh));
+    const auto scene = test::sceneOf(mesh);
+    const auto rays = test::raysFromInside(glm::vec3(0.0f), 200000, 16, 0.3f);
+    const TraceResults r = traceOnGpu(scene, rays);
+    const auto misses = std::count_if(r.closest.begin(), r.closest.end(), [](const gpu::Hit& h) { return h.status != gpu::HIT_FOUND; });
+    const auto anyMisses = std::count(r.any.begin(), r.any.end(), gpu::HIT_MISS);
+    CHECK(misses == 0);
+    CHECK(anyMisses == 0);
+}
+
+TEST_CASE("empty scene: every ray misses") {
+    test::ValidationGuard guard;
+    const auto rays = test::randomRays(1000, 17, glm::vec3(-1), glm::vec3(1));
+    const TraceResults r = traceOnGpu(core::SceneDescription{}, rays);
+    CHECK(std::all_of(r.closest.begin(), r.closest.end(), [](const gpu::Hit& h) { return h.status == gpu::HIT_MISS; }));
+    CHECK(std::all_of(r.any.begin(), r.any.end(), [](uint32_t o) { return o == gpu::HIT_MISS; }));
+}
+
+TEST_CASE("one triangle: analytic distance and barycentrics") {
+    test::ValidationGuard guard;
+    core::TriangleMesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    const gpu::Ray ray{{0.25f, 0.5f, 2.0f, 0.0f}, {0.0f, 0.0f, -1.0f, std::numeric_limits<float>::infinity()}};
+    const TraceResults r = traceOnGpu(test::sceneOf(mesh), std::span(&ray, 1));
+    REQUIRE(r.closest[0].status == gpu::HIT_FOUND);
+    CHECK(r.closest[0].t == doctest::Approx(2.0).epsilon(1e-6));
+    CHECK(r.closest[0].u == doctest::Approx(0.25).epsilon(1e-6));
+    CHECK(r.closest[0].v == doctest::Approx(0.5).epsilon(1e-6));
+    CHECK(r.closest[0].primId == 0);
+    CHECK(r.any[0] == gpu::HIT_FOUND);
+    // tmax before the triangle: a miss for both kernels.
+    gpu::Ray shortRay = ray;
+    shortRay.direction.w = 1.5f;
+    const TraceResults s = traceOnGpu(test::sceneOf(mesh), std::span(&shortRay, 1));
+    CHECK(s.closest[0].status == gpu::HIT_MISS);
+    CHECK(s.any[0] == gpu::HIT_MISS);
+}
+
+TEST_CASE("a mesh of over a million triangles equals the reference on sampled rays") {
+    const auto scene = test::sceneOf(test::gridMesh(1'000'000));
+    checkAgainstReference(scene, test::raysTowardPoints(scene, 256, 18));
+}
+
+TEST_CASE("far from the origin: offsets up to 1e6 equal the reference") {
+    const auto base = test::sceneOf(test::randomTriangleSoup(2000, 19));
+    const auto baseRays = test::raysTowardPoints(base, 2048, 20);
+    for (float distance : {1e3f, 1e5f, 1e6f}) {
+        CAPTURE(distance);
+        const glm::vec3 delta(distance, -0.5f * distance, 0.25f * distance);
+        checkAgainstReference(test::offset(base, delta), test::offsetRays(baseRays, delta), 0.995);
+        checkAgainstReference(test::offsetInstances(base, delta), test::offsetRays(baseRays, delta), 0.995);
+    }
+}
+
+TEST_CASE("bad input is skipped, counted and named; it is never hit") {
+    test::ValidationGuard guard;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    core::SceneDescription d;
+    core::TriangleMesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {nan, 0, 0}, {0, inf, 0}};
+    mesh.indices = {{0, 1, 2}, {0, 1, 3}, {0, 4, 2}, {0, 1, 99}};
+    d.meshes.push_back(mesh);
+    d.meshes.push_back({});  // empty mesh
+    d.sphereSets.push_back({{{0, 0, 5}, {0, 0, 7}, {nan, 0, 0}}, {1.0f, 0.0f, 1.0f}});
+    d.instances = {{{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f)},
+                   {{core::GeometryKind::Triangles, 1}, glm::mat4(1.0f)},
+                   {{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f)},
+                   {{core::GeometryKind::Triangles, 7}, glm::mat4(1.0f)},
+                   {{core::GeometryKind::Triangles, 0}, glm::mat4(0.0f)}};
+    core::Scene scene(testContext(), d);
+    const core::SceneReport& rep = scene.report();
+    CHECK(rep.trianglesKept == 1);
+    CHECK(rep.trianglesSkipped == 3);
+    CHECK(rep.spheresKept == 1);
+    CHECK(rep.spheresSkipped == 2);
+    CHECK(rep.instancesKept == 2);
+    CHECK(rep.instancesSkipped == 3);
+    auto mentions = [&](const std::string& text) {
+        return std::any_of(rep.messages.begin(), rep.messages.end(), [&](const std::string& m) { return m.find(text) != std::string::npos; });
+    };
+    CHECK(mentions("mesh 0: skipped 1 triangle(s) with an index out of range"));
+    CHECK(mentions("mesh 0: skipped 2 triangle(s) with a NaN or Inf vertex"));
+    CHECK(mentions("instance 1: mesh 1 has no valid primitives"));
+    CHECK(mentions("sphere set 0: skipped 1 sphere(s) with a radius"));
+    CHECK(mentions("instance 3: references mesh 7"));
+    CHECK(mentions("instance 4: transform"));
+    const auto rays = test::randomRays(4096, 21, glm::vec3(-2), glm::vec3(2));
+    checkAgainstReference(d, rays);
+}
+
+TEST_CASE("out of GPU memory is an error naming the allocation") {
+    test::ValidationGuard guard;
+    try {
+        vk::Buffer huge(testContext(), VkDeviceSize(1) << 50, "deliberately huge test buffer");
+        FAIL("a 1 PiB allocation succeeded");
+    } catch (const vk::VulkanError& e) {
+        CHECK(std::string(e.what()).find("deliberately huge test buffer") != std::string::npos);
+        CHECK(e.result() == VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    }
+}
+
+// 60,000 tilted triangles over the same square, sharing one edge, with the third vertex at scrambled
+// heights: every box is the same, so the BVH cannot cull and a downward ray must test all of them, far beyond the 65,535 iterations lavapipe
+// allows one invocation. The resume rounds must still find the top triangle; without rounds the answer
+// must be flagged, never silently wrong.
+TEST_CASE("traversal longer than the per-invocation loop cap: resumed exactly, or flagged") {
+    test::ValidationGuard guard;
+    core::TriangleMesh stack;
+    const uint32_t layers = 60000;
+    for (uint32_t i = 0; i < layers; ++i) {
+        const float h = float(1 + (i * 7919u) % layers) / float(layers + 1);  // in (0, 1), all distinct
+        stack.positions.insert(stack.positions.end(), {{-4, -4, 0}, {4, -4, 1}, {0, 4, h}});
+    }
+    const auto scene = test::sceneOf(stack);
+    std::vector<gpu::Ray> rays;
+    for (int i = 0; i < 64; ++i)
+        rays.push_back({{-0.5f + float(i % 8) / 8.0f, -0.5f + float(i / 8) / 8.0f, 2.0f, 0.0f},
+                        {0.0f, 0.0f, -1.0f, std::numeric_limits<float>::infinity()}});
+    const auto ref = test::traceClosestAll(scene, rays);
+
+    core::Scene gpuScene(testContext(), scene);
+    {
+        core::TraceKernels resumed(testContext(), {.stepBudget = 60000, .resumeRounds = 8});
+        const auto hits = resumed.traceClosest(gpuScene, rays);
+        const Agreement a = compareClosest(rays, hits, ref);
+        CHECK(a.exact == rays.size());
+    }
+    {
+        core::TraceKernels unresumed(testContext(), {.stepBudget = 60000, .resumeRounds = 0});
+        const auto hits = unresumed.traceClosest(gpuScene, rays);
+        const Agreement a = compareClosest(rays, hits, ref);
+        CHECK(a.flagged == rays.size());
+        CHECK(a.wrong == 0);
+    }
+    {
+        // A tiny budget on an ordinary scene: many rounds of parking give exactly the unbudgeted answer.
+        const auto soup = test::sceneOf(test::randomTriangleSoup(3000, 22));
+        const auto soupRays = test::raysTowardPoints(soup, 2048, 23);
+        core::Scene soupScene(testContext(), soup);
+        core::TraceKernels tiny(testContext(), {.stepBudget = 2 * gpu::BVH_MAX_LEAF_SIZE + 2, .resumeRounds = 400});
+        core::TraceKernels normal(testContext());
+        const auto a = tiny.traceClosest(soupScene, soupRays);
+        const auto b = normal.traceClosest(soupScene, soupRays);
+        uint64_t same = 0;
+        for (size_t i = 0; i < a.size(); ++i)
+            same += a[i].status == b[i].status && a[i].t == b[i].t && a[i].primId == b[i].primId;
+        CHECK(same == a.size());
+        // Too few resume slots: the overflow is flagged, and every unflagged answer is still right.
+        core::TraceKernels cramped(testContext(), {.stepBudget = 2 * gpu::BVH_MAX_LEAF_SIZE + 2, .resumeRounds = 400, .resumeCapacity = 64});
+        const auto c = cramped.traceClosest(soupScene, soupRays);
+        const Agreement agreement = compareClosest(soupRays, c, test::traceClosestAll(soup, soupRays));
+        CHECK(agreement.flagged > 0);
+        CHECK(agreement.wrong == 0);
+    }
+}
