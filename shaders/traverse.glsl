@@ -1,8 +1,10 @@
 // Two-level BVH traversal shared by trace_closest.comp (TRACE_ANY_HIT 0) and trace_any.comp (1).
-// One invocation traces one ray. Every loop is bounded by params.stepBudget: lavapipe silently ends an
-// invocation after 65,535 loop iterations, so a traversal that needs more parks its exact state (stack,
-// instance, best hit) in a resume pool and an indirect dispatch continues it; with no slot or round left
-// the result is flagged HIT_FLAG_RAN_OUT instead of being silently wrong.
+// One invocation traces one ray, in ONE flat loop whose every iteration does one unit of work (pop a
+// stack entry, or test one primitive). lavapipe silently ends a shader's loops after 65,535 iterations,
+// counted per SIMD vector over all nested loops including their exit tests; with a single loop that count
+// is the longest lane's step count, which params.stepBudget bounds. A traversal that needs more parks its
+// exact state (stack, instance, best hit) in a resume pool and an indirect dispatch continues it; with no
+// slot or round left the result is flagged HIT_FLAG_RAN_OUT instead of being silently wrong.
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 
@@ -27,16 +29,28 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer ResumeRef {
     TraversalState states[];
 };
 
-// Stack entries: a node index of the BVH being traversed, an instance to enter (TLAS leaves), or the
-// sentinel that marks the return from a BLAS to the TLAS.
+// Stack entries: a node index of the BVH being traversed; a BLAS leaf as two words (first primitive, then
+// ENTRY_LEAF | count); an instance to enter (TLAS leaves hold one); or the sentinel that returns from a
+// BLAS to the TLAS. Node indices stay below ENTRY_LEAF (2^30 nodes per BVH).
 const uint ENTRY_INSTANCE = 0x80000000u;
+const uint ENTRY_LEAF = 0x40000000u;
 const uint ENTRY_LEAVE_BLAS = 0xFFFFFFFFu;
 const uint NO_INSTANCE = 0xFFFFFFFFu;
+#define INFINITY uintBitsToFloat(0x7f800000u)
 
 uint stack[TRAVERSAL_STACK_SIZE];
 uint stackSize;
 uint instanceSlot;
 Hit best;
+
+// The ray in the space of the BVH being traversed (world for the TLAS, object for a BLAS).
+SceneDesc scene;
+InstancePrim instance;
+vec3 origin;
+vec3 direction;
+vec3 invDirection;
+TriangleRay triRay;
+float tmin;
 
 void writeResult(uint rayIndex) {
 #if TRACE_ANY_HIT
@@ -44,6 +58,12 @@ void writeResult(uint rayIndex) {
 #else
     HitsRef(params.hits).hits[rayIndex] = best;
 #endif
+}
+
+bool push(uint entry) {
+    if (stackSize >= TRAVERSAL_STACK_SIZE) return false;
+    stack[stackSize++] = entry;
+    return true;
 }
 
 // Parks the traversal for the next round; false when there is no round or slot left.
@@ -61,14 +81,47 @@ bool park(uint rayIndex) {
     return true;
 }
 
-bool push(uint entry) {
-    if (stackSize >= TRAVERSAL_STACK_SIZE) return false;
-    stack[stackSize++] = entry;
-    return true;
+void enterSpace(Ray worldRay) {
+    if (instanceSlot == NO_INSTANCE) {
+        origin = worldRay.origin.xyz;
+        direction = worldRay.direction.xyz;
+    } else {
+        instance = InstancesRef(scene.instances).instances[instanceSlot];
+        mat3x4 toObject = mat3x4(instance.worldToObject[0], instance.worldToObject[1], instance.worldToObject[2]);
+        origin = vec4(worldRay.origin.xyz, 1.0) * toObject;
+        direction = vec4(worldRay.direction.xyz, 0.0) * toObject;
+    }
+    invDirection = safeReciprocal(direction);
+    triRay = makeTriangleRay(origin, direction);
+}
+
+// Pushes one child of a node: an inner node, a TLAS leaf (its instance) or a BLAS leaf (two words).
+bool pushChild(uint ref, uint count) {
+    if (count == 0u) return push(ref);
+    if (instanceSlot == NO_INSTANCE) return push(ENTRY_INSTANCE | ref);
+    return push(ref) && push(ENTRY_LEAF | min(count, BVH_MAX_LEAF_SIZE));
+}
+
+void testPrimitive(uint primSlot) {
+    float t = best.t;
+    float u = 0.0, v = 0.0;
+    bool hit;
+    uint primId;
+    if (instance.geometryKind == GEOMETRY_TRIANGLES) {
+        TrianglePrim tri = TrianglesRef(scene.triangles).triangles[primSlot];
+        hit = intersectTriangle(triRay, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, t, u, v);
+        primId = floatBitsToUint(tri.v0.w);
+    } else {
+        SpherePrim sphere = SpheresRef(scene.spheres).spheres[primSlot];
+        hit = intersectSphere(origin, direction, sphere.centerRadius, tmin, t);
+        primId = sphere.primId;
+    }
+    if (hit) best = Hit(t, u, v, instance.instanceId, primId, HIT_FOUND);
 }
 
 void main() {
     uint rayIndex;
+    stackSize = 0u;
     if (params.resumeIn != 0ul) {
         ResumeRef pool = ResumeRef(params.resumeIn);
         uint slot = gl_GlobalInvocationID.x;
@@ -81,117 +134,73 @@ void main() {
     } else {
         rayIndex = gl_GlobalInvocationID.x;
         if (rayIndex >= params.rayCount) return;
-        stackSize = 0u;
         instanceSlot = NO_INSTANCE;
         best = Hit(RaysRef(params.rays).rays[rayIndex].direction.w, 0.0, 0.0, NO_INSTANCE, NO_INSTANCE, HIT_MISS);
         if (SceneRef(params.scene).desc.instanceCount > 0u) push(0u);
     }
 
-    SceneDesc scene = SceneRef(params.scene).desc;
+    scene = SceneRef(params.scene).desc;
     NodesRef nodes = NodesRef(scene.nodes);
     Ray worldRay = RaysRef(params.rays).rays[rayIndex];
-    float tmin = worldRay.origin.w;
+    tmin = worldRay.origin.w;
+    enterSpace(worldRay);
+    uint nodeBase = instanceSlot == NO_INSTANCE ? 0u : instance.blasNodeOffset;
 
-    // The ray in the space of the BVH being traversed (world for the TLAS, object for a BLAS).
-    vec3 origin = worldRay.origin.xyz;
-    vec3 direction = worldRay.direction.xyz;
-    InstancePrim instance;
-    uint nodeBase = 0u;
-    if (instanceSlot != NO_INSTANCE) {
-        instance = InstancesRef(scene.instances).instances[instanceSlot];
-        origin = vec4(worldRay.origin.xyz, 1.0) * mat3x4(instance.worldToObject[0], instance.worldToObject[1], instance.worldToObject[2]);
-        direction = vec4(worldRay.direction.xyz, 0.0) * mat3x4(instance.worldToObject[0], instance.worldToObject[1], instance.worldToObject[2]);
-        nodeBase = instance.blasNodeOffset;
-    }
-    vec3 invDirection = safeReciprocal(direction);
-    TriangleRay triRay = makeTriangleRay(origin, direction);
-
-    uint steps = 0u;
-    while (stackSize > 0u) {
-        // Reserve enough for one node and two full leaves before committing to another iteration.
-        if (steps + 2u * BVH_MAX_LEAF_SIZE + 1u > params.stepBudget) {
-            if (!park(rayIndex)) {
-                best.status |= HIT_FLAG_RAN_OUT;
+    uint leafFirst = 0u;      // primitives of the leaf being tested, relative to the BLAS
+    uint leafRemaining = 0u;
+    // Loop iterations so far, counting the resume copy above and reserving the park copy below.
+    uint steps = stackSize + TRAVERSAL_STACK_SIZE + 2u;
+    bool overflow = false;
+    while (leafRemaining > 0u || stackSize > 0u) {
+        if (++steps > params.stepBudget) {
+            if (leafRemaining > 0u) overflow = !push(leafFirst) || !push(ENTRY_LEAF | leafRemaining);
+            if (overflow || !park(rayIndex)) {
+                best.status |= overflow ? HIT_FLAG_STACK_OVERFLOW : HIT_FLAG_RAN_OUT;
                 writeResult(rayIndex);
             }
             return;
         }
-        ++steps;
-        uint entry = stack[--stackSize];
 
+        if (leafRemaining > 0u) {
+            testPrimitive(instance.primOffset + leafFirst);
+            ++leafFirst;
+            --leafRemaining;
+            if (TRACE_ANY_HIT != 0 && best.status == HIT_FOUND) break;  // any hit will do
+            continue;
+        }
+
+        uint entry = stack[--stackSize];
         if (entry == ENTRY_LEAVE_BLAS) {
             instanceSlot = NO_INSTANCE;
             nodeBase = 0u;
-            origin = worldRay.origin.xyz;
-            direction = worldRay.direction.xyz;
-            invDirection = safeReciprocal(direction);
-            triRay = makeTriangleRay(origin, direction);
-            continue;
-        }
-        if ((entry & ENTRY_INSTANCE) != 0u) {
+            enterSpace(worldRay);
+        } else if ((entry & ENTRY_INSTANCE) != 0u) {
             instanceSlot = entry & ~ENTRY_INSTANCE;
-            instance = InstancesRef(scene.instances).instances[instanceSlot];
-            mat3x4 toObject = mat3x4(instance.worldToObject[0], instance.worldToObject[1], instance.worldToObject[2]);
-            origin = vec4(worldRay.origin.xyz, 1.0) * toObject;
-            direction = vec4(worldRay.direction.xyz, 0.0) * toObject;
-            invDirection = safeReciprocal(direction);
-            triRay = makeTriangleRay(origin, direction);
+            enterSpace(worldRay);
             nodeBase = instance.blasNodeOffset;
-            if (!push(ENTRY_LEAVE_BLAS) || !push(0u)) { best.status |= HIT_FLAG_STACK_OVERFLOW; break; }
-            continue;
+            overflow = !push(ENTRY_LEAVE_BLAS) || !push(0u);
+        } else if ((entry & ENTRY_LEAF) != 0u) {
+            leafRemaining = entry & ~ENTRY_LEAF;
+            leafFirst = stack[--stackSize];
+        } else {
+            BvhNode node = nodes.nodes[nodeBase + entry];
+            uint leftRef = floatBitsToUint(node.leftMin.w), leftCount = floatBitsToUint(node.leftMax.w);
+            uint rightRef = floatBitsToUint(node.rightMin.w), rightCount = floatBitsToUint(node.rightMax.w);
+            float leftEnter = (leftCount == 0u && leftRef == 0u) ? INFINITY
+                              : intersectBox(node.leftMin.xyz, node.leftMax.xyz, origin, invDirection, tmin, best.t);
+            float rightEnter = (rightCount == 0u && rightRef == 0u) ? INFINITY
+                               : intersectBox(node.rightMin.xyz, node.rightMax.xyz, origin, invDirection, tmin, best.t);
+            // Far child first, so the near one is popped first.
+            bool leftFirst = leftEnter <= rightEnter;
+            float farEnter = leftFirst ? rightEnter : leftEnter;
+            float nearEnter = leftFirst ? leftEnter : rightEnter;
+            if (!isinf(farEnter)) overflow = !pushChild(leftFirst ? rightRef : leftRef, leftFirst ? rightCount : leftCount);
+            if (!isinf(nearEnter)) overflow = overflow || !pushChild(leftFirst ? leftRef : rightRef, leftFirst ? leftCount : rightCount);
         }
-
-        BvhNode node = nodes.nodes[nodeBase + entry];
-        uint refs[2] = uint[2](floatBitsToUint(node.leftMin.w), floatBitsToUint(node.rightMin.w));
-        uint counts[2] = uint[2](floatBitsToUint(node.leftMax.w), floatBitsToUint(node.rightMax.w));
-        float tFar = best.t;
-        float enter[2];
-        enter[0] = (counts[0] == 0u && refs[0] == 0u) ? uintBitsToFloat(0x7f800000u)
-                   : intersectBox(node.leftMin.xyz, node.leftMax.xyz, origin, invDirection, tmin, tFar);
-        enter[1] = (counts[1] == 0u && refs[1] == 0u) ? uintBitsToFloat(0x7f800000u)
-                   : intersectBox(node.rightMin.xyz, node.rightMax.xyz, origin, invDirection, tmin, tFar);
-        // Visit the nearer child first: push it last.
-        uint first = enter[1] < enter[0] ? 1u : 0u;
-        bool overflow = false;
-        for (uint n = 0u; n < 2u; ++n) {
-            uint c = n == 0u ? 1u - first : first;  // far child, then near child
-            if (isinf(enter[c])) continue;
-            if (counts[c] == 0u) {
-                overflow = overflow || !push(refs[c]);
-            } else if (instanceSlot == NO_INSTANCE) {
-                // TLAS leaf: defer each instance (leaves hold one instance; more work too).
-                for (uint i = 0u; i < counts[c] && i < BVH_MAX_LEAF_SIZE; ++i)
-                    overflow = overflow || !push(ENTRY_INSTANCE | (refs[c] + i));
-            } else {
-                // BLAS leaf: test its primitives now.
-                steps += counts[c];
-                for (uint i = 0u; i < counts[c] && i < BVH_MAX_LEAF_SIZE; ++i) {
-                    uint primSlot = instance.primOffset + refs[c] + i;
-                    float u, v;
-                    bool hit;
-                    uint primId;
-                    float t = best.t;
-                    if (instance.geometryKind == GEOMETRY_TRIANGLES) {
-                        TrianglePrim tri = TrianglesRef(scene.triangles).triangles[primSlot];
-                        hit = intersectTriangle(triRay, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, t, u, v);
-                        primId = floatBitsToUint(tri.v0.w);
-                    } else {
-                        SpherePrim sphere = SpheresRef(scene.spheres).spheres[primSlot];
-                        hit = intersectSphere(origin, direction, sphere.centerRadius, tmin, t);
-                        u = 0.0;
-                        v = 0.0;
-                        primId = sphere.primId;
-                    }
-                    if (hit) {
-                        best = Hit(t, u, v, instance.instanceId, primId, HIT_FOUND);
-                        if (TRACE_ANY_HIT != 0) break;
-                    }
-                }
-            }
-            if (TRACE_ANY_HIT != 0 && best.status == HIT_FOUND) break;
+        if (overflow) {
+            best.status |= HIT_FLAG_STACK_OVERFLOW;
+            break;
         }
-        if (TRACE_ANY_HIT != 0 && best.status == HIT_FOUND) break;  // any hit will do
-        if (overflow) { best.status |= HIT_FLAG_STACK_OVERFLOW; break; }
     }
     writeResult(rayIndex);
 }

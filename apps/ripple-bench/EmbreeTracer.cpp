@@ -66,7 +66,11 @@ void EmbreeTracer::build(const core::TriangleMesh& mesh) {
     const size_t triangleCount = mesh.indices.empty() ? vertexCount / 3 : mesh.indices.size();
     auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
         geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), triangleCount));
-    throwOnError("allocating geometry buffers");
+    if (!vertices || !indices) {
+        rtcReleaseGeometry(geometry);
+        throwOnError("allocating geometry buffers");
+        throw std::runtime_error("Embree: no geometry buffers for " + std::to_string(triangleCount) + " triangles");
+    }
     std::memcpy(vertices, mesh.positions.data(), vertexCount * 3 * sizeof(float));
     if (mesh.indices.empty()) {
         for (size_t i = 0; i < triangleCount * 3; ++i) indices[i] = uint32_t(i);

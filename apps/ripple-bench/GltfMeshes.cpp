@@ -2,6 +2,13 @@
 // reads, so a truncated or inconsistent file ends in an error that names the accessor rather than a crash.
 #include "apps/ripple-bench/GltfMeshes.h"
 
+// Debian ships tinygltf as a compiled library; where CMake finds none, this file compiles it in, without
+// image codecs (geometry only) so that stb is not needed. nlohmann/json.hpp still is.
+#ifdef RIPPLE_BENCH_TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#endif
 #include <tiny_gltf.h>
 
 #include <glm/gtc/matrix_transform.hpp>

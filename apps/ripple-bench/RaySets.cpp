@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace ripple::bench {
@@ -53,14 +54,23 @@ Bounds meshBounds(const core::TriangleMesh& mesh) {
 
 std::vector<gpu::Ray> primaryRays(const Bounds& bounds, uint32_t width, uint32_t height) {
     const glm::vec3 center = 0.5f * (bounds.lo + bounds.hi);
-    const float radius = std::max(0.5f * bounds.diagonal(), 1e-6f);
-    const float halfFov = glm::radians(22.5f);
-    const glm::vec3 eye = center + glm::normalize(glm::vec3(0.35f, 0.3f, 1.0f)) * (radius / std::tan(halfFov));
-    const glm::vec3 forward = glm::normalize(center - eye);
+    const glm::vec3 forward = -glm::normalize(glm::vec3(0.35f, 0.3f, 1.0f));
     const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
     const glm::vec3 up = glm::cross(right, forward);
-    const float halfHeight = std::tan(halfFov);
+    const float halfHeight = std::tan(glm::radians(22.5f));
     const float halfWidth = halfHeight * float(width) / float(height);
+
+    // The nearest eye distance from the centre at which all eight box corners are inside the frustum.
+    float distance = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p(corner & 1 ? bounds.hi.x : bounds.lo.x, corner & 2 ? bounds.hi.y : bounds.lo.y,
+                          corner & 4 ? bounds.hi.z : bounds.lo.z);
+        const glm::vec3 q = p - center;
+        const float depth = glm::dot(q, forward);
+        distance = std::max({distance, std::abs(glm::dot(q, right)) / halfWidth - depth,
+                             std::abs(glm::dot(q, up)) / halfHeight - depth});
+    }
+    const glm::vec3 eye = center - forward * std::max(distance, 1e-6f);
 
     std::vector<gpu::Ray> rays(size_t(width) * height);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, height), [&](const auto& rowRange) {
@@ -85,8 +95,9 @@ glm::vec3 lightPosition(const Bounds& bounds) {
 SecondaryRays secondaryRays(const core::TriangleMesh& mesh, const Bounds& bounds, std::span<const gpu::Ray> primary,
                             std::span<const gpu::Hit> hits, uint32_t seed) {
     SecondaryRays out;
-    for (uint32_t i = 0; i < uint32_t(primary.size()); ++i)
-        if (hits[i].status == gpu::HIT_FOUND) out.source.push_back(i);
+    const size_t triangleCount = mesh.indices.empty() ? mesh.positions.size() / 3 : mesh.indices.size();
+    for (uint32_t i = 0; i < uint32_t(primary.size()); ++i)  // primId is checked: the hits may be Ripple's
+        if (hits[i].status == gpu::HIT_FOUND && hits[i].primId < triangleCount) out.source.push_back(i);
     out.shadow.resize(out.source.size());
     out.bounce.resize(out.source.size());
 
@@ -102,9 +113,9 @@ SecondaryRays secondaryRays(const core::TriangleMesh& mesh, const Bounds& bounds
             const glm::vec3 p = (1.0f - h.u - h.v) * p0 + h.u * p1 + h.v * p2;
             const glm::vec3 incoming(primary[i].direction);
             const glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
-            const float area2 = glm::length(c);
+            const float twiceArea = glm::length(c);
             // A sliver can be hit yet have no representable normal; facing the ray keeps its rays defined.
-            glm::vec3 n = area2 > 0.0f && std::isfinite(area2) ? c / area2 : -glm::normalize(incoming);
+            glm::vec3 n = twiceArea > 0.0f && std::isfinite(twiceArea) ? c / twiceArea : -glm::normalize(incoming);
             if (glm::dot(n, incoming) > 0.0f) n = -n;  // the side the primary ray came from
             const glm::vec3 origin = p + offset * n;
 

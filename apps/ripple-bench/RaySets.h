@@ -27,8 +27,8 @@ struct Bounds {
 Bounds meshBounds(const core::TriangleMesh& mesh);
 
 // One ray per pixel centre, row-major from the top-left pixel; unit directions, so t is a distance.
-// The camera looks at the box centre from the front, a little from above and the right, at a distance
-// where the bounding sphere fills the 45-degree vertical field of view.
+// The camera looks at the box centre from the front, a little from above and the right, from the
+// nearest point where the whole box fits the 45-degree vertical field of view.
 std::vector<gpu::Ray> primaryRays(const Bounds& bounds, uint32_t width, uint32_t height);
 
 // Above the scene, off-centre so shadows fall sideways and are visible in any view.
@@ -41,7 +41,7 @@ struct SecondaryRays {
 };
 
 // One shadow and one bounce ray per primary ray whose `hits` entry is a clean hit (status exactly
-// HIT_FOUND); misses and flagged rays are left out. The hit point is rebuilt from the triangle and the
+// HIT_FOUND, primId in range); misses and flagged rays are left out. The hit point is rebuilt from the triangle and the
 // barycentrics, and offset along the geometric normal turned toward the incoming ray. Deterministic:
 // the bounce direction of a ray depends only on its primary index and `seed`.
 SecondaryRays secondaryRays(const core::TriangleMesh& mesh, const Bounds& bounds, std::span<const gpu::Ray> primary,

@@ -1,6 +1,7 @@
 // Formats ripple-bench results: fixed-width tables for people, JSON for scripts and the README's numbers.
 #include "apps/ripple-bench/Report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -19,6 +20,12 @@ std::string format(const char* fmt, ...) {
     std::vsnprintf(buffer, sizeof buffer, fmt, args);
     va_end(args);
     return buffer;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 double perSecond(double count, double seconds) { return seconds > 0.0 ? count / seconds : 0.0; }
@@ -79,7 +86,7 @@ void writeSample(Json& j, const char* key, const Sample& s) {
     j.open(key, '{');
     j.value("wallSeconds", s.wall);
     j.value("cpuSeconds", s.cpu);
-    j.value("gpuSeconds", s.gpu);
+    if (s.gpu > 0.0) j.value("gpuSeconds", s.gpu);  // only Ripple's launches have GPU timestamps
     j.close('}');
 }
 
@@ -101,30 +108,44 @@ void writeRuns(Json& j, const char* key, const TracerRuns& t, uint64_t rays, boo
     j.close('}');
 }
 
+void writeBuild(Json& j, const BuildResult& b, uint64_t triangles) {
+    j.value("ran", b.ran);
+    if (!b.ran) return;
+    const Sample median = medianOf(b.runs);
+    j.value("mtrisPerSecond", perSecond(double(triangles), median.wall) * 1e-6);
+    writeSample(j, "median", median);
+    j.open("runs", '[');
+    for (const Sample& s : b.runs) writeSample(j, nullptr, s);
+    j.close(']');
+}
+
 }  // namespace
 
 void printTables(std::ostream& out, const RunInfo& info, const std::vector<SceneResult>& scenes) {
-    out << format("ripple-bench: Ripple on \"%s\" vs %s; %u hardware threads, %ux%u rays, median of %u runs\n",
+    out << format("ripple-bench: Ripple on \"%s\" vs %s; %u hardware threads, %ux%u rays, median of %u timed run(s)\n",
                   info.vkDevice.c_str(),
-                  info.embreeVersion.empty() ? "no Embree" : ("Embree " + info.embreeVersion).c_str(),
+                  info.embreeVersion.empty() ? "nothing (--no-embree)" : ("Embree " + info.embreeVersion).c_str(),
                   info.hardwareThreads, info.width, info.height, info.repeat);
     out << "Ripple trace times: device-side launch incl. submit+wait, excluding upload/download.\n"
-           "Secondary rays start from Embree's primary hits (Ripple's with --no-embree).\n\n";
+        << (info.embreeVersion.empty() ? "Secondary rays start from Ripple's primary hits (--no-embree).\n\n"
+                                       : "Secondary rays start from Embree's primary hits (the reference).\n\n");
 
-    out << format("%-11s %11s %22s %10s %18s\n", "scene", "triangles", "build ms Ripple(BLAS)", "Embree",
-                  "Mtri/s Ripple/Emb");
+    out << format("%-11s %11s %26s %10s %19s\n", "scene", "triangles", "build ms Ripple (BLAS part)", "Embree",
+                  "Mtri/s Ripple / E");
     for (const SceneResult& s : scenes) {
         if (s.status != "ok") {
             out << format("%-11s %s: %s\n", s.name.c_str(), s.status.c_str(), s.message.c_str());
             continue;
         }
+        const double rippleWall = medianOf(s.rippleBuild.runs).wall;
+        const double embreeWall = medianOf(s.embreeBuild.runs).wall;
         const std::string ripple = s.rippleBuild.ran
-            ? format("%.1f (%.1f)", 1e3 * s.rippleBuild.time.wall, 1e3 * s.rippleBlasSeconds) : std::string("-");
+            ? format("%.1f (%.1f)", 1e3 * rippleWall, 1e3 * median(s.rippleBuild.bvhSeconds)) : std::string("-");
         const double tris = double(s.triangles);
-        out << format("%-11s %11s %22s %10s %8s / %-8s\n", s.name.c_str(), withCommas(s.triangles).c_str(),
-                      ripple.c_str(), number(s.embreeBuild.ran, 1e3 * s.embreeBuild.time.wall, "%.1f").c_str(),
-                      number(s.rippleBuild.ran, perSecond(tris, s.rippleBuild.time.wall) * 1e-6).c_str(),
-                      number(s.embreeBuild.ran, perSecond(tris, s.embreeBuild.time.wall) * 1e-6).c_str());
+        out << format("%-11s %11s %26s %10s %8s / %-8s\n", s.name.c_str(), withCommas(s.triangles).c_str(),
+                      ripple.c_str(), number(s.embreeBuild.ran, 1e3 * embreeWall, "%.1f").c_str(),
+                      number(s.rippleBuild.ran, perSecond(tris, rippleWall) * 1e-6).c_str(),
+                      number(s.embreeBuild.ran, perSecond(tris, embreeWall) * 1e-6).c_str());
     }
 
     out << format("\n%-11s %-8s %10s %19s %19s %9s %9s %6s %7s\n", "scene", "rays", "count", "Mrays/s wall R / E",
@@ -140,7 +161,7 @@ void printTables(std::ostream& out, const RunInfo& info, const std::vector<Scene
                           number(k.embree.ran, perSecond(n, e.wall) * 1e-6).c_str(),
                           number(k.ripple.ran, rCpu * 1e-6).c_str(), number(k.embree.ran, eCpu * 1e-6).c_str(),
                           number(both && eCpu > 0.0, rCpu / eCpu, "%.3f").c_str(),
-                          number(k.compared, k.agreement.percent(), "%.3f").c_str(),
+                          number(k.compared, k.agreement.percent(), "%.4f").c_str(),
                           number(k.compared, double(k.agreement.ties), "%.0f").c_str(),
                           number(k.compared, double(k.agreement.flagged), "%.0f").c_str());
         }
@@ -180,18 +201,19 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
         j.value("triangles", s.triangles);
         j.value("vertices", s.vertices);
         j.open("rippleBuild", '{');
-        j.value("ran", s.rippleBuild.ran);
-        writeSample(j, "time", s.rippleBuild.time);
-        j.value("blasSeconds", s.rippleBlasSeconds);
-        j.value("tlasSeconds", s.rippleTlasSeconds);
-        j.value("trianglesSkipped", s.rippleTrianglesSkipped);
-        j.value("gpuBytes", s.rippleGpuBytes);
-        j.value("mtrisPerSecond", perSecond(double(s.triangles), s.rippleBuild.time.wall) * 1e-6);
+        writeBuild(j, s.rippleBuild, s.triangles);
+        if (s.rippleBuild.ran) {
+            j.value("blasSecondsMedian", median(s.rippleBuild.bvhSeconds));
+            j.open("blasSeconds", '[');
+            for (double b : s.rippleBuild.bvhSeconds) j.value(nullptr, b);
+            j.close(']');
+            j.value("tlasSeconds", s.rippleTlasSeconds);
+            j.value("trianglesSkipped", s.rippleTrianglesSkipped);
+            j.value("gpuBytes", s.rippleGpuBytes);
+        }
         j.close('}');
         j.open("embreeBuild", '{');
-        j.value("ran", s.embreeBuild.ran);
-        writeSample(j, "time", s.embreeBuild.time);
-        j.value("mtrisPerSecond", perSecond(double(s.triangles), s.embreeBuild.time.wall) * 1e-6);
+        writeBuild(j, s.embreeBuild, s.triangles);
         j.close('}');
         j.value("secondaryRaysFrom", s.secondaryFrom);
         j.open("rays", '[');

@@ -31,7 +31,8 @@ struct KindResult {
 
 struct BuildResult {
     bool ran = false;
-    Sample time;                     // wall and CPU of the whole construction
+    std::vector<Sample> runs;        // wall and CPU of each whole construction, warm-up excluded
+    std::vector<double> bvhSeconds;  // Ripple: SceneReport::blasBuildSeconds of each run
 };
 
 struct SceneResult {
@@ -42,8 +43,7 @@ struct SceneResult {
     uint64_t triangles = 0;
     uint64_t vertices = 0;
     BuildResult rippleBuild, embreeBuild;
-    double rippleBlasSeconds = 0.0;  // core::SceneReport
-    double rippleTlasSeconds = 0.0;
+    double rippleTlasSeconds = 0.0;  // core::SceneReport of the last build
     uint64_t rippleTrianglesSkipped = 0;
     uint64_t rippleGpuBytes = 0;
     std::string secondaryFrom;       // whose primary hits seeded the shadow and bounce rays

@@ -7,6 +7,7 @@
 
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 #include <type_traits>
 
 namespace ripple::bench {
@@ -20,6 +21,7 @@ std::optional<core::TriangleMesh> loadMesh(const std::string& name, const SceneS
         progress(name, "generating the mesh");
         return displacedCubeSphere(name == "builtin" ? kBuiltinSubdivision : kProceduralSubdivision);
     }
+    if (name != "bunny" && name != "sponza") throw std::invalid_argument("unknown scene \"" + name + "\"");
     const std::filesystem::path file =
         settings.dataDir / "gltf" / (name == "bunny" ? "bunny.glb" : "sponza-lod4-geometry.glb");
     result.source = file.string();
@@ -33,20 +35,27 @@ std::optional<core::TriangleMesh> loadMesh(const std::string& name, const SceneS
     return loadGltfTriangles(file);
 }
 
-void buildBoth(const core::TriangleMesh& mesh, const std::string& name, Tracers tracers, SceneResult& result) {
-    progress(name, "building Ripple scene");
-    result.rippleBuild.time = tracers.ripple.build(mesh);
+// Each BVH is built once untimed (thread pools and allocators warm up) and then `repeat` times timed.
+void buildBoth(const core::TriangleMesh& mesh, const std::string& name, uint32_t repeat, Tracers tracers,
+               SceneResult& result) {
+    progress(name, "building Ripple scene x" + std::to_string(repeat + 1));
+    tracers.ripple.build(mesh);
+    for (uint32_t r = 0; r < repeat; ++r) {
+        result.rippleBuild.runs.push_back(tracers.ripple.build(mesh));
+        result.rippleBuild.bvhSeconds.push_back(tracers.ripple.report().blasBuildSeconds);
+    }
     result.rippleBuild.ran = true;
     const core::SceneReport& report = tracers.ripple.report();
-    result.rippleBlasSeconds = report.blasBuildSeconds;
     result.rippleTlasSeconds = report.tlasBuildSeconds;
     result.rippleTrianglesSkipped = report.trianglesSkipped;
     result.rippleGpuBytes = report.gpuBytes;
     for (const std::string& message : report.messages) progress(name, "Ripple scene: " + message);
 
     if (tracers.embree) {
-        progress(name, "building Embree scene");
-        result.embreeBuild.time = measure([&] { tracers.embree->build(mesh); });
+        progress(name, "building Embree scene x" + std::to_string(repeat + 1));
+        tracers.embree->build(mesh);
+        for (uint32_t r = 0; r < repeat; ++r)
+            result.embreeBuild.runs.push_back(measure([&] { tracers.embree->build(mesh); }));
         result.embreeBuild.ran = true;
     }
 }
@@ -157,7 +166,7 @@ SceneResult runScene(const std::string& name, const SceneSettings& settings, Tra
         if (!mesh) return result;
         result.vertices = mesh->positions.size();
         result.triangles = mesh->indices.empty() ? mesh->positions.size() / 3 : mesh->indices.size();
-        buildBoth(*mesh, name, tracers, result);
+        buildBoth(*mesh, name, settings.repeat, tracers, result);
         traceAllKinds(*mesh, name, settings, tracers, result);
     } catch (const std::exception& e) {
         result.status = "failed";

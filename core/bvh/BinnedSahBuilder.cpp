@@ -7,9 +7,12 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <bit>
 #include <cfloat>
 #include <memory>
@@ -22,70 +25,124 @@ namespace {
 constexpr uint32_t kMaxBins = 32;  // bins live on the stack of each binning task
 constexpr uint32_t kNoParent = ~0u;
 
+// Four float lanes for the per-primitive loops, which dominate the build time: SSE where the target has
+// it, plain loops elsewhere. Lane 3 is kept at zero wherever arithmetic touches it.
+#if defined(__SSE2__) || defined(_M_X64)
+struct F4 {
+    __m128 v;
+    static F4 load(const float* p) { return {_mm_load_ps(p)}; }
+    static F4 set(float x, float y, float z, float w) { return {_mm_setr_ps(x, y, z, w)}; }
+    void store(float* p) const { _mm_store_ps(p, v); }
+    F4 xyz() const { return {_mm_and_ps(v, _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0)))}; }
+    friend F4 operator+(F4 a, F4 b) { return {_mm_add_ps(a.v, b.v)}; }
+    friend F4 operator-(F4 a, F4 b) { return {_mm_sub_ps(a.v, b.v)}; }
+    friend F4 operator*(F4 a, F4 b) { return {_mm_mul_ps(a.v, b.v)}; }
+    friend F4 min(F4 a, F4 b) { return {_mm_min_ps(a.v, b.v)}; }  // a < b ? a : b, per lane
+    friend F4 max(F4 a, F4 b) { return {_mm_max_ps(a.v, b.v)}; }  // a > b ? a : b, per lane
+    void truncate(int32_t* out) const { _mm_store_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(v)); }
+};
+#else
+struct F4 {
+    float v[4];
+    static F4 load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+    static F4 set(float x, float y, float z, float w) { return {{x, y, z, w}}; }
+    void store(float* p) const { std::copy(v, v + 4, p); }
+    F4 xyz() const { return {{v[0], v[1], v[2], 0.0f}}; }
+    template <typename Op> static F4 map(F4 a, F4 b, Op op) {
+        return {{op(a.v[0], b.v[0]), op(a.v[1], b.v[1]), op(a.v[2], b.v[2]), op(a.v[3], b.v[3])}};
+    }
+    friend F4 operator+(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x + y; }); }
+    friend F4 operator-(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x - y; }); }
+    friend F4 operator*(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x * y; }); }
+    friend F4 min(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x < y ? x : y; }); }
+    friend F4 max(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x > y ? x : y; }); }
+    void truncate(int32_t* out) const { for (int i = 0; i < 4; ++i) out[i] = int32_t(v[i]); }
+};
+#endif
+
+F4 toF4(const glm::vec3& p) { return F4::set(p.x, p.y, p.z, 0.0f); }
+glm::vec3 toVec3(F4 a) {
+    alignas(16) float f[4];
+    a.store(f);
+    return {f[0], f[1], f[2]};
+}
+
 // The build partitions these records rather than indices into the input, so every level streams
-// through contiguous memory instead of gathering boxes at random. 32 bytes each: the centroid is
-// recomputed on the fly because two multiply-adds cost less than 50% more memory traffic per level.
+// through contiguous memory instead of gathering boxes at random. The centroid is recomputed where
+// needed: one add costs less than 50% more memory traffic per level.
 struct alignas(16) Record {
-    glm::vec3 lo;
-    uint32_t index;
-    glm::vec3 hi;
-    float pad;
+    float lo[4];  // lo[3] holds the input index as bits; xyz() masks it off before any arithmetic
+    float hi[4];  // hi[3] is 0
+    uint32_t index() const { return std::bit_cast<uint32_t>(lo[3]); }
+    F4 lower() const { return F4::load(lo).xyz(); }
+    F4 upper() const { return F4::load(hi); }
+    // Twice the centroid: only ever compared with itself, and a lone add leaves the compiler no
+    // multiply-add to fuse, so every call site computes bit-identical values.
+    F4 centroid() const { return lower() + upper(); }
+    float centroid(int axis) const { return lo[axis] + hi[axis]; }
 };
 
-// Half-sum form so boxes near FLT_MAX cannot overflow to infinity.
-inline glm::vec3 centroid(const Record& r) { return r.lo * 0.5f + r.hi * 0.5f; }
-
 struct Range {
+    Record* data = nullptr;  // the buffer holding this range: partitions alternate between two
     uint32_t begin = 0, end = 0;
     Aabb bounds;     // of the primitive boxes
     Aabb centroids;  // of the primitive centroids; binning spans this
     uint32_t count() const { return end - begin; }
 };
 
-// Maps a centroid coordinate to its bin. Binning and partitioning both call this, so a primitive can
-// never land on different sides of the plane in the two passes.
+// Maps centroids to bins. Binning and partitioning both call this, so a primitive can never land on
+// different sides of the plane in the two passes.
 struct BinMap {
-    glm::vec3 origin{0.0f};
-    glm::vec3 scale{0.0f};  // 0 on axes where all centroids coincide
-    float lastBin = 0.0f;
+    F4 origin{}, scale{};  // scale is 0 on axes where all centroids coincide
+    F4 lastBin{};
 
     BinMap() = default;
-    BinMap(const Aabb& centroids, uint32_t binCount) : origin(centroids.lo), lastBin(float(binCount - 1)) {
+    BinMap(const Aabb& centroids, uint32_t binCount) {
         const glm::vec3 extent = centroids.hi - centroids.lo;
         // Slightly under binCount so the largest centroid maps to the last bin, not one past it.
         const float span = float(binCount) * (1.0f - 1e-5f);
-        for (int a = 0; a < 3; ++a) scale[a] = extent[a] > 0.0f ? span / extent[a] : 0.0f;
+        glm::vec3 s;
+        for (int a = 0; a < 3; ++a) s[a] = extent[a] > 0.0f ? span / extent[a] : 0.0f;
+        origin = toF4(centroids.lo);
+        scale = toF4(s);
+        lastBin = F4::set(float(binCount - 1), float(binCount - 1), float(binCount - 1), 0.0f);
     }
-    bool splittable() const { return scale.x > 0.0f || scale.y > 0.0f || scale.z > 0.0f; }
-    uint32_t operator()(float c, int axis) const {
-        float t = (c - origin[axis]) * scale[axis];
-        t = t < lastBin ? t : lastBin;  // also sends NaN (inf * 0 on absurd extents) to a valid bin
-        return t > 0.0f ? uint32_t(t) : 0u;
+    // The clamp to the last bin comes first so that NaN (inf * 0 on absurd extents) lands there too.
+    void operator()(F4 centroid, int32_t* bins) const {
+        max(min((centroid - origin) * scale, lastBin), F4{}).truncate(bins);
     }
 };
 
-struct Bin {
-    glm::vec3 lo, hi;
-    uint32_t count;
+struct alignas(16) Bin {
+    float lo[4], hi[4];
 };
 
 // Bins of all three axes; only the first binCount of each axis are initialised and used.
 struct Bins {
-    std::array<std::array<Bin, kMaxBins>, 3> axis;
+    std::array<std::array<Bin, kMaxBins>, 3> box;
+    std::array<std::array<uint32_t, kMaxBins>, 3> count;
     uint32_t binCount = 0;
 
     explicit Bins(uint32_t bins) : binCount(bins) {
-        for (auto& bins3 : axis)
-            for (uint32_t b = 0; b < binCount; ++b) bins3[b] = {glm::vec3(FLT_MAX), glm::vec3(-FLT_MAX), 0};
+        for (int a = 0; a < 3; ++a)
+            for (uint32_t b = 0; b < binCount; ++b) {
+                F4::set(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f).store(box[a][b].lo);
+                F4::set(-FLT_MAX, -FLT_MAX, -FLT_MAX, 0.0f).store(box[a][b].hi);
+                count[a][b] = 0;
+            }
+    }
+    void grow(int a, uint32_t b, F4 lo, F4 hi) {
+        min(F4::load(box[a][b].lo), lo).store(box[a][b].lo);
+        max(F4::load(box[a][b].hi), hi).store(box[a][b].hi);
     }
     void add(const BinMap& map, const Record* first, const Record* last) {
+        alignas(16) int32_t bin[4];
         for (const Record* r = first; r != last; ++r) {
-            const glm::vec3 c = centroid(*r);
+            const F4 lo = r->lower(), hi = r->upper();
+            map(lo + hi, bin);
             for (int a = 0; a < 3; ++a) {
-                Bin& bin = axis[a][map(c[a], a)];
-                bin.lo = glm::min(bin.lo, r->lo);
-                bin.hi = glm::max(bin.hi, r->hi);
-                ++bin.count;
+                grow(a, uint32_t(bin[a]), lo, hi);
+                ++count[a][bin[a]];
             }
         }
     }
@@ -93,9 +150,8 @@ struct Bins {
     void merge(const Bins& other) {
         for (int a = 0; a < 3; ++a)
             for (uint32_t b = 0; b < binCount; ++b) {
-                axis[a][b].lo = glm::min(axis[a][b].lo, other.axis[a][b].lo);
-                axis[a][b].hi = glm::max(axis[a][b].hi, other.axis[a][b].hi);
-                axis[a][b].count += other.axis[a][b].count;
+                grow(a, b, F4::load(other.box[a][b].lo), F4::load(other.box[a][b].hi));
+                count[a][b] += other.count[a][b];
             }
     }
 };
@@ -117,8 +173,8 @@ void setChild(gpu::BvhNode& node, int side, const Aabb& box, uint32_t reference,
 
 class Builder {
 public:
-    Builder(Record* records, gpu::BvhNode* nodes, const BuildOptions& options)
-        : records_(records), nodes_(nodes), options_(options) {}
+    Builder(Record* records, Record* scratch, gpu::BvhNode* nodes, uint32_t* primOrder, const BuildOptions& options)
+        : buffers_{records, scratch}, nodes_(nodes), primOrder_(primOrder), options_(options) {}
 
     // Smallest k with maxLeafSize * 2^k >= count: the levels a median-split subtree needs below its top.
     uint32_t levelsBelow(uint32_t count) const {
@@ -138,14 +194,12 @@ public:
         const bool leafPreferred = split.axis < 0 || float(count) <= split.cost || depth + 1 > gpu::BVH_MAX_DEPTH;
         if (leafAllowed && leafPreferred) {
             setChild(parent, side, range.bounds, range.begin, count);
+            for (uint32_t i = range.begin; i < range.end; ++i) primOrder_[i] = range.data[i].index();
             return;
         }
         setChild(parent, side, range.bounds, slot, 0);
-        innerCount.fetch_add(1, std::memory_order_relaxed);
         buildInner(range, split, depth, slot);
     }
-
-    std::atomic<uint32_t> innerCount{0};
 
 private:
     void buildInner(const Range& range, const Split& split, uint32_t depth, uint32_t slot) {
@@ -180,14 +234,16 @@ private:
         Split best;
         const uint32_t count = range.count();
         if (count < 2) return best;
-        const BinMap map(range.centroids, options_.binCount);
-        if (!map.splittable()) return best;
+        const uint32_t binCount = std::min(options_.binCount, std::max(count, 4u));
+        const glm::vec3 extent = range.centroids.hi - range.centroids.lo;
+        if (!(extent.x > 0.0f || extent.y > 0.0f || extent.z > 0.0f)) return best;
+        const BinMap map(range.centroids, binCount);
 
-        const Record* first = records_ + range.begin;
-        Bins bins(options_.binCount);
+        const Record* first = range.data + range.begin;
+        Bins bins(binCount);
         if (count >= options_.parallelThreshold) {
             bins = tbb::parallel_reduce(
-                tbb::blocked_range<uint32_t>(0, count, 4096), Bins(options_.binCount),
+                tbb::blocked_range<uint32_t>(0, count, 4096), Bins(binCount),
                 [&](const tbb::blocked_range<uint32_t>& r, Bins partial) {
                     partial.add(map, first + r.begin(), first + r.end());
                     return partial;
@@ -199,73 +255,77 @@ private:
 
         // Ranges that are points or segments have zero area for every candidate, so SAH cannot rank
         // them; the box perimeter then keeps the splits balanced instead of taking the first plane.
+        // Empty boxes measure 0 through the clamp, without a branch.
         const bool flat = range.bounds.halfArea() <= 0.0f;
-        const auto metric = [flat](const Aabb& b) {
-            if (!flat) return b.halfArea();
-            const glm::vec3 d = b.hi - b.lo;
-            return d.x + d.y + d.z;
+        const auto metric = [flat](F4 lo, F4 hi) {
+            const glm::vec3 d = toVec3(max(hi - lo, F4{}));
+            return flat ? d.x + d.y + d.z : d.x * d.y + d.y * d.z + d.z * d.x;
         };
-        const uint32_t binCount = options_.binCount;
+        const F4 emptyLo = F4::set(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f), emptyHi = F4::set(-FLT_MAX, -FLT_MAX, -FLT_MAX, 0.0f);
         float bestCost = FLT_MAX;
         for (int a = 0; a < 3; ++a) {
-            if (map.scale[a] == 0.0f) continue;
-            const auto& axisBins = bins.axis[a];
+            if (!(extent[a] > 0.0f)) continue;
+            const auto& box = bins.box[a];
             std::array<float, kMaxBins> rightCost;
-            Aabb box;
+            F4 lo = emptyLo, hi = emptyHi;
             uint32_t n = 0;
-            float cost = 0.0f;
-            // Small ranges leave most bins empty; an empty bin repeats its neighbour's candidate, and
-            // skipping it keeps the choice identical (ties go to the first plane) at a fraction of the work.
             for (uint32_t b = binCount - 1; b > 0; --b) {
-                if (axisBins[b].count > 0) {
-                    box.extend(Aabb{axisBins[b].lo, axisBins[b].hi});
-                    n += axisBins[b].count;
-                    cost = metric(box) * float(n);
-                }
-                rightCost[b - 1] = cost;
+                lo = min(lo, F4::load(box[b].lo));
+                hi = max(hi, F4::load(box[b].hi));
+                n += bins.count[a][b];
+                rightCost[b - 1] = metric(lo, hi) * float(n);
             }
-            box = Aabb{};
+            lo = emptyLo, hi = emptyHi;
             n = 0;
             for (uint32_t b = 0; b + 1 < binCount; ++b) {
-                if (axisBins[b].count == 0) continue;
-                box.extend(Aabb{axisBins[b].lo, axisBins[b].hi});
-                n += axisBins[b].count;
-                if (n == count) break;
-                cost = metric(box) * float(n) + rightCost[b];
-                if (cost < bestCost) { bestCost = cost; best.axis = a; best.bin = b; }
+                lo = min(lo, F4::load(box[b].lo));
+                hi = max(hi, F4::load(box[b].hi));
+                n += bins.count[a][b];
+                const float cost = metric(lo, hi) * float(n) + rightCost[b];
+                if (cost < bestCost && n > 0 && n < count) { bestCost = cost; best.axis = a; best.bin = b; }
             }
         }
         if (best.axis < 0) return best;
 
+        F4 lo[2] = {emptyLo, emptyLo}, hi[2] = {emptyHi, emptyHi};
         for (uint32_t b = 0; b < binCount; ++b) {
-            const Bin& bin = bins.axis[best.axis][b];
-            (b <= best.bin ? best.left : best.right).extend(Aabb{bin.lo, bin.hi});
+            const int side = b > best.bin;
+            lo[side] = min(lo[side], F4::load(bins.box[best.axis][b].lo));
+            hi[side] = max(hi[side], F4::load(bins.box[best.axis][b].hi));
         }
-        const float parentMetric = metric(range.bounds);
+        best.left = {toVec3(lo[0]), toVec3(hi[0])};
+        best.right = {toVec3(lo[1]), toVec3(hi[1])};
+        const float parentMetric = metric(toF4(range.bounds.lo), toF4(range.bounds.hi));
         best.cost = options_.traversalCost + (parentMetric > 0.0f ? bestCost / parentMetric : 0.0f);
         best.map = map;
         return best;
     }
 
-    // Hoare partition by the split plane; it also gathers the children's centroid bounds, which the
-    // bins do not give exactly, so no extra pass over the records is needed.
+    // Out-of-place partition into the other buffer: left from the front, right from the back. It has no
+    // data-dependent branch (a random plane side mispredicts half the time) and gathers the children's
+    // centroid bounds, which the bins do not give exactly, in the same pass.
     void partition(const Range& range, const Split& split, Range& left, Range& right) const {
-        const int axis = split.axis;
-        const auto goesLeft = [&](const Record& r) {
-            return split.map(r.lo[axis] * 0.5f + r.hi[axis] * 0.5f, axis) <= split.bin;
-        };
-        uint32_t i = range.begin, j = range.end;
-        Aabb leftCentroids, rightCentroids;
-        for (;;) {
-            while (i < j && goesLeft(records_[i])) leftCentroids.extend(centroid(records_[i++]));
-            while (i < j && !goesLeft(records_[j - 1])) rightCentroids.extend(centroid(records_[--j]));
-            if (i >= j) break;
-            std::swap(records_[i], records_[j - 1]);
-            leftCentroids.extend(centroid(records_[i++]));
-            rightCentroids.extend(centroid(records_[--j]));
+        const Record* src = range.data;
+        Record* dst = src == buffers_[0] ? buffers_[1] : buffers_[0];
+        uint32_t l = range.begin, r = range.end;
+        F4 lo[2] = {F4::set(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f), F4::set(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f)};
+        F4 hi[2] = {F4::set(-FLT_MAX, -FLT_MAX, -FLT_MAX, 0.0f), F4::set(-FLT_MAX, -FLT_MAX, -FLT_MAX, 0.0f)};
+        alignas(16) int32_t bin[4];
+        for (uint32_t i = range.begin; i < range.end; ++i) {
+            const Record& rec = src[i];
+            const F4 c = rec.centroid();
+            split.map(c, bin);
+            const bool goesRight = uint32_t(bin[split.axis]) > split.bin;
+            // Select by mask: compilers turn the conditional form into a branch.
+            const uint32_t mask = 0u - uint32_t(goesRight);
+            dst[(l & ~mask) | ((r - 1) & mask)] = rec;
+            l += !goesRight;
+            r -= goesRight;
+            lo[goesRight] = min(lo[goesRight], c);
+            hi[goesRight] = max(hi[goesRight], c);
         }
-        left = {range.begin, i, split.left, leftCentroids};
-        right = {i, range.end, split.right, rightCentroids};
+        left = {dst, range.begin, l, split.left, {toVec3(lo[0]), toVec3(hi[0])}};
+        right = {dst, l, range.end, split.right, {toVec3(lo[1]), toVec3(hi[1])}};
     }
 
     // Object median on the widest centroid axis: the fallback when no plane separates the centroids,
@@ -274,19 +334,21 @@ private:
         const glm::vec3 extent = range.centroids.hi - range.centroids.lo;
         const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
         const uint32_t mid = range.begin + range.count() / 2;
-        std::nth_element(records_ + range.begin, records_ + mid, records_ + range.end,
-                         [axis](const Record& a, const Record& b) { return centroid(a)[axis] < centroid(b)[axis]; });
-        left = {range.begin, mid, {}, {}};
-        right = {mid, range.end, {}, {}};
+        Record* data = range.data;
+        std::nth_element(data + range.begin, data + mid, data + range.end,
+                         [axis](const Record& a, const Record& b) { return a.centroid(axis) < b.centroid(axis); });
+        left = {data, range.begin, mid, {}, {}};
+        right = {data, mid, range.end, {}, {}};
         for (Range* side : {&left, &right})
             for (uint32_t i = side->begin; i < side->end; ++i) {
-                side->bounds.extend(Aabb{records_[i].lo, records_[i].hi});
-                side->centroids.extend(centroid(records_[i]));
+                side->bounds.extend(Aabb{toVec3(data[i].lower()), toVec3(data[i].upper())});
+                side->centroids.extend(toVec3(data[i].centroid()));
             }
     }
 
-    Record* records_;
+    Record* buffers_[2];
     gpu::BvhNode* nodes_;
+    uint32_t* primOrder_;
     const BuildOptions& options_;
 };
 
@@ -313,9 +375,10 @@ Bvh buildBinnedSah(std::span<const Aabb> primBounds, const BuildOptions& options
         tbb::blocked_range<uint32_t>(0, count, 4096), RootBounds{},
         [&](const tbb::blocked_range<uint32_t>& r, RootBounds acc) {
             for (uint32_t i = r.begin(); i < r.end(); ++i) {
-                records[i] = {primBounds[i].lo, i, primBounds[i].hi, 0.0f};
-                acc.bounds.extend(primBounds[i]);
-                acc.centroids.extend(centroid(records[i]));
+                const Aabb& b = primBounds[i];
+                records[i] = {{b.lo.x, b.lo.y, b.lo.z, std::bit_cast<float>(i)}, {b.hi.x, b.hi.y, b.hi.z, 0.0f}};
+                acc.bounds.extend(b);
+                acc.centroids.extend(toVec3(records[i].centroid()));
             }
             return acc;
         },
@@ -326,47 +389,44 @@ Bvh buildBinnedSah(std::span<const Aabb> primBounds, const BuildOptions& options
         });
     bvh.bounds = root.bounds;
 
-    // Inner nodes go to reserved slots (see buildChild), then are copied out depth-first without gaps.
+    // Inner nodes go to reserved slots of bvh.nodes (see buildChild) and are then compacted in place.
     // The root is built as the left child of a holder node, which becomes the output root as is when
     // the whole input fits one leaf.
-    auto slots = std::make_unique_for_overwrite<gpu::BvhNode[]>(count);
-    Builder builder(records.get(), slots.get(), options);
+    auto scratch = std::make_unique_for_overwrite<Record[]>(count);
+    bvh.nodes.resize(count - 1);
+    bvh.primOrder.resize(count);
+    Builder builder(records.get(), scratch.get(), bvh.nodes.data(), bvh.primOrder.data(), options);
     if (1 + builder.levelsBelow(count) > gpu::BVH_MAX_DEPTH)
         throw std::runtime_error("BVH build: " + std::to_string(count) + " primitives exceed BVH_MAX_DEPTH");
     gpu::BvhNode holder;
     setChild(holder, 0, Aabb{}, 0, 0);
     setChild(holder, 1, Aabb{}, 0, 0);
-    builder.buildChild(Range{0, count, root.bounds, root.centroids}, 1, 0, holder, 0);
-
-    bvh.primOrder.resize(count);
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, 16384), [&](const tbb::blocked_range<uint32_t>& r) {
-        for (uint32_t i = r.begin(); i < r.end(); ++i) bvh.primOrder[i] = records[i].index;
-    });
+    builder.buildChild(Range{records.get(), 0, count, root.bounds, root.centroids}, 1, 0, holder, 0);
 
     if (std::bit_cast<uint32_t>(holder.leftMax.w) > 0) {
-        bvh.nodes.push_back(holder);
+        bvh.nodes.assign(1, holder);
         bvh.depth = 2;
         bvh.leafCount = 1;
         return bvh;
     }
 
-    // Preorder walk: pushing the right child first emits every left subtree before its sibling.
+    // Preorder walk, right child pushed first so each left subtree comes out before its sibling. Slots
+    // are laid out in preorder too, so a node only ever moves down onto a gap or an already moved node.
     struct Item {
         uint32_t slot, depth, parent;
         int side;
     };
     std::vector<Item> stack{{0, 1, kNoParent, 0}};
-    bvh.nodes.reserve(builder.innerCount.load());
-    while (!stack.empty()) {
+    uint32_t index = 0;
+    for (; !stack.empty(); ++index) {
         const Item item = stack.back();
         stack.pop_back();
-        const auto index = uint32_t(bvh.nodes.size());
-        bvh.nodes.push_back(slots[item.slot]);
+        gpu::BvhNode& node = bvh.nodes[index];
+        node = bvh.nodes[item.slot];
         if (item.parent != kNoParent) {
             gpu::BvhNode& parent = bvh.nodes[item.parent];
             (item.side == 0 ? parent.leftMin : parent.rightMin).w = std::bit_cast<float>(index);
         }
-        const gpu::BvhNode& node = bvh.nodes[index];
         for (int side = 1; side >= 0; --side) {
             const uint32_t reference = std::bit_cast<uint32_t>((side == 0 ? node.leftMin : node.rightMin).w);
             const uint32_t leafSize = std::bit_cast<uint32_t>((side == 0 ? node.leftMax : node.rightMax).w);
@@ -378,6 +438,8 @@ Bvh buildBinnedSah(std::span<const Aabb> primBounds, const BuildOptions& options
             }
         }
     }
+    bvh.nodes.resize(index);
+    if (bvh.nodes.capacity() > 2 * bvh.nodes.size()) bvh.nodes.shrink_to_fit();  // big leaves leave big gaps
     return bvh;
 }
 

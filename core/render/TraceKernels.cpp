@@ -17,9 +17,9 @@ constexpr uint32_t kWorkgroupSizeConstant = 0;  // layout(local_size_x_id = 0) i
 
 TraceKernels::TraceKernels(const vk::Context& context, const TraceOptions& options)
     : context_(context), options_(options) {
-    if (options_.stepBudget < 2 * gpu::BVH_MAX_LEAF_SIZE + 2)
-        throw std::invalid_argument("TraceOptions::stepBudget must be at least " +
-                                    std::to_string(2 * gpu::BVH_MAX_LEAF_SIZE + 2) + " (one node and two leaves)");
+    if (options_.stepBudget < kMinStepBudget || options_.stepBudget > kMaxStepBudget)
+        throw std::invalid_argument("TraceOptions::stepBudget must be in [" + std::to_string(kMinStepBudget) + ", " +
+                                    std::to_string(kMaxStepBudget) + "], not " + std::to_string(options_.stepBudget));
     const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options_.workgroupSize}};
     closest_ = vk::ComputePipeline(context, shaders::trace_closest, "trace_closest", sizeof(gpu::TraceParams), constants);
     any_ = vk::ComputePipeline(context, shaders::trace_any, "trace_any", sizeof(gpu::TraceParams), constants);

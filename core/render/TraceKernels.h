@@ -14,11 +14,17 @@
 
 namespace ripple::core {
 
+// Every loop iteration of a trace invocation counts against its step budget. The least budget that still
+// makes progress covers the copies of a full stack in and out of the resume pool and a few steps. The most
+// stays under lavapipe's silent loop cap: its limiter starts at 65,535 but, measured on Mesa 22.3, ends the
+// traversal loop after 32,768 iterations (two decrements per iteration), with no error of any kind.
+inline constexpr uint32_t kMinStepBudget = 2 * gpu::TRAVERSAL_STACK_SIZE + 8;
+inline constexpr uint32_t kMaxStepBudget = 32000;
+
 struct TraceOptions {
     uint32_t workgroupSize = 64;
-    // Node visits plus primitive tests per invocation before it parks its state. lavapipe silently ends
-    // an invocation after 65,535 loop iterations, so the default keeps clear of that.
-    uint32_t stepBudget = 60000;
+    // Node visits plus primitive tests per invocation before it parks its state (see kMaxStepBudget).
+    uint32_t stepBudget = 30000;
     uint32_t resumeRounds = 4;          // extra dispatches for parked traversals
     uint32_t resumeCapacity = 1u << 14; // parked traversals per round; overflow is flagged RAN_OUT
 };

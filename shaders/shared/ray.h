@@ -27,8 +27,9 @@ struct Hit {
     uint status;
 };
 
-// Traversal stack depth: one TLAS path plus a sentinel plus one BLAS path.
-RIPPLE_CONST uint TRAVERSAL_STACK_SIZE = 2u * BVH_MAX_DEPTH + 2u;
+// Traversal stack depth: one TLAS path, the sentinel and the entry instance, one BLAS path with two words
+// per deferred leaf.
+RIPPLE_CONST uint TRAVERSAL_STACK_SIZE = 4u * BVH_MAX_DEPTH + 4u;
 
 // A traversal that spent its step budget: enough to continue exactly where it stopped.
 struct TraversalState {

@@ -1,5 +1,5 @@
-// Brute-force double-precision reference tracer: validity rules shared with core::Scene, watertight
-// triangle test, stable sphere test, and oneTBB loops over rays.
+// Brute-force double-precision reference tracer: validity rules shared with core::Scene, a watertight
+// triangle test with exact edge signs, a stable sphere test, and oneTBB loops over rays.
 #include "tests/support/ReferenceTracer.h"
 
 #include <tbb/blocked_range.h>
@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ripple::test {
 
@@ -47,8 +48,9 @@ bool isTriangleValid(const core::TriangleMesh& mesh, uint32_t tri) {
 uint32_t sphereCount(const core::SphereSet& set) { return static_cast<uint32_t>(set.centers.size()); }
 
 float sphereRadius(const core::SphereSet& set, uint32_t i) {
-    if (set.radii.empty()) return 0.0f;
-    return set.radii.size() == set.centers.size() ? set.radii[i] : set.radii[0];
+    if (set.radii.size() == set.centers.size()) return set.radii[i];
+    if (set.radii.size() == 1) return set.radii[0];
+    return 0.0f;  // core::Scene skips a set whose radius count is neither 1 nor one per center
 }
 
 bool isSphereValid(const core::SphereSet& set, uint32_t i) {
@@ -61,7 +63,8 @@ bool isTransformValid(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
             if (!std::isfinite(m[c][r])) return false;
-    return std::abs(glm::determinant(glm::dmat3(m))) >= kSingularDeterminant;
+    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;  // not affine
+    return std::abs(glm::determinant(glm::dmat3(m))) > kSingularDeterminant;
 }
 
 bool hasValidPrimitive(const core::SceneDescription& scene, const core::GeometryRef& geometry) {
@@ -100,46 +103,86 @@ struct ObjectRay {
     double tmax;
 };
 
-double tripleProduct(const dvec3& d, const dvec3& p, const dvec3& q) { return glm::dot(d, glm::cross(p, q)); }
-
-bool lexLess(const dvec3& p, const dvec3& q) {
-    if (p.x != q.x) return p.x < q.x;
-    if (p.y != q.y) return p.y < q.y;
-    return p.z < q.z;
+// Error-free transformations (Knuth's TwoSum, FMA TwoProduct): a + b = s + e and a * b = p + e exactly.
+void twoSum(double a, double b, double& s, double& e) {
+    s = a + b;
+    const double bVirtual = s - a, aVirtual = s - bVirtual;
+    e = (a - aVirtual) + (b - bVirtual);
 }
 
-// d . (p x q) for the edge p-q (vertices relative to the ray origin), evaluated with the endpoints in a
-// canonical order. The neighbouring triangle lists the shared edge the other way round and so gets
-// exactly the negated value; without the canonical order, operand order or FMA contraction could make
-// the two disagree by a rounding and let a ray slip through the crack between them.
-double edgeFunction(const dvec3& d, const dvec3& p, const dvec3& q) {
-    return lexLess(q, p) ? -tripleProduct(d, q, p) : tripleProduct(d, p, q);
+// Exact sign of x0 + x1 + x2 + x3: Shewchuk's grow-expansion turns the terms into a nonoverlapping
+// expansion, whose sign is that of its largest nonzero component.
+double exactSignOfSum(const double (&x)[4]) {
+    double h[4];
+    int n = 0;
+    for (double q : x) {
+        for (int i = 0; i < n; ++i) {
+            double s, e;
+            twoSum(q, h[i], s, e);
+            h[i] = e;
+            q = s;
+        }
+        h[n++] = q;
+    }
+    for (int i = n - 1; i >= 0; --i)
+        if (h[i] != 0.0) return h[i] > 0.0 ? 1.0 : -1.0;
+    return 0.0;
+}
+
+// a * b - c * d with a sign that is exact. The double result is right whenever it is larger than its
+// rounding error bound (Shewchuk's orient2d filter); below that the sign comes from an exact expansion.
+// An exact sign makes the edge test a consistent predicate on the projected vertices: across a shared
+// edge the two triangles get opposite signs, and around a shared vertex the fan is never left with a gap
+// (a merely antisymmetric evaluation can still have every spoke of a fan round the same way).
+double exactSignDifferenceOfProducts(double a, double b, double c, double d) {
+    const double ab = a * b, cd = c * d;
+    const double r = ab - cd;
+    if (std::abs(r) > 0x1p-50 * (std::abs(ab) + std::abs(cd))) return r;
+    const double sign = exactSignOfSum({ab, std::fma(a, b, -ab), -cd, -std::fma(c, d, -cd)});
+    if (sign == 0.0) return 0.0;
+    return std::copysign(std::max(std::abs(r), std::numeric_limits<double>::denorm_min()), sign);
 }
 
 struct TriangleHit {
     double t, u, v;
 };
 
-// Scaled-barycentric test (the edge-function form of a Plücker test) in double. Returns false on a miss
-// or when the ray lies in the triangle's plane.
-bool intersectTriangle(const ObjectRay& ray, const dvec3& a, const dvec3& b, const dvec3& c, TriangleHit& hit) {
-    const dvec3 A = a - ray.origin, B = b - ray.origin, C = c - ray.origin;
-    const dvec3& d = ray.direction;
-    const double ea = edgeFunction(d, B, C);  // weight of a: the edge opposite it
-    const double eb = edgeFunction(d, C, A);
-    const double ec = edgeFunction(d, A, B);
-    // Inside when all weights share a sign (either winding); zeros count as inside so edges are covered.
-    const bool anyNegative = ea < 0.0 || eb < 0.0 || ec < 0.0;
-    const bool anyPositive = ea > 0.0 || eb > 0.0 || ec > 0.0;
-    if (anyNegative && anyPositive) return false;
-    const double det = ea + eb + ec;
+// The ray in the frame of Woop, Benthin and Wald (2013): vertices relative to the origin are sheared so
+// the ray runs along +z through (0, 0); each vertex is projected by the same arithmetic in every triangle
+// that shares it, so neighbours see bit-identical 2D points. The shear is kept as three rows with exact
+// 0 and 1 entries, which gives the same values as indexing by axis without a branch per component.
+struct RayFrame {
+    dvec3 rowX, rowY, rowZ;
+
+    explicit RayFrame(const dvec3& d) {
+        const dvec3 a = glm::abs(d);
+        const int kz = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+        const int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+        rowX = rowY = rowZ = dvec3(0.0);
+        rowX[kx] = 1.0;
+        rowX[kz] = -d[kx] / d[kz];
+        rowY[ky] = 1.0;
+        rowY[kz] = -d[ky] / d[kz];
+        rowZ[kz] = 1.0 / d[kz];
+    }
+    dvec3 project(const dvec3& p) const { return dvec3(glm::dot(p, rowX), glm::dot(p, rowY), glm::dot(p, rowZ)); }
+};
+
+// Watertight test in double on the sheared frame; edges and vertices count as inside, for either winding.
+// Returns false on a miss or when the ray lies in the triangle's plane.
+bool intersectTriangle(const ObjectRay& ray, const RayFrame& frame, const dvec3& a, const dvec3& b, const dvec3& c,
+                       TriangleHit& hit) {
+    const dvec3 A = frame.project(a - ray.origin), B = frame.project(b - ray.origin), C = frame.project(c - ray.origin);
+    const double U = exactSignDifferenceOfProducts(C.x, B.y, C.y, B.x);  // weight of a: the edge opposite it
+    const double V = exactSignDifferenceOfProducts(A.x, C.y, A.y, C.x);
+    if ((U < 0.0 && V > 0.0) || (U > 0.0 && V < 0.0)) return false;     // most misses end here
+    const double W = exactSignDifferenceOfProducts(B.x, A.y, B.y, A.x);
+    if ((U < 0.0 || V < 0.0 || W < 0.0) && (U > 0.0 || V > 0.0 || W > 0.0)) return false;
+    const double det = U + V + W;
     if (det == 0.0) return false;
-    const dvec3 n = glm::cross(b - a, c - a);
-    const double nd = glm::dot(n, d);
-    if (nd == 0.0) return false;
-    hit.t = glm::dot(n, A) / nd;
-    hit.u = eb / det;
-    hit.v = ec / det;
+    hit.t = (U * A.z + V * B.z + W * C.z) / det;
+    hit.u = V / det;
+    hit.v = W / det;
     return true;
 }
 
@@ -227,10 +270,12 @@ void ReferenceScene::forEachHit(const gpu::Ray& ray, Visit&& visit) const {
     for (const Instance& inst : instances_) {
         const ObjectRay local{inst.worldToObject * (worldOrigin - inst.translation), inst.worldToObject * worldDirection,
                               double(ray.origin.w), double(ray.direction.w)};
+        if (local.direction == dvec3(0.0)) continue;
         if (inst.kind == core::GeometryKind::Triangles) {
+            const RayFrame frame(local.direction);
             for (const Triangle& tri : meshes_[inst.geometry]) {
                 TriangleHit h;
-                if (!intersectTriangle(local, tri.a, tri.b, tri.c, h)) continue;
+                if (!intersectTriangle(local, frame, tri.a, tri.b, tri.c, h)) continue;
                 if (!(h.t > local.tmin && h.t < local.tmax)) continue;
                 if (visit(h.t, h.u, h.v, inst.instanceId, tri.primId)) return;
             }

@@ -97,7 +97,7 @@ glm::mat4 randomAffine(Rng& rng, double spread) {
     const double sx = rng.uniform(0.5, 2.0), sy = rng.uniform(0.5, 2.0), sz = rng.uniform(0.5, 2.0);
     const glm::dmat3 linear = rotation * glm::dmat3(sx, 0, 0, 0, sy, 0, 0, 0, sz);
     const dvec3 translation = rng.inBox(dvec3(-spread), dvec3(spread));
-    glm::mat4 m(glm::mat3(linear));
+    glm::mat4 m{glm::mat3(linear)};
     m[3] = glm::vec4(toFloat(translation), 1.0f);
     return m;
 }
@@ -434,7 +434,8 @@ std::vector<gpu::Ray> raysTowardPoints(const core::SceneDescription& scene, uint
         }
         const glm::dmat4 transform(inst.transform);
         const dvec3 target = dvec3(transform * glm::dvec4(local, 1.0));
-        const dvec3 origin = rng.inBox(boxLo, boxHi);
+        // The origin is rounded to float first so that the direction aims from where the ray really starts.
+        const dvec3 origin = dvec3(toFloat(rng.inBox(boxLo, boxHi)));
         dvec3 direction = target - origin;
         const double length = glm::length(direction);
         if (!(length > 0.0)) continue;

@@ -81,7 +81,7 @@ core::SceneDescription offsetInstances(const core::SceneDescription& scene, cons
 std::vector<gpu::Ray> randomRays(uint32_t count, uint32_t seed, const glm::vec3& lo, const glm::vec3& hi);
 
 // Rays from random origins in the enlarged world bounds toward random points on random valid primitives,
-// so nearly all hit something. With normalised = false the direction is target - origin (t ~ 1 at the
+// so nearly all hit something (empty when the scene has nothing valid). With normalised = false the direction is target - origin (t ~ 1 at the
 // target), which exercises non-unit directions.
 std::vector<gpu::Ray> raysTowardPoints(const core::SceneDescription& scene, uint32_t count, uint32_t seed,
                                        bool normalised = true);

@@ -17,28 +17,79 @@ using ripple::test::testContext;
 
 namespace {
 
-// Agreement of one GPU hit with the reference. Metric: same primitive and |t_gpu - t_ref| * |d| within
-// 1e-5 of the largest coordinate magnitude of the hit point (at least 1): float positions carry a relative
-// error of 6e-8, so this allows ~150 ulps of the hit's own coordinates. A different primitive is accepted
-// only as a tie: the reference saw several primitives at the nearest t, or the GPU's t is within the same
-// tolerance of the reference t (rays through shared edges and vertices, coplanar overlaps).
+// Agreement of GPU hits with the double-precision reference. Per ray, with scale = the largest
+// coordinate magnitude of the ray origin and hit point (at least 1), cos = |n.d| / |d| at the hit, and
+// kappa = (longest edge)^2 / (2 area) the conditioning of a triangle (1 for spheres):
+//  - exact: same primitive, and t within tT = 1e-6 * scale * kappa / (|d| * max(cos, 1e-3)): float
+//    positions are off by ~1e-7 * scale, which moves t by that over cos along the ray, and by kappa
+//    more on thin triangles, whose plane float pins down poorly;
+//  - tie: another primitive at the reference t (within tT), or the reference itself saw several there;
+//  - edge: hit/miss or primitive differs, and the ray passes within 4e-6 * scale of an edge of the
+//    primitive in question (the reference's or the GPU's), or of a sphere's silhouette: float cannot
+//    resolve which side such a ray passes (needles narrower than that are all edge);
+//  - wrong: anything else. Tests require no wrong ray and state how many may be ties or edges.
 struct Agreement {
-    uint64_t exact = 0, ties = 0, wrong = 0, flagged = 0;
-    double fraction() const {
-        const double n = double(exact + ties + wrong + flagged);
-        return n == 0 ? 1.0 : double(exact + ties) / n;
-    }
+    uint64_t exact = 0, ties = 0, edges = 0, wrong = 0, flagged = 0;
+    uint64_t total() const { return exact + ties + edges + wrong + flagged; }
+    double exactOrTie() const { return total() == 0 ? 1.0 : double(exact + ties) / double(total()); }
 };
 
-double tolerance(const gpu::Ray& ray, double t) {
-    const glm::dvec3 o(ray.origin), d(ray.direction);
-    const glm::dvec3 p = o + (std::isfinite(t) ? t : 0.0) * d;
-    const double scale = std::max({1.0, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-    return 1e-5 * scale / glm::length(d);
+struct SurfacePoint {
+    double cosine = 1.0;
+    double kappa = 1.0;
+    double edgeGap = std::numeric_limits<double>::infinity();  // ray to nearest edge or silhouette
+    double scale = 1.0;
+};
+
+// Distance between the line o + s*d and the segment [a, b].
+double lineSegmentDistance(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 e = b - a, w = a - o;
+    const double dd = glm::dot(d, d), ee = glm::dot(e, e), de = glm::dot(d, e);
+    const double denom = dd * ee - de * de;
+    double u = denom > 1e-300 ? (de * glm::dot(d, w) - dd * glm::dot(e, w)) / denom : 0.0;  // along the segment
+    u = std::clamp(u, 0.0, 1.0);
+    const glm::dvec3 q = a + u * e;
+    const glm::dvec3 r = q - o;
+    return glm::length(r - (glm::dot(r, d) / dd) * d);
 }
 
-Agreement compareClosest(std::span<const gpu::Ray> rays, std::span<const gpu::Hit> gpuHits,
-                         std::span<const test::RefHit> ref) {
+SurfacePoint surfacePoint(const core::SceneDescription& desc, uint32_t instanceId, uint32_t primId, const gpu::Ray& ray, double t) {
+    const glm::dvec3 o(ray.origin), dir(ray.direction);
+    const glm::dvec3 p = o + t * dir;
+    SurfacePoint sp;
+    sp.scale = std::max({1.0, std::abs(p.x), std::abs(p.y), std::abs(p.z), std::abs(o.x), std::abs(o.y), std::abs(o.z)});
+    const core::InstanceDescription& inst = desc.instances[instanceId];
+    const glm::dmat4 m(inst.transform);
+    if (inst.geometry.kind == core::GeometryKind::Triangles) {
+        const core::TriangleMesh& mesh = desc.meshes[inst.geometry.index];
+        const glm::uvec3 idx = test::triangleIndices(mesh, primId);
+        glm::dvec3 v[3];
+        for (int k = 0; k < 3; ++k) v[k] = glm::dvec3(m * glm::dvec4(glm::dvec3(mesh.positions[idx[k]]), 1.0));
+        const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+        sp.cosine = std::abs(glm::dot(glm::normalize(n), glm::normalize(dir)));
+        double longest = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            longest = std::max(longest, glm::length(v[(k + 1) % 3] - v[k]));
+            sp.edgeGap = std::min(sp.edgeGap, lineSegmentDistance(o, dir, v[k], v[(k + 1) % 3]));
+        }
+        sp.kappa = longest * longest / glm::length(n);
+    } else {
+        const core::SphereSet& set = desc.sphereSets[inst.geometry.index];
+        const glm::dmat4 inv = glm::inverse(m);
+        const glm::dvec3 c(set.centers[primId]);
+        const glm::dvec3 oObject = glm::dvec3(inv * glm::dvec4(o, 1.0)), dObject = glm::dmat3(inv) * dir;
+        const glm::dvec3 n = glm::normalize(glm::transpose(glm::dmat3(inv)) * (glm::dvec3(inv * glm::dvec4(p, 1.0)) - c));
+        sp.cosine = std::abs(glm::dot(n, glm::normalize(dir)));
+        const glm::dvec3 r = c - oObject;
+        const double centerDistance = glm::length(r - (glm::dot(r, dObject) / glm::dot(dObject, dObject)) * dObject);
+        const double stretch = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+        sp.edgeGap = std::abs(double(test::sphereRadius(set, primId)) - centerDistance) * stretch;
+    }
+    return sp;
+}
+
+Agreement compareClosest(const core::SceneDescription& d, std::span<const gpu::Ray> rays,
+                         std::span<const gpu::Hit> gpuHits, std::span<const test::RefHit> ref) {
     Agreement a;
     for (size_t i = 0; i < rays.size(); ++i) {
         const gpu::Hit& g = gpuHits[i];
@@ -46,11 +97,24 @@ Agreement compareClosest(std::span<const gpu::Ray> rays, std::span<const gpu::Hi
         if ((g.status & ~0xFFu) != 0) { ++a.flagged; continue; }
         const bool gpuFound = g.status == gpu::HIT_FOUND;
         if (!gpuFound && !r.found) { ++a.exact; continue; }
-        if (gpuFound != r.found) { ++a.wrong; continue; }
-        const bool closeT = std::abs(double(g.t) - r.t) <= tolerance(rays[i], r.t);
-        if (g.instanceId == r.instanceId && g.primId == r.primId && closeT) ++a.exact;
-        else if (closeT || r.hitCount > 1) ++a.ties;
-        else ++a.wrong;
+        const double dirLength = glm::length(glm::dvec3(rays[i].direction));
+        auto tTolerance = [&](const SurfacePoint& sp) {
+            return 1e-6 * sp.scale * sp.kappa / (dirLength * std::max(sp.cosine, 1e-3));
+        };
+        auto nearEdge = [&](const SurfacePoint& sp) { return sp.edgeGap <= 4e-6 * sp.scale; };
+        const SurfacePoint refPoint = r.found ? surfacePoint(d, r.instanceId, r.primId, rays[i], r.t) : SurfacePoint{};
+        const SurfacePoint gpuPoint = gpuFound ? surfacePoint(d, g.instanceId, g.primId, rays[i], g.t) : SurfacePoint{};
+        if (gpuFound && r.found && std::abs(double(g.t) - r.t) <= tTolerance(refPoint)) {
+            if (g.instanceId == r.instanceId && g.primId == r.primId) ++a.exact;
+            else ++a.ties;
+        } else if (gpuFound && r.found && r.hitCount > 1 && g.instanceId == r.instanceId && g.primId != r.primId &&
+                   std::abs(double(g.t) - r.t) <= tTolerance(gpuPoint)) {
+            ++a.ties;
+        } else if ((r.found && nearEdge(refPoint)) || (gpuFound && nearEdge(gpuPoint))) {
+            ++a.edges;
+        } else {
+            ++a.wrong;
+        }
     }
     return a;
 }
@@ -67,21 +131,23 @@ TraceResults traceOnGpu(const core::SceneDescription& description, std::span<con
     return {kernels.traceClosest(scene, rays), kernels.traceAny(scene, rays)};
 }
 
-// Closest hits agree on at least `minFraction` of rays, and any-hit answers agree exactly with the
-// reference except where the reference's nearest hit grazes tmax (none here: tmax is infinite).
-void checkAgainstReference(const core::SceneDescription& description, std::span<const gpu::Ray> rays,
-                           double minFraction = 0.999) {
+// No wrong and no flagged closest hit, at least `minExactOrTie` of rays exact or tied (the rest edge
+// cases), and any-hit answers equal to the reference's except on those edge rays.
+Agreement checkAgainstReference(const core::SceneDescription& description, std::span<const gpu::Ray> rays,
+                                double minExactOrTie = 0.999) {
     test::ValidationGuard guard;
     const TraceResults gpuResults = traceOnGpu(description, rays);
     const std::vector<test::RefHit> ref = test::traceClosestAll(description, rays);
-    const Agreement a = compareClosest(rays, gpuResults.closest, ref);
-    INFO("exact " << a.exact << ", ties " << a.ties << ", wrong " << a.wrong << ", flagged " << a.flagged);
+    const Agreement a = compareClosest(description, rays, gpuResults.closest, ref);
+    INFO("exact " << a.exact << ", ties " << a.ties << ", edges " << a.edges << ", wrong " << a.wrong << ", flagged " << a.flagged);
+    CHECK(a.wrong == 0);
     CHECK(a.flagged == 0);
-    CHECK(a.fraction() >= minFraction);
+    CHECK(a.exactOrTie() >= minExactOrTie);
     uint64_t anyMismatch = 0;
     for (size_t i = 0; i < rays.size(); ++i)
         anyMismatch += (gpuResults.any[i] == gpu::HIT_FOUND) != ref[i].found;
-    CHECK(double(anyMismatch) <= (1.0 - minFraction) * double(rays.size()));
+    CHECK(anyMismatch <= a.edges);
+    return a;
 }
 
 }  // namespace
@@ -101,7 +167,10 @@ TEST_CASE("degenerate and needle triangles: invalid ones skipped, the rest equal
     core::Scene gpuScene(testContext(), scene);
     CHECK(gpuScene.report().trianglesKept == test::DegenerateMeshLayout::kept);
     CHECK(gpuScene.report().trianglesSkipped == test::DegenerateMeshLayout::total - test::DegenerateMeshLayout::kept);
-    checkAgainstReference(scene, test::raysTowardPoints(scene, 4096, 6));
+    // Rays aim at points of needles and slivers, most within float resolution of an edge: no ray may be
+    // wrong, but only the ordinary triangles' rays can be expected exact.
+    const Agreement a = checkAgainstReference(scene, test::raysTowardPoints(scene, 4096, 6), 0.5);
+    MESSAGE("degenerate mesh: exact " << a.exact << ", ties " << a.ties << ", edge " << a.edges << " of " << a.total());
 }
 
 TEST_CASE("spheres from outside and inside equal the reference") {
@@ -171,8 +240,8 @@ TEST_CASE("far from the origin: offsets up to 1e6 equal the reference") {
     for (float distance : {1e3f, 1e5f, 1e6f}) {
         CAPTURE(distance);
         const glm::vec3 delta(distance, -0.5f * distance, 0.25f * distance);
-        checkAgainstReference(test::offset(base, delta), test::offsetRays(baseRays, delta), 0.995);
-        checkAgainstReference(test::offsetInstances(base, delta), test::offsetRays(baseRays, delta), 0.995);
+        checkAgainstReference(test::offset(base, delta), test::offsetRays(baseRays, delta), 0.99);
+        checkAgainstReference(test::offsetInstances(base, delta), test::offsetRays(baseRays, delta), 0.99);
     }
 }
 
@@ -224,14 +293,16 @@ TEST_CASE("out of GPU memory is an error naming the allocation") {
     }
 }
 
-// 60,000 tilted triangles over the same square, sharing one edge, with the third vertex at scrambled
-// heights: every box is the same, so the BVH cannot cull and a downward ray must test all of them, far beyond the 65,535 iterations lavapipe
-// allows one invocation. The resume rounds must still find the top triangle; without rounds the answer
-// must be flagged, never silently wrong.
+// 150,000 tilted triangles over the same square, sharing one edge, with the third vertex at scrambled
+// heights: every box is the same, so the BVH cannot cull and a downward ray must test all of them, far
+// beyond the iterations lavapipe lets one invocation run (see core::kMaxStepBudget). Without the step
+// budget the loop is cut off silently and returns a lower triangle (seen while writing this test). With
+// resume rounds the top triangle must be found exactly; without them, or without enough resume slots,
+// every unfinished ray must be flagged, never silently wrong.
 TEST_CASE("traversal longer than the per-invocation loop cap: resumed exactly, or flagged") {
     test::ValidationGuard guard;
     core::TriangleMesh stack;
-    const uint32_t layers = 60000;
+    const uint32_t layers = 150000;
     for (uint32_t i = 0; i < layers; ++i) {
         const float h = float(1 + (i * 7919u) % layers) / float(layers + 1);  // in (0, 1), all distinct
         stack.positions.insert(stack.positions.end(), {{-4, -4, 0}, {4, -4, 1}, {0, 4, h}});
@@ -245,16 +316,22 @@ TEST_CASE("traversal longer than the per-invocation loop cap: resumed exactly, o
 
     core::Scene gpuScene(testContext(), scene);
     {
-        core::TraceKernels resumed(testContext(), {.stepBudget = 60000, .resumeRounds = 8});
-        const auto hits = resumed.traceClosest(gpuScene, rays);
-        const Agreement a = compareClosest(rays, hits, ref);
+        core::TraceKernels resumed(testContext(), {.resumeRounds = 12});
+        const Agreement a = compareClosest(scene, rays, resumed.traceClosest(gpuScene, rays), ref);
         CHECK(a.exact == rays.size());
+        const auto occluded = resumed.traceAny(gpuScene, rays);
+        CHECK(std::count(occluded.begin(), occluded.end(), gpu::HIT_FOUND) == 64);
     }
     {
-        core::TraceKernels unresumed(testContext(), {.stepBudget = 60000, .resumeRounds = 0});
-        const auto hits = unresumed.traceClosest(gpuScene, rays);
-        const Agreement a = compareClosest(rays, hits, ref);
+        core::TraceKernels unresumed(testContext(), {.resumeRounds = 0});
+        const Agreement a = compareClosest(scene, rays, unresumed.traceClosest(gpuScene, rays), ref);
         CHECK(a.flagged == rays.size());
+    }
+    {
+        core::TraceKernels cramped(testContext(), {.resumeRounds = 12, .resumeCapacity = 16});
+        const Agreement a = compareClosest(scene, rays, cramped.traceClosest(gpuScene, rays), ref);
+        CHECK(a.flagged >= rays.size() - 16);
+        CHECK(a.flagged < rays.size());
         CHECK(a.wrong == 0);
     }
     {
@@ -262,7 +339,7 @@ TEST_CASE("traversal longer than the per-invocation loop cap: resumed exactly, o
         const auto soup = test::sceneOf(test::randomTriangleSoup(3000, 22));
         const auto soupRays = test::raysTowardPoints(soup, 2048, 23);
         core::Scene soupScene(testContext(), soup);
-        core::TraceKernels tiny(testContext(), {.stepBudget = 2 * gpu::BVH_MAX_LEAF_SIZE + 2, .resumeRounds = 400});
+        core::TraceKernels tiny(testContext(), {.stepBudget = core::kMinStepBudget, .resumeRounds = 400});
         core::TraceKernels normal(testContext());
         const auto a = tiny.traceClosest(soupScene, soupRays);
         const auto b = normal.traceClosest(soupScene, soupRays);
@@ -270,11 +347,5 @@ TEST_CASE("traversal longer than the per-invocation loop cap: resumed exactly, o
         for (size_t i = 0; i < a.size(); ++i)
             same += a[i].status == b[i].status && a[i].t == b[i].t && a[i].primId == b[i].primId;
         CHECK(same == a.size());
-        // Too few resume slots: the overflow is flagged, and every unflagged answer is still right.
-        core::TraceKernels cramped(testContext(), {.stepBudget = 2 * gpu::BVH_MAX_LEAF_SIZE + 2, .resumeRounds = 400, .resumeCapacity = 64});
-        const auto c = cramped.traceClosest(soupScene, soupRays);
-        const Agreement agreement = compareClosest(soupRays, c, test::traceClosestAll(soup, soupRays));
-        CHECK(agreement.flagged > 0);
-        CHECK(agreement.wrong == 0);
     }
 }

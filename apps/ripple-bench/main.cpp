@@ -1,0 +1,140 @@
+// ripple-bench: builds Ripple's and Embree's BVHs over the same meshes, traces the same primary, shadow and
+// diffuse-bounce rays with both, and reports speed (per wall second and per CPU second) and agreement.
+#include "apps/ripple-bench/Report.h"
+#include "apps/ripple-bench/RunScene.h"
+
+#include <CLI/CLI.hpp>
+#include <tbb/info.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#ifndef RIPPLE_DATA_DIR
+#define RIPPLE_DATA_DIR "../shared/data"
+#endif
+
+namespace {
+
+using namespace ripple;
+using namespace ripple::bench;
+
+struct Options {
+    std::vector<std::string> scenes{std::begin(kSceneNames), std::end(kSceneNames)};
+    std::string dataDir = RIPPLE_DATA_DIR;
+    std::string size = "1024x768";
+    uint32_t repeat = 3;
+    uint32_t workgroup = core::TraceOptions{}.workgroupSize;
+    std::string json = "ripple-bench.json";
+    bool quick = false;
+    bool noEmbree = false;
+    uint32_t width = 0, height = 0;
+};
+
+// Returns false after printing help or an error; `exitCode` then holds what main should return.
+bool parseOptions(int argc, char** argv, Options& o, int& exitCode) {
+    CLI::App app{"ripple-bench: Ripple (Vulkan compute) vs Embree 3 on BVH build and ray tracing"};
+    app.add_option("--scenes", o.scenes, "Comma-separated: builtin, bunny, sponza, procedural (default: all)")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"builtin", "bunny", "sponza", "procedural"}));
+    app.add_option("--data-dir", o.dataDir, "Folder holding gltf/bunny.glb and gltf/sponza-lod4-geometry.glb")
+        ->capture_default_str();
+    CLI::Option* size = app.add_option("--size", o.size, "Primary rays as WxH")->capture_default_str();
+    CLI::Option* repeat =
+        app.add_option("--repeat", o.repeat, "Timed runs per trace, after one warm-up; the median is reported")
+            ->check(CLI::Range(1u, 1000u))
+            ->capture_default_str();
+    app.add_option("--workgroup", o.workgroup, "Ripple trace kernel workgroup size (TraceOptions::workgroupSize)")
+        ->check(CLI::Range(1u, 1024u))
+        ->capture_default_str();
+    app.add_option("--json", o.json, "Where to write all numbers as JSON")->capture_default_str();
+    app.add_flag("--quick", o.quick, "Smoke run: 256x192 rays and one timed run (unless --size/--repeat say)");
+    app.add_flag("--no-embree", o.noEmbree, "Ripple only; secondary rays then start from Ripple's primary hits");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        exitCode = app.exit(e);
+        return false;
+    }
+    if (o.quick && size->count() == 0) o.size = "256x192";
+    if (o.quick && repeat->count() == 0) o.repeat = 1;
+    char tail = 0;
+    if (std::sscanf(o.size.c_str(), "%ux%u%c", &o.width, &o.height, &tail) != 2 || o.width == 0 || o.height == 0 ||
+        uint64_t(o.width) * o.height > (1u << 26)) {
+        std::cerr << "ripple-bench: --size wants WxH with at most 2^26 rays, got \"" << o.size << "\"\n";
+        exitCode = 2;
+        return false;
+    }
+    return true;
+}
+
+std::string environment(const char* name) {
+    const char* value = std::getenv(name);
+    return value ? value : "";
+}
+
+std::string cpuModel() {
+    std::ifstream cpuinfo("/proc/cpuinfo");
+    for (std::string line; std::getline(cpuinfo, line);) {
+        if (line.rfind("model name", 0) == 0) {
+            const size_t colon = line.find(':');
+            if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+        }
+    }
+    return "unknown";
+}
+
+RunInfo describeRun(const Options& o, const RippleTracer& ripple) {
+    RunInfo info;
+    info.vkDevice = ripple.deviceName();
+    info.embreeVersion = o.noEmbree ? "" : EmbreeTracer::version();
+    info.cpuModel = cpuModel();
+    info.hardwareThreads = std::thread::hardware_concurrency();
+    info.tbbThreads = tbb::info::default_concurrency();
+    info.lpNumThreads = environment("LP_NUM_THREADS");
+    info.lpNativeVectorWidth = environment("LP_NATIVE_VECTOR_WIDTH");
+    info.width = o.width;
+    info.height = o.height;
+    info.repeat = o.repeat;
+    info.workgroup = o.workgroup;
+    info.quick = o.quick;
+    return info;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    int exitCode = 0;
+    if (!parseOptions(argc, argv, options, exitCode)) return exitCode;
+
+    try {
+        core::TraceOptions traceOptions;
+        traceOptions.workgroupSize = options.workgroup;
+        RippleTracer ripple(traceOptions);
+        std::cerr << "[ripple-bench] Vulkan device: " << ripple.deviceName() << "\n";
+        std::unique_ptr<EmbreeTracer> embree;
+        if (!options.noEmbree) embree = std::make_unique<EmbreeTracer>();
+
+        const SceneSettings settings{options.dataDir, options.width, options.height, options.repeat};
+        std::vector<SceneResult> results;
+        for (const std::string& name : options.scenes)
+            results.push_back(runScene(name, settings, Tracers{ripple, embree.get()}));
+
+        const RunInfo info = describeRun(options, ripple);
+        printTables(std::cout, info, results);
+        writeJson(options.json, info, results);
+        std::cerr << "[ripple-bench] wrote " << options.json << "\n";
+
+        for (const SceneResult& r : results)
+            if (r.status == "ok") return 0;
+        std::cerr << "ripple-bench: no scene could run\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "ripple-bench: " << e.what() << "\n";
+        return 1;
+    }
+}
