@@ -40,6 +40,10 @@ struct F4 {
     friend F4 min(F4 a, F4 b) { return {_mm_min_ps(a.v, b.v)}; }  // a < b ? a : b, per lane
     friend F4 max(F4 a, F4 b) { return {_mm_max_ps(a.v, b.v)}; }  // a > b ? a : b, per lane
     void truncate(int32_t* out) const { _mm_store_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(v)); }
+    F4 yzx() const { return {_mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 0, 2, 1))}; }
+    float sum3() const {
+        return (_mm_cvtss_f32(v) + _mm_cvtss_f32(_mm_shuffle_ps(v, v, 1))) + _mm_cvtss_f32(_mm_shuffle_ps(v, v, 2));
+    }
 };
 #else
 struct F4 {
@@ -57,6 +61,8 @@ struct F4 {
     friend F4 min(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x < y ? x : y; }); }
     friend F4 max(F4 a, F4 b) { return map(a, b, [](float x, float y) { return x > y ? x : y; }); }
     void truncate(int32_t* out) const { for (int i = 0; i < 4; ++i) out[i] = int32_t(v[i]); }
+    F4 yzx() const { return {{v[1], v[2], v[0], v[3]}}; }
+    float sum3() const { return (v[0] + v[1]) + v[2]; }
 };
 #endif
 
@@ -66,6 +72,9 @@ glm::vec3 toVec3(F4 a) {
     a.store(f);
     return {f[0], f[1], f[2]};
 }
+// What min and max grow from; functions rather than globals, so they fold into immediate constants.
+F4 emptyLo() { return toF4(glm::vec3(FLT_MAX)); }
+F4 emptyHi() { return toF4(glm::vec3(-FLT_MAX)); }
 
 // The build partitions these records rather than indices into the input, so every level streams
 // through contiguous memory instead of gathering boxes at random. The centroid is recomputed where
@@ -105,7 +114,7 @@ struct BinMap {
         for (int a = 0; a < 3; ++a) s[a] = extent[a] > 0.0f ? span / extent[a] : 0.0f;
         origin = toF4(centroids.lo);
         scale = toF4(s);
-        lastBin = F4::set(float(binCount - 1), float(binCount - 1), float(binCount - 1), 0.0f);
+        lastBin = toF4(glm::vec3(float(binCount - 1)));
     }
     // The clamp to the last bin comes first so that NaN (inf * 0 on absurd extents) lands there too.
     void operator()(F4 centroid, int32_t* bins) const {
@@ -126,8 +135,8 @@ struct Bins {
     explicit Bins(uint32_t bins) : binCount(bins) {
         for (int a = 0; a < 3; ++a)
             for (uint32_t b = 0; b < binCount; ++b) {
-                F4::set(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f).store(box[a][b].lo);
-                F4::set(-FLT_MAX, -FLT_MAX, -FLT_MAX, 0.0f).store(box[a][b].hi);
+                emptyLo().store(box[a][b].lo);
+                emptyHi().store(box[a][b].hi);
                 count[a][b] = 0;
             }
     }
@@ -234,6 +243,7 @@ private:
         Split best;
         const uint32_t count = range.count();
         if (count < 2) return best;
+        // More bins than primitives only add sweep work: small ranges, the bulk of all nodes, use fewer.
         const uint32_t binCount = std::min(options_.binCount, std::max(count, 4u));
         const glm::vec3 extent = range.centroids.hi - range.centroids.lo;
         if (!(extent.x > 0.0f || extent.y > 0.0f || extent.z > 0.0f)) return best;
@@ -258,16 +268,15 @@ private:
         // Empty boxes measure 0 through the clamp, without a branch.
         const bool flat = range.bounds.halfArea() <= 0.0f;
         const auto metric = [flat](F4 lo, F4 hi) {
-            const glm::vec3 d = toVec3(max(hi - lo, F4{}));
-            return flat ? d.x + d.y + d.z : d.x * d.y + d.y * d.z + d.z * d.x;
+            const F4 d = max(hi - lo, F4{});
+            return flat ? d.sum3() : (d * d.yzx()).sum3();
         };
-        const F4 emptyLo = F4::set(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f), emptyHi = F4::set(-FLT_MAX, -FLT_MAX, -FLT_MAX, 0.0f);
         float bestCost = FLT_MAX;
         for (int a = 0; a < 3; ++a) {
             if (!(extent[a] > 0.0f)) continue;
             const auto& box = bins.box[a];
             std::array<float, kMaxBins> rightCost;
-            F4 lo = emptyLo, hi = emptyHi;
+            F4 lo = emptyLo(), hi = emptyHi();
             uint32_t n = 0;
             for (uint32_t b = binCount - 1; b > 0; --b) {
                 lo = min(lo, F4::load(box[b].lo));
@@ -275,7 +284,7 @@ private:
                 n += bins.count[a][b];
                 rightCost[b - 1] = metric(lo, hi) * float(n);
             }
-            lo = emptyLo, hi = emptyHi;
+            lo = emptyLo(), hi = emptyHi();
             n = 0;
             for (uint32_t b = 0; b + 1 < binCount; ++b) {
                 lo = min(lo, F4::load(box[b].lo));
@@ -287,7 +296,7 @@ private:
         }
         if (best.axis < 0) return best;
 
-        F4 lo[2] = {emptyLo, emptyLo}, hi[2] = {emptyHi, emptyHi};
+        F4 lo[2] = {emptyLo(), emptyLo()}, hi[2] = {emptyHi(), emptyHi()};
         for (uint32_t b = 0; b < binCount; ++b) {
             const int side = b > best.bin;
             lo[side] = min(lo[side], F4::load(bins.box[best.axis][b].lo));
@@ -308,8 +317,7 @@ private:
         const Record* src = range.data;
         Record* dst = src == buffers_[0] ? buffers_[1] : buffers_[0];
         uint32_t l = range.begin, r = range.end;
-        F4 lo[2] = {F4::set(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f), F4::set(FLT_MAX, FLT_MAX, FLT_MAX, 0.0f)};
-        F4 hi[2] = {F4::set(-FLT_MAX, -FLT_MAX, -FLT_MAX, 0.0f), F4::set(-FLT_MAX, -FLT_MAX, -FLT_MAX, 0.0f)};
+        F4 lo[2] = {emptyLo(), emptyLo()}, hi[2] = {emptyHi(), emptyHi()};
         alignas(16) int32_t bin[4];
         for (uint32_t i = range.begin; i < range.end; ++i) {
             const Record& rec = src[i];

@@ -310,8 +310,8 @@ TEST_CASE("bvh: two separated clusters split at the root") {
 }
 
 TEST_CASE("bvh: SAH cost is no worse than object-median splits") {
-    // A jittered grid, where median splits are already near-optimal, and clustered boxes, where SAH
-    // should win clearly.
+    // A jittered grid, where median splits are already good, and clustered boxes, where SAH should win
+    // clearly. Both trees are costed the same way: traversal 1 per inner node, 1 per primitive test.
     std::mt19937 rng(4);
     std::uniform_real_distribution<float> jitter(-0.2f, 0.2f);
     std::vector<Aabb> grid;
@@ -326,12 +326,13 @@ TEST_CASE("bvh: SAH cost is no worse than object-median splits") {
         const float scale = i % 10 == 0 ? 1.0f : 0.02f;  // 90% packed into a small region
         clusters[i] = {clusters[i].lo * scale, clusters[i].hi * scale};
     }
-    for (const auto* boxes : {&grid, &clusters}) {
-        const double sah = checkBvh(buildBinnedSah(*boxes), *boxes).sahCost;
-        const double median = medianTreeCost(*boxes, gpu::BVH_MAX_LEAF_SIZE);
-        MESSAGE("SAH cost " << sah << " vs object median " << median);
-        CHECK(sah <= median * 1.02);
-    }
+    const double gridSah = checkBvh(buildBinnedSah(grid), grid).sahCost;
+    const double gridMedian = medianTreeCost(grid, gpu::BVH_MAX_LEAF_SIZE);
+    const double clusterSah = checkBvh(buildBinnedSah(clusters), clusters).sahCost;
+    const double clusterMedian = medianTreeCost(clusters, gpu::BVH_MAX_LEAF_SIZE);
+    MESSAGE("grid SAH " << gridSah << " vs median " << gridMedian << "; clusters " << clusterSah << " vs " << clusterMedian);
+    CHECK(gridSah <= gridMedian);              // measured 93 vs 138
+    CHECK(clusterSah <= 0.6 * clusterMedian);  // measured 37 vs 88
 }
 
 }  // namespace ripple::bvh
