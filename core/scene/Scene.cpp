@@ -115,6 +115,12 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     std::vector<ValidInstance> valid;
     for (uint32_t i = 0; i < description.instances.size(); ++i) {
         const InstanceDescription& inst = description.instances[i];
+        if (inst.geometry.kind != GeometryKind::Triangles && inst.geometry.kind != GeometryKind::Spheres) {
+            report_.messages.push_back("instance " + std::to_string(i) + ": unknown geometry kind " +
+                                       std::to_string(static_cast<uint32_t>(inst.geometry.kind)) + "; skipped");
+            ++report_.instancesSkipped;
+            continue;
+        }
         const bool isMesh = inst.geometry.kind == GeometryKind::Triangles;
         auto& slots = isMesh ? meshSlot : sphereSlot;
         const std::string name = label(inst.geometry.kind, inst.geometry.index);

@@ -260,7 +260,8 @@ TEST_CASE("bad input is skipped, counted and named; it is never hit") {
                    {{core::GeometryKind::Triangles, 1}, glm::mat4(1.0f)},
                    {{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f)},
                    {{core::GeometryKind::Triangles, 7}, glm::mat4(1.0f)},
-                   {{core::GeometryKind::Triangles, 0}, glm::mat4(0.0f)}};
+                   {{core::GeometryKind::Triangles, 0}, glm::mat4(0.0f)},
+                   {{static_cast<core::GeometryKind>(5), 0}, glm::mat4(1.0f)}};
     core::Scene scene(testContext(), d);
     const core::SceneReport& rep = scene.report();
     CHECK(rep.trianglesKept == 1);
@@ -268,7 +269,7 @@ TEST_CASE("bad input is skipped, counted and named; it is never hit") {
     CHECK(rep.spheresKept == 1);
     CHECK(rep.spheresSkipped == 2);
     CHECK(rep.instancesKept == 2);
-    CHECK(rep.instancesSkipped == 3);
+    CHECK(rep.instancesSkipped == 4);
     auto mentions = [&](const std::string& text) {
         return std::any_of(rep.messages.begin(), rep.messages.end(), [&](const std::string& m) { return m.find(text) != std::string::npos; });
     };
@@ -278,6 +279,7 @@ TEST_CASE("bad input is skipped, counted and named; it is never hit") {
     CHECK(mentions("sphere set 0: skipped 1 sphere(s) with a radius"));
     CHECK(mentions("instance 3: references mesh 7"));
     CHECK(mentions("instance 4: transform"));
+    CHECK(mentions("instance 5: unknown geometry kind 5"));
     const auto rays = test::randomRays(4096, 21, glm::vec3(-2), glm::vec3(2));
     checkAgainstReference(d, rays);
 }
