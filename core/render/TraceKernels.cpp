@@ -60,12 +60,12 @@ void TraceKernels::dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, 
         params.rayCount = count;
         params.resumeCapacity = options_.resumeCapacity;
         params.stepBudget = options_.stepBudget;
-        // Parked states hold ray indices relative to this chunk's base addresses, which the resume rounds
-        // do not know; so with more than one chunk each chunk resumes before the next starts.
         pipeline.pushConstants(cmd, &params, sizeof(params));
         vkCmdDispatch(cmd, (count + options_.workgroupSize - 1) / options_.workgroupSize, 1, 1);
 
         // Resume rounds: indirect dispatches sized by the kernel itself, so the host never reads a count.
+        // Parked states hold ray indices relative to this chunk's base addresses, so each chunk finishes
+        // its rounds before the next chunk starts.
         for (uint32_t round = 1; round <= options_.resumeRounds; ++round) {
             const int in = (round - 1) % 2, out = round % 2;
             const bool last = round == options_.resumeRounds;
@@ -93,30 +93,27 @@ void TraceKernels::traceAny(VkCommandBuffer cmd, const Scene& scene, const vk::B
     dispatch(cmd, any_, scene, rays, occluded, rayCount);
 }
 
-std::vector<gpu::Hit> TraceKernels::traceClosest(const Scene& scene, std::span<const gpu::Ray> rays) {
-    std::vector<gpu::Hit> hits(rays.size());
-    if (rays.empty()) return hits;
+template <class Result>
+std::vector<Result> TraceKernels::traceOnHost(vk::ComputePipeline& pipeline, const Scene& scene,
+                                              std::span<const gpu::Ray> rays) {
+    std::vector<Result> results(rays.size());
+    if (rays.empty()) return results;
     vk::Buffer rayBuffer(context_, rays.size_bytes(), "trace rays");
-    vk::Buffer hitBuffer(context_, hits.size() * sizeof(gpu::Hit), "trace hits");
+    vk::Buffer resultBuffer(context_, results.size() * sizeof(Result), "trace results");
     rayBuffer.upload(rays);
     context_.submitAndWait([&](VkCommandBuffer cmd) {
-        traceClosest(cmd, scene, rayBuffer, hitBuffer, static_cast<uint32_t>(rays.size()));
+        dispatch(cmd, pipeline, scene, rayBuffer, resultBuffer, static_cast<uint32_t>(rays.size()));
     });
-    hitBuffer.download(std::span(hits));
-    return hits;
+    resultBuffer.download(std::span(results));
+    return results;
+}
+
+std::vector<gpu::Hit> TraceKernels::traceClosest(const Scene& scene, std::span<const gpu::Ray> rays) {
+    return traceOnHost<gpu::Hit>(closest_, scene, rays);
 }
 
 std::vector<uint32_t> TraceKernels::traceAny(const Scene& scene, std::span<const gpu::Ray> rays) {
-    std::vector<uint32_t> occluded(rays.size());
-    if (rays.empty()) return occluded;
-    vk::Buffer rayBuffer(context_, rays.size_bytes(), "trace rays");
-    vk::Buffer resultBuffer(context_, occluded.size() * sizeof(uint32_t), "trace occlusion");
-    rayBuffer.upload(rays);
-    context_.submitAndWait([&](VkCommandBuffer cmd) {
-        traceAny(cmd, scene, rayBuffer, resultBuffer, static_cast<uint32_t>(rays.size()));
-    });
-    resultBuffer.download(std::span(occluded));
-    return occluded;
+    return traceOnHost<uint32_t>(any_, scene, rays);
 }
 
 }  // namespace ripple::core

@@ -49,6 +49,8 @@ public:
 private:
     void dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, const Scene& scene, const vk::Buffer& rays,
                   const vk::Buffer& results, uint32_t rayCount);
+    template <class Result>
+    std::vector<Result> traceOnHost(vk::ComputePipeline& pipeline, const Scene& scene, std::span<const gpu::Ray> rays);
     void ensureResumePools();
 
     const vk::Context& context_;

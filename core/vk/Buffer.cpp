@@ -46,8 +46,7 @@ Buffer::Buffer(const Context& context, VkDeviceSize size, const std::string& nam
 
     // Refuse what cannot fit before asking the driver, so the error names the allocation rather than
     // surfacing as a validation message or a driver abort.
-    VkPhysicalDeviceMemoryProperties memory;
-    vkGetPhysicalDeviceMemoryProperties(context.physicalDevice(), &memory);
+    const VkPhysicalDeviceMemoryProperties& memory = context.memoryProperties();
     const VkDeviceSize heapSize = memory.memoryHeaps[memory.memoryTypes[type].heapIndex].size;
     if (requirements.size > heapSize) {
         release();

@@ -33,6 +33,7 @@ public:
     uint32_t queueFamily() const { return queueFamily_; }
     VkPipelineCache pipelineCache() const { return pipelineCache_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
     const std::string& deviceName() const { return deviceName_; }
     bool isCpuDevice() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
 
