@@ -1,5 +1,7 @@
-// What a scene is made of, as the host sees it: meshes, sphere sets and instances of them. core::Scene
-// validates this, builds the BVHs and uploads the flat GPU scene of shaders/shared/scene.h.
+// What a scene is made of, as the host sees it: meshes, sphere sets and cylinder sets, instances of them
+// with a material each, materials, textures and lights. core::Scene validates this, builds the BVHs and
+// uploads the flat GPU scene of shaders/shared/scene.h. Everything is in world units; lights are in world
+// space (the ANARI layer applies instance transforms to lights before they get here).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -9,32 +11,112 @@
 
 namespace ripple::core {
 
+// Identity of a geometry across scene updates: Scene::update reuses the BLAS of a geometry whose key and
+// version are both unchanged. key 0 means "no identity": always rebuilt.
+struct GeometryIdentity {
+    uint64_t key = 0;
+    uint64_t version = 0;
+};
+
 struct TriangleMesh {
     std::vector<glm::vec3> positions;
-    std::vector<glm::uvec3> indices;  // empty: consecutive position triples form the triangles
+    std::vector<glm::uvec3> indices;      // empty: consecutive position triples form the triangles
+    // Optional attributes; each is empty or has exactly one entry per position (per triangle for
+    // primitiveColors). A wrong length is reported and the attribute ignored.
+    std::vector<glm::vec3> normals;       // shading normals, object space
+    std::vector<glm::vec4> colors;        // the ANARI "color" attribute, linear RGBA
+    std::vector<glm::vec2> texcoords;     // glTF/ANARI texcoord (attribute "texcoord")
+    std::vector<glm::vec4> primitiveColors;
+    // Quads are split into two triangles by the ANARI layer; it sets this to 2 so that the primitive id a
+    // frame reports is triangle / 2. 1 for plain triangle meshes.
+    uint32_t trianglesPerPrimitive = 1;
+    GeometryIdentity identity;            // last, so positional initialisers stay short
 };
 
 struct SphereSet {
     std::vector<glm::vec3> centers;
-    std::vector<float> radii;         // one per center, or a single radius for all
+    std::vector<float> radii;             // one per center, or a single radius for all
+    std::vector<glm::vec4> colors;        // empty, or one per sphere
+    GeometryIdentity identity;
 };
 
-enum class GeometryKind : uint32_t { Triangles = 0, Spheres = 1 };
+// Round cylinders between two points; caps close both ends when set.
+struct CylinderSet {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::uvec2> indices;      // empty: consecutive position pairs form the cylinders
+    std::vector<float> radii;             // one per cylinder, or a single radius for all
+    std::vector<glm::vec4> colors;        // empty, or one per cylinder
+    bool caps = false;
+    GeometryIdentity identity;
+};
+
+enum class GeometryKind : uint32_t { Triangles = 0, Spheres = 1, Cylinders = 2 };
 
 struct GeometryRef {
     GeometryKind kind = GeometryKind::Triangles;
-    uint32_t index = 0;               // into SceneDescription::meshes or ::sphereSets
+    uint32_t index = 0;                   // into SceneDescription::meshes, ::sphereSets or ::cylinderSets
+};
+
+// A linear-space RGBA texture. Texels are row-major with row 0 at texture coordinate v = 0.
+struct Texture {
+    enum class Format : uint32_t { Rgba8Unorm = 0, Rgba8Srgb = 1, Rgba32Float = 2 };
+    enum class Wrap : uint32_t { Repeat = 0, ClampToEdge = 1, MirrorRepeat = 2 };
+    uint32_t width = 0;
+    uint32_t height = 0;
+    Format format = Format::Rgba8Unorm;
+    std::vector<uint8_t> texels;          // width * height * (4 or 16) bytes
+    Wrap wrapS = Wrap::Repeat;
+    Wrap wrapT = Wrap::Repeat;
+    bool linearFilter = true;             // false: nearest
+    glm::mat4 inTransform{1.0f};          // applied to (u, v, 0, 1) before lookup
+    glm::mat4 outTransform{1.0f};         // applied to the fetched RGBA
+};
+
+inline constexpr int32_t kNoTexture = -1;
+
+struct Material {
+    enum class Kind : uint32_t { Matte = 0, PhysicallyBased = 1 };
+    Kind kind = Kind::Matte;
+    glm::vec3 baseColor{0.8f};
+    bool baseColorFromVertexColor = false; // the ANARI "color" attribute replaces baseColor
+    int32_t baseColorTexture = kNoTexture; // index into SceneDescription::textures (multiplies baseColor)
+    float opacity = 1.0f;
+    float metallic = 1.0f;                 // physicallyBased only (ANARI default 1)
+    float roughness = 1.0f;                // physicallyBased only
+    glm::vec3 emissive{0.0f};              // radiance emitted, linear RGB (already times any strength)
+    float ior = 1.5f;
 };
 
 struct InstanceDescription {
     GeometryRef geometry;
-    glm::mat4 transform{1.0f};        // object to world; must be affine and invertible
+    glm::mat4 transform{1.0f};            // object to world; must be affine and invertible
+    uint32_t materialIndex = 0;           // into SceneDescription::materials; out of range: default matte
+    uint32_t objectId = 0;                // the application's id of the surface (objectId channel)
+    uint32_t instanceId = 0;              // the application's id of the instance (instanceId channel)
+};
+
+struct Light {
+    enum class Kind : uint32_t { Directional = 0, Point = 1, Quad = 2 };
+    Kind kind = Kind::Directional;
+    glm::vec3 color{1.0f};
+    // Directional: irradiance (W/m^2) on a surface facing the light. Point: intensity (W/sr).
+    // Quad: radiance (W/sr/m^2) of its emitting side(s).
+    float intensity = 1.0f;
+    glm::vec3 position{0.0f};             // point and quad (a corner of the quad)
+    glm::vec3 direction{0.0f, 0.0f, -1.0f}; // directional: the direction light travels
+    glm::vec3 edge1{1.0f, 0.0f, 0.0f};    // quad: position + s*edge1 + t*edge2, s,t in [0,1]
+    glm::vec3 edge2{0.0f, 1.0f, 0.0f};
+    bool twoSided = false;                // quad: emits from both sides (else along cross(edge1, edge2))
 };
 
 struct SceneDescription {
     std::vector<TriangleMesh> meshes;
     std::vector<SphereSet> sphereSets;
+    std::vector<CylinderSet> cylinderSets;
     std::vector<InstanceDescription> instances;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Light> lights;
 };
 
 }  // namespace ripple::core

@@ -83,6 +83,8 @@ bool hasValidPrimitive(const core::SceneDescription& scene, const core::Geometry
             if (isSphereValid(set, s)) return true;
         return false;
     }
+    case core::GeometryKind::Cylinders:
+        return false;  // not yet in the reference tracer
     }
     return false;  // a kind value outside the enum
 }

@@ -1,0 +1,81 @@
+// The wavefront path tracer: per sample pass, generate camera rays -> repeat { trace closest, shade (emission,
+// next-event estimation, BSDF sample, Russian roulette), occlude shadow rays } -> accumulate; resolve turns
+// the accumulation into the requested channels. One .comp per stage (shaders/pt_*.comp). Synchronous: the
+// ANARI layer runs it on a worker thread to make frames asynchronous. Knows nothing of ANARI or MPI.
+#pragma once
+
+#include "core/render/TraceKernels.h"
+#include "core/scene/Scene.h"
+#include "core/vk/Buffer.h"
+#include "core/vk/Context.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace ripple::core {
+
+struct Camera {
+    enum class Kind : uint32_t { Perspective = 0, Orthographic = 1 };
+    Kind kind = Kind::Perspective;
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovy = 1.0471976f;              // perspective: vertical field of view, radians (ANARI default pi/3)
+    float aspect = 1.0f;                  // width / height of the image region
+    float height = 1.0f;                  // orthographic: height of the view in world units
+    glm::vec4 imageRegion{0.0f, 0.0f, 1.0f, 1.0f}; // (minX, minY, maxX, maxY) of the screen in [0,1]^2
+};
+
+struct RenderSettings {
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f}; // what camera rays that miss see (linear RGBA)
+    glm::vec3 ambientColor{1.0f};
+    float ambientRadiance = 0.0f;         // radiance of a uniform environment seen by secondary rays
+    uint32_t maxPathLength = 5;           // surface interactions per path (1: direct lighting only)
+    uint32_t pixelSamples = 1;            // samples per pixel added by one render() call
+};
+
+// Pixel formats the resolve stage writes. Row 0 of every channel is the bottom row of the image.
+enum class ColorFormat : uint32_t { Rgba8Unorm = 0, Rgba8Srgb = 1, Rgba32Float = 2 };
+
+struct FrameStats {
+    uint64_t raysTraced = 0;              // closest-hit rays over all bounces
+    uint64_t shadowRays = 0;
+    uint64_t nonFiniteSamples = 0;        // dropped, never accumulated
+    uint64_t flaggedRays = 0;             // traversals that ran out of budget (HIT_FLAG_*), treated as misses
+    double seconds = 0.0;
+};
+
+class PathTracer {
+public:
+    explicit PathTracer(const vk::Context& context, const TraceOptions& traceOptions = {});
+    ~PathTracer();
+
+    // Resizes the frame (and clears the accumulation). Only the channels asked for get buffers.
+    void resize(glm::uvec2 size, bool wantDepth);
+    // Starts accumulation over: call when scene, camera or settings changed.
+    void resetAccumulation();
+
+    // Adds settings.pixelSamples samples per pixel to the accumulation and resolves the channels.
+    // Blocks until the GPU is done.
+    FrameStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings);
+
+    glm::uvec2 size() const { return size_; }
+    uint32_t accumulatedSamples() const { return accumulatedSamples_; }
+
+    // Read back the resolved channels (size().x * size().y pixels, row 0 at the bottom).
+    // Color: 4 bytes per pixel for the 8-bit formats, 16 for Rgba32Float. Depth: the distance along the
+    // camera ray to the first hit of the latest sample (+inf where nothing was hit).
+    void readColor(ColorFormat format, void* destination) const;
+    void readDepth(float* destination) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    glm::uvec2 size_{0, 0};
+    uint32_t accumulatedSamples_ = 0;
+};
+
+}  // namespace ripple::core
