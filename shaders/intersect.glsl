@@ -1,8 +1,8 @@
-// Ray/box, ray/triangle and ray/sphere tests used by the traversal kernels. The triangle test is
-// watertight (Woop, Benthin & Wald 2013): rays through shared edges and vertices never slip between
-// triangles. The box test is conservative (Ize 2013): tmax is widened by 2*gamma(3) so rounding never
-// culls a box the ray really enters. The sphere roots are the stable form of Haines et al. (Ray Tracing
-// Gems, ch. 7).
+// Ray/box, ray/triangle, ray/sphere and ray/cylinder tests used by the traversal kernels. The triangle
+// test is watertight (Woop, Benthin & Wald 2013): rays through shared edges and vertices never slip
+// between triangles. The box test is conservative (Ize 2013): tmax is widened by 2*gamma(3) so rounding
+// never culls a box the ray really enters. Sphere and cylinder roots use the stable form of Haines et al.
+// (Ray Tracing Gems, ch. 7).
 #ifndef RIPPLE_INTERSECT_GLSL
 #define RIPPLE_INTERSECT_GLSL
 
@@ -64,21 +64,79 @@ bool intersectTriangle(TriangleRay r, vec3 v0, vec3 v1, vec3 v2, float tmin, ino
     return true;
 }
 
-// Returns true and updates tBest with the nearest root in (tmin, tBest).
-bool intersectSphere(vec3 origin, vec3 direction, vec4 centerRadius, float tmin, inout float tBest) {
-    vec3 f = origin - centerRadius.xyz;
-    float a = dot(direction, direction);
-    float b = dot(f, direction);  // half the linear coefficient
-    float r = centerRadius.w;
-    float c = dot(f, f) - r * r;
-    // b^2 - a*c computed as a*(r^2 - |f - (b/a) d|^2): no cancellation for distant spheres.
-    vec3 l = f - (b / a) * direction;
+// Nearest root of a quadratic in the form the sphere and cylinder tests share: |f + t d|^2 = r^2 with f and
+// d already reduced to the components that matter. The discriminant b^2 - a*c is formed as
+// a * (r^2 - |f - (b/a) d|^2), which does not cancel for small shapes far away, and the roots come from
+// the cancellation-free pair c/q and q/a. Returns the roots in order; false when there are none.
+bool stableQuadraticRoots(vec3 f, vec3 d, float r, out float t0, out float t1) {
+    t0 = 0.0;
+    t1 = 0.0;
+    float a = dot(d, d);
+    if (!(a > 0.0)) return false;
+    float b = dot(f, d);  // half the linear coefficient
+    vec3 l = f - (b / a) * d;
     float disc = a * (r * r - dot(l, l));
     if (disc < 0.0) return false;
+    float c = dot(f, f) - r * r;
     float q = -b - (b < 0.0 ? -1.0 : 1.0) * sqrt(disc);
-    float t0 = c / q;
-    float t1 = q / a;
+    t0 = c / q;
+    t1 = q / a;
     if (t0 > t1) { float s = t0; t0 = t1; t1 = s; }
+    return true;
+}
+
+// Round cylinder from p0 to p1 (radius in p0Radius.w), with flat caps at both ends when `caps`. The ray is
+// split into components along and across the unit axis, so the side is the 2D circle problem of the
+// sphere test. Returns true and updates tBest, `axial` (0 at p0, 1 at p1) and `onCap` (0 side, 1 cap)
+// for the nearest hit in (tmin, tBest).
+bool intersectCylinder(vec3 origin, vec3 direction, vec4 p0Radius, vec3 p1, bool caps, float tmin,
+                       inout float tBest, out float axial, out float onCap) {
+    axial = 0.0;
+    onCap = 0.0;
+    vec3 p0 = p0Radius.xyz;
+    float r = p0Radius.w;
+    vec3 axis = p1 - p0;
+    float len = length(axis);
+    vec3 w = axis / len;
+    vec3 f = origin - p0;
+    float fa = dot(f, w);
+    float da = dot(direction, w);
+    vec3 fp = f - fa * w;          // across the axis
+    vec3 dp = direction - da * w;
+    bool found = false;
+    float t0, t1;
+    if (stableQuadraticRoots(fp, dp, r, t0, t1)) {
+        for (int i = 0; i < 2; ++i) {
+            float t = i == 0 ? t0 : t1;
+            float s = fa + t * da;
+            if (t > tmin && t < tBest && s >= 0.0 && s <= len) {
+                tBest = t;
+                axial = s / len;
+                found = true;
+                break;
+            }
+        }
+    }
+    if (caps && da != 0.0) {
+        for (int i = 0; i < 2; ++i) {
+            float end = i == 0 ? 0.0 : len;
+            float t = (end - fa) / da;
+            vec3 across = fp + t * dp;
+            if (t > tmin && t < tBest && dot(across, across) <= r * r) {
+                tBest = t;
+                axial = float(i);
+                onCap = 1.0;
+                found = true;
+            }
+        }
+    }
+    return found;
+}
+
+// Returns true and updates tBest with the nearest root in (tmin, tBest).
+bool intersectSphere(vec3 origin, vec3 direction, vec4 centerRadius, float tmin, inout float tBest) {
+    float t0, t1;
+    if (!stableQuadraticRoots(origin - centerRadius.xyz, direction, centerRadius.w, t0, t1)) return false;
     float t = t0 > tmin ? t0 : t1;
     if (!(t > tmin && t < tBest)) return false;
     tBest = t;

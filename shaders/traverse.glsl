@@ -20,6 +20,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Sc
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodesRef { BvhNode nodes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TrianglesRef { TrianglePrim triangles[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstancesRef { InstancePrim instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RaysRef { Ray rays[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer HitsRef { Hit hits[]; };
@@ -43,8 +44,13 @@ uint stackSize;
 uint instanceSlot;
 Hit best;
 
+// The scene addresses traversal reads (the rest of SceneDesc is for shading).
+uint64_t sceneInstances;
+uint64_t sceneTriangles;
+uint64_t sceneSpheres;
+uint64_t sceneCylinders;
+
 // The ray in the space of the BVH being traversed (world for the TLAS, object for a BLAS).
-SceneDesc scene;
 InstancePrim instance;
 vec3 origin;
 vec3 direction;
@@ -86,7 +92,7 @@ void enterSpace(Ray worldRay) {
         origin = worldRay.origin.xyz;
         direction = worldRay.direction.xyz;
     } else {
-        instance = InstancesRef(scene.instances).instances[instanceSlot];
+        instance = InstancesRef(sceneInstances).instances[instanceSlot];
         mat3x4 toObject = mat3x4(instance.worldToObject[0], instance.worldToObject[1], instance.worldToObject[2]);
         origin = vec4(worldRay.origin.xyz, 1.0) * toObject;
         direction = vec4(worldRay.direction.xyz, 0.0) * toObject;
@@ -108,13 +114,17 @@ void testPrimitive(uint primSlot) {
     bool hit;
     uint primId;
     if (instance.geometryKind == GEOMETRY_TRIANGLES) {
-        TrianglePrim tri = TrianglesRef(scene.triangles).triangles[primSlot];
+        TrianglePrim tri = TrianglesRef(sceneTriangles).triangles[primSlot];
         hit = intersectTriangle(triRay, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, t, u, v);
         primId = floatBitsToUint(tri.v0.w);
-    } else {
-        SpherePrim sphere = SpheresRef(scene.spheres).spheres[primSlot];
+    } else if (instance.geometryKind == GEOMETRY_SPHERES) {
+        SpherePrim sphere = SpheresRef(sceneSpheres).spheres[primSlot];
         hit = intersectSphere(origin, direction, sphere.centerRadius, tmin, t);
         primId = sphere.primId;
+    } else {
+        CylinderPrim cylinder = CylindersRef(sceneCylinders).cylinders[primSlot];
+        hit = intersectCylinder(origin, direction, cylinder.p0Radius, cylinder.p1.xyz, cylinder.caps != 0u, tmin, t, u, v);
+        primId = cylinder.primId;
     }
     if (hit) best = Hit(t, u, v, instance.instanceId, primId, HIT_FOUND);
 }
@@ -139,8 +149,12 @@ void main() {
         if (SceneRef(params.scene).desc.instanceCount > 0u) push(0u);
     }
 
-    scene = SceneRef(params.scene).desc;
-    NodesRef nodes = NodesRef(scene.nodes);
+    SceneRef sceneRef = SceneRef(params.scene);
+    sceneInstances = sceneRef.desc.instances;
+    sceneTriangles = sceneRef.desc.triangles;
+    sceneSpheres = sceneRef.desc.spheres;
+    sceneCylinders = sceneRef.desc.cylinders;
+    NodesRef nodes = NodesRef(sceneRef.desc.nodes);
     Ray worldRay = RaysRef(params.rays).rays[rayIndex];
     tmin = worldRay.origin.w;
     enterSpace(worldRay);

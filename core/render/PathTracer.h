@@ -2,6 +2,12 @@
 // next-event estimation, BSDF sample, Russian roulette), occlude shadow rays } -> accumulate; resolve turns
 // the accumulation into the requested channels. One .comp per stage (shaders/pt_*.comp). Synchronous: the
 // ANARI layer runs it on a worker thread to make frames asynchronous. Knows nothing of ANARI or MPI.
+//
+// What the images contain: lights are sampled by next-event estimation only (rays never hit them);
+// emissive materials are found only by BSDF-sampled rays, and emit from both sides; there is no MIS, so
+// glossy surfaces near small lights are noisy. Shadow rays treat every surface as opaque. Random numbers
+// are keyed by (pixel, sample index, bounce, dimension, seed), so the same inputs give the same image bit
+// for bit, however the frame is split into waves.
 #pragma once
 
 #include "core/render/TraceKernels.h"
@@ -35,6 +41,14 @@ struct RenderSettings {
     float ambientRadiance = 0.0f;         // radiance of a uniform environment seen by secondary rays
     uint32_t maxPathLength = 5;           // surface interactions per path (1: direct lighting only)
     uint32_t pixelSamples = 1;            // samples per pixel added by one render() call
+    uint32_t seed = 0;                    // varies the random numbers; the same seed gives the same image
+};
+
+struct PathTracerOptions {
+    // Paths in flight at once: a frame with more pixels is rendered in waves of this many, so queue memory
+    // (about 220 bytes per path) does not grow with the image.
+    uint32_t queueCapacity = 1u << 20;
+    uint32_t workgroupSize = 64;
 };
 
 // Pixel formats the resolve stage writes. Row 0 of every channel is the bottom row of the image.
@@ -50,7 +64,8 @@ struct FrameStats {
 
 class PathTracer {
 public:
-    explicit PathTracer(const vk::Context& context, const TraceOptions& traceOptions = {});
+    explicit PathTracer(const vk::Context& context, const TraceOptions& traceOptions = {},
+                        const PathTracerOptions& options = {});
     ~PathTracer();
 
     // Resizes the frame (and clears the accumulation). Only the channels asked for get buffers.
@@ -59,7 +74,8 @@ public:
     void resetAccumulation();
 
     // Adds settings.pixelSamples samples per pixel to the accumulation and resolves the channels.
-    // Blocks until the GPU is done.
+    // Blocks until the GPU is done. Throws std::invalid_argument for a camera that is not finite or has
+    // no direction, or when resize() was never called. A maxPathLength of 0 is taken as 1.
     FrameStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings);
 
     glm::uvec2 size() const { return size_; }
@@ -68,6 +84,7 @@ public:
     // Read back the resolved channels (size().x * size().y pixels, row 0 at the bottom).
     // Color: 4 bytes per pixel for the 8-bit formats, 16 for Rgba32Float. Depth: the distance along the
     // camera ray to the first hit of the latest sample (+inf where nothing was hit).
+    // readDepth throws std::logic_error when resize() did not ask for depth.
     void readColor(ColorFormat format, void* destination) const;
     void readDepth(float* destination) const;
 

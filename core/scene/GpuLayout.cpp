@@ -1,6 +1,8 @@
 // Compile-time checks that the C++ view of every struct in shaders/shared/*.h has the std430 layout the
 // kernels read. A failing assert here means a shared header was edited without keeping the two in step.
 #include "shaders/shared/bvh.h"
+#include "shaders/shared/material.h"
+#include "shaders/shared/path.h"
 #include "shaders/shared/ray.h"
 #include "shaders/shared/scene.h"
 
@@ -15,12 +17,42 @@ static_assert(offsetof(BvhNode, rightMin) == 32);
 static_assert(sizeof(TrianglePrim) == 48);
 static_assert(sizeof(SpherePrim) == 32);
 static_assert(offsetof(SpherePrim, primId) == 16);
+static_assert(sizeof(CylinderPrim) == 48);
+static_assert(offsetof(CylinderPrim, primId) == 32);
 static_assert(sizeof(InstancePrim) == 112);
 static_assert(offsetof(InstancePrim, objectToWorld) == 48);
 static_assert(offsetof(InstancePrim, blasNodeOffset) == 96);
 static_assert(offsetof(InstancePrim, instanceId) == 108);
-static_assert(sizeof(SceneDesc) == 48);
-static_assert(offsetof(SceneDesc, instanceCount) == 32);
+static_assert(sizeof(InstanceShading) == 112);
+static_assert(offsetof(InstanceShading, geometry) == 96);
+static_assert(offsetof(InstanceShading, userInstanceId) == 108);
+static_assert(sizeof(GeometryRecord) == 32);
+static_assert(offsetof(GeometryRecord, trianglesPerPrimitive) == 28);
+static_assert(sizeof(SceneDesc) == 128);
+static_assert(offsetof(SceneDesc, lights) == 104);
+static_assert(offsetof(SceneDesc, instanceCount) == 112);
+
+static_assert(sizeof(MaterialRecord) == 64);
+static_assert(offsetof(MaterialRecord, kind) == 32);
+static_assert(offsetof(MaterialRecord, metallic) == 48);
+static_assert(sizeof(TextureRecord) == 160);
+static_assert(offsetof(TextureRecord, inTransform) == 32);
+static_assert(offsetof(TextureRecord, outTransform) == 96);
+static_assert(sizeof(LightRecord) == 96);
+static_assert(offsetof(LightRecord, kind) == 80);
+
+static_assert(sizeof(PathState) == 32);
+static_assert(offsetof(PathState, pixel) == 16);
+static_assert(sizeof(ShadowRequest) == 32);
+static_assert(sizeof(PathCounters) == 16);
+static_assert(sizeof(FrameConstants) == 176);
+static_assert(offsetof(FrameConstants, width) == 112);
+static_assert(offsetof(FrameConstants, sampleRadiance) == 128);
+static_assert(offsetof(FrameConstants, counters) == 160);
+static_assert(sizeof(StageParams) == 104);
+static_assert(offsetof(StageParams, count) == 80);
+static_assert(offsetof(StageParams, mode) == 96);
+static_assert(sizeof(StageParams) <= 128, "push constants: 128 bytes is all Vulkan guarantees");
 
 static_assert(sizeof(Ray) == 32);
 static_assert(sizeof(Hit) == 24);

@@ -1,5 +1,8 @@
-// Validation of host geometry, BLAS/TLAS construction and upload of the flat GPU scene.
+// Assembly of the flat GPU scene: instances validated, geometries prepared (or reused from the previous
+// Scene), TLAS built, primitives, shading attributes, materials and lights flattened and uploaded.
 #include "core/scene/Scene.h"
+
+#include "core/scene/ShadingTables.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -17,67 +20,9 @@ double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-// A geometry's valid primitives (input indices) and boxes, before its BLAS is built.
-struct PreparedGeometry {
-    GeometryKind kind = GeometryKind::Triangles;
-    uint32_t index = 0;
-    std::vector<uint32_t> validPrims;
-    std::vector<bvh::Aabb> boxes;
-    bvh::Bvh blas;
-    uint32_t nodeOffset = 0;
-    uint32_t primOffset = 0;
-};
-
-std::string label(GeometryKind kind, uint32_t index) {
-    return (kind == GeometryKind::Triangles ? "mesh " : "sphere set ") + std::to_string(index);
-}
-
-void prepareMesh(const TriangleMesh& mesh, PreparedGeometry& out, SceneReport& report) {
-    const uint64_t positionCount = mesh.positions.size();
-    const uint64_t triangleCount = mesh.indices.empty() ? positionCount / 3 : mesh.indices.size();
-    uint64_t badIndex = 0, nonFinite = 0, zeroArea = 0;
-    for (uint64_t t = 0; t < triangleCount; ++t) {
-        const glm::uvec3 idx = mesh.indices.empty() ? glm::uvec3(3 * t, 3 * t + 1, 3 * t + 2) : mesh.indices[t];
-        if (idx.x >= positionCount || idx.y >= positionCount || idx.z >= positionCount) { ++badIndex; continue; }
-        const glm::vec3 &a = mesh.positions[idx.x], &b = mesh.positions[idx.y], &c = mesh.positions[idx.z];
-        if (!finite(a) || !finite(b) || !finite(c)) { ++nonFinite; continue; }
-        const glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
-        if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) { ++zeroArea; continue; }
-        bvh::Aabb box;
-        box.extend(a);
-        box.extend(b);
-        box.extend(c);
-        out.validPrims.push_back(static_cast<uint32_t>(t));
-        out.boxes.push_back(box);
-    }
-    const std::string name = label(out.kind, out.index);
-    if (badIndex) report.messages.push_back(name + ": skipped " + std::to_string(badIndex) + " triangle(s) with an index out of range (" + std::to_string(positionCount) + " positions)");
-    if (nonFinite) report.messages.push_back(name + ": skipped " + std::to_string(nonFinite) + " triangle(s) with a NaN or Inf vertex");
-    if (zeroArea) report.messages.push_back(name + ": skipped " + std::to_string(zeroArea) + " zero-area triangle(s)");
-    report.trianglesSkipped += badIndex + nonFinite + zeroArea;
-}
-
-void prepareSpheres(const SphereSet& set, PreparedGeometry& out, SceneReport& report) {
-    uint64_t badRadius = 0, nonFinite = 0;
-    const std::string name = label(out.kind, out.index);
-    if (set.radii.size() != 1 && set.radii.size() != set.centers.size()) {
-        report.messages.push_back(name + ": " + std::to_string(set.radii.size()) + " radii for " +
-                                  std::to_string(set.centers.size()) + " centers (need 1 or one each); set skipped");
-        report.spheresSkipped += set.centers.size();
-        return;
-    }
-    for (uint32_t i = 0; i < set.centers.size(); ++i) {
-        const float r = set.radii.size() == 1 ? set.radii[0] : set.radii[i];
-        if (!finite(set.centers[i])) { ++nonFinite; continue; }
-        if (!(std::isfinite(r) && r > 0.0f)) { ++badRadius; continue; }
-        out.validPrims.push_back(i);
-        out.boxes.push_back({set.centers[i] - glm::vec3(r), set.centers[i] + glm::vec3(r)});
-    }
-    if (nonFinite) report.messages.push_back(name + ": skipped " + std::to_string(nonFinite) + " sphere(s) with a NaN or Inf center");
-    if (badRadius) report.messages.push_back(name + ": skipped " + std::to_string(badRadius) + " sphere(s) with a radius that is not finite and positive");
-    report.spheresSkipped += badRadius + nonFinite;
+bool sameOptions(const bvh::BuildOptions& a, const bvh::BuildOptions& b) {
+    return a.binCount == b.binCount && a.maxLeafSize == b.maxLeafSize && a.traversalCost == b.traversalCost &&
+           a.parallelThreshold == b.parallelThreshold;
 }
 
 bool affineAndInvertible(const glm::mat4& m) {
@@ -105,112 +50,277 @@ bvh::Aabb transformBox(const bvh::Aabb& box, const glm::mat4& m) {
     return out;
 }
 
+gpu::vec4 toVec4(const glm::vec2& v) { return gpu::vec4(v, 0.0f, 1.0f); }
+gpu::vec4 toVec4(const glm::vec3& v) { return gpu::vec4(v, 0.0f); }
+gpu::vec4 toVec4(const glm::vec4& v) { return v; }
+
+// One geometry of this scene: its validated form and where its data landed in the flat arrays.
+struct UsedGeometry {
+    GeometryKind kind;
+    uint32_t index;         // in the description's meshes, sphereSets or cylinderSets
+    std::shared_ptr<const PreparedGeometry> prepared;
+    uint32_t nodeOffset = 0;
+    uint32_t primOffset = 0;
+};
+
+// Everything the kernels read, before upload.
+struct FlatScene {
+    std::vector<gpu::BvhNode> nodes;
+    std::vector<gpu::TrianglePrim> triangles;
+    std::vector<gpu::SpherePrim> spheres;
+    std::vector<gpu::CylinderPrim> cylinders;
+    std::vector<gpu::GeometryRecord> geometries;
+    std::vector<uint32_t> primSlots;
+    std::vector<uint32_t> vertexIndices;
+    std::vector<gpu::vec4> attributes;
+};
+
+// Appends an optional attribute when it has exactly `expected` entries, all finite; otherwise names the
+// problem and returns NO_ATTRIBUTE (the attribute is ignored).
+template <class T>
+uint32_t appendAttribute(const std::vector<T>& values, uint64_t expected, const std::string& what,
+                         const std::string& owner, FlatScene& flat, SceneReport& report) {
+    if (values.empty()) return gpu::NO_ATTRIBUTE;
+    auto ignore = [&](const std::string& why) {
+        report.messages.push_back(owner + ": " + what + " " + why + "; attribute ignored");
+        ++report.attributesIgnored;
+        return gpu::NO_ATTRIBUTE;
+    };
+    if (values.size() != expected)
+        return ignore("has " + std::to_string(values.size()) + " entries, not " + std::to_string(expected));
+    for (const T& v : values)
+        for (int c = 0; c < T::length(); ++c)
+            if (!std::isfinite(v[c])) return ignore("holds NaN or Inf");
+    const auto offset = static_cast<uint32_t>(flat.attributes.size());
+    for (const T& v : values) flat.attributes.push_back(toVec4(v));
+    return offset;
+}
+
+void flattenTriangles(const TriangleMesh& mesh, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
+                      SceneReport& report) {
+    const PreparedGeometry& p = *g.prepared;
+    for (uint32_t slot : p.blas.primOrder) {
+        const uint32_t t = p.validPrims[slot];
+        const glm::uvec3 idx = mesh.indices.empty() ? glm::uvec3(3 * t, 3 * t + 1, 3 * t + 2) : mesh.indices[t];
+        flat.triangles.push_back({gpu::vec4(mesh.positions[idx.x], std::bit_cast<float>(t)),
+                                  gpu::vec4(mesh.positions[idx.y], 0.0f), gpu::vec4(mesh.positions[idx.z], 0.0f)});
+    }
+    const std::string name = geometryLabel(g.kind, g.index);
+    const uint64_t vertices = mesh.positions.size();
+    record.normalOffset = appendAttribute(mesh.normals, vertices, "normals", name, flat, report);
+    record.colorOffset = appendAttribute(mesh.colors, vertices, "colors", name, flat, report);
+    record.texcoordOffset = appendAttribute(mesh.texcoords, vertices, "texcoords", name, flat, report);
+    record.primitiveColorOffset = appendAttribute(mesh.primitiveColors, p.inputPrimCount, "primitiveColors", name, flat, report);
+    record.trianglesPerPrimitive = std::max(1u, mesh.trianglesPerPrimitive);
+    const bool perVertex = record.normalOffset != gpu::NO_ATTRIBUTE || record.colorOffset != gpu::NO_ATTRIBUTE ||
+                           record.texcoordOffset != gpu::NO_ATTRIBUTE;
+    if (perVertex && !mesh.indices.empty()) {
+        record.indexOffset = static_cast<uint32_t>(flat.vertexIndices.size());
+        for (const glm::uvec3& idx : mesh.indices) flat.vertexIndices.insert(flat.vertexIndices.end(), {idx.x, idx.y, idx.z});
+    }
+}
+
+void flattenSpheres(const SphereSet& set, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
+                    SceneReport& report) {
+    const PreparedGeometry& p = *g.prepared;
+    for (uint32_t slot : p.blas.primOrder) {
+        const uint32_t s = p.validPrims[slot];
+        flat.spheres.push_back({gpu::vec4(set.centers[s], radiusOf(set.radii, s)), s, 0, 0, 0});
+    }
+    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
+}
+
+void flattenCylinders(const CylinderSet& set, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
+                      SceneReport& report) {
+    const PreparedGeometry& p = *g.prepared;
+    for (uint32_t slot : p.blas.primOrder) {
+        const uint32_t c = p.validPrims[slot];
+        const glm::uvec2 idx = cylinderIndices(set, c);
+        flat.cylinders.push_back({gpu::vec4(set.positions[idx.x], radiusOf(set.radii, c)),
+                                  gpu::vec4(set.positions[idx.y], 0.0f), c, set.caps ? 1u : 0u, 0, 0});
+    }
+    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
+}
+
+// Appends a geometry's BLAS, primitives, slot map and attributes; returns its GeometryRecord index.
+uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, FlatScene& flat, SceneReport& report) {
+    const PreparedGeometry& p = *g.prepared;
+    g.nodeOffset = static_cast<uint32_t>(flat.nodes.size());
+    switch (g.kind) {
+    case GeometryKind::Triangles: g.primOffset = static_cast<uint32_t>(flat.triangles.size()); break;
+    case GeometryKind::Spheres: g.primOffset = static_cast<uint32_t>(flat.spheres.size()); break;
+    case GeometryKind::Cylinders: g.primOffset = static_cast<uint32_t>(flat.cylinders.size()); break;
+    }
+    flat.nodes.insert(flat.nodes.end(), p.blas.nodes.begin(), p.blas.nodes.end());
+    gpu::GeometryRecord record{};
+    record.kind = static_cast<uint32_t>(g.kind);
+    record.slotOffset = static_cast<uint32_t>(flat.primSlots.size());
+    record.indexOffset = record.normalOffset = record.colorOffset = record.texcoordOffset =
+        record.primitiveColorOffset = gpu::NO_ATTRIBUTE;
+    record.trianglesPerPrimitive = 1;
+    flat.primSlots.resize(flat.primSlots.size() + p.inputPrimCount, ~0u);
+    for (uint32_t slot = 0; slot < p.blas.primOrder.size(); ++slot)
+        flat.primSlots[record.slotOffset + p.validPrims[p.blas.primOrder[slot]]] = g.primOffset + slot;
+    switch (g.kind) {
+    case GeometryKind::Triangles: flattenTriangles(description.meshes[g.index], g, flat, record, report); break;
+    case GeometryKind::Spheres: flattenSpheres(description.sphereSets[g.index], g, flat, record, report); break;
+    case GeometryKind::Cylinders: flattenCylinders(description.cylinderSets[g.index], g, flat, record, report); break;
+    }
+    flat.geometries.push_back(record);
+    return static_cast<uint32_t>(flat.geometries.size() - 1);
+}
+
+size_t geometryCount(const SceneDescription& d, GeometryKind kind) {
+    switch (kind) {
+    case GeometryKind::Triangles: return d.meshes.size();
+    case GeometryKind::Spheres: return d.sphereSets.size();
+    case GeometryKind::Cylinders: return d.cylinderSets.size();
+    }
+    return 0;
+}
+
+// Validates and builds one geometry, or takes it from `previous` when its identity is unchanged.
+std::shared_ptr<const PreparedGeometry> prepareOrReuse(const SceneDescription& d, GeometryKind kind, uint32_t index,
+                                                       const bvh::BuildOptions& options,
+                                                       const std::vector<std::shared_ptr<const PreparedGeometry>>* previous,
+                                                       SceneReport& report) {
+    auto lookup = [&](const auto& geometry) -> std::shared_ptr<const PreparedGeometry> {
+        if (previous && geometry.identity.key != 0)
+            for (const auto& p : *previous)
+                if (p->kind == kind && p->identity.key == geometry.identity.key &&
+                    p->identity.version == geometry.identity.version && sameOptions(p->buildOptions, options) &&
+                    fits(*p, geometry)) {
+                    ++report.blasReused;
+                    return p;
+                }
+        ++report.blasBuilt;
+        return prepareGeometry(geometry, options);
+    };
+    switch (kind) {
+    case GeometryKind::Triangles: return lookup(d.meshes[index]);
+    case GeometryKind::Spheres: return lookup(d.sphereSets[index]);
+    case GeometryKind::Cylinders: return lookup(d.cylinderSets[index]);
+    }
+    return nullptr;
+}
+
 }  // namespace
 
-Scene::Scene(const vk::Context& context, const SceneDescription& description, const bvh::BuildOptions& buildOptions) {
-    // 1. Validate every referenced geometry; what cannot be traced is skipped and reported.
-    std::vector<PreparedGeometry> geometries;
-    std::vector<int64_t> meshSlot(description.meshes.size(), -1), sphereSlot(description.sphereSets.size(), -1);
-    struct ValidInstance { uint32_t instanceId; uint32_t geometry; glm::mat4 transform; };
+Scene::Scene(const vk::Context& context, const SceneDescription& description, const bvh::BuildOptions& buildOptions,
+             const Scene* previous) {
+    // 1. Validate every instance and every geometry it references (once per geometry); what cannot be
+    //    traced is skipped and reported.
+    std::vector<UsedGeometry> used;
+    std::vector<int64_t> slots[3] = {std::vector<int64_t>(description.meshes.size(), -1),
+                                     std::vector<int64_t>(description.sphereSets.size(), -1),
+                                     std::vector<int64_t>(description.cylinderSets.size(), -1)};
+    struct ValidInstance { uint32_t input; uint32_t geometry; };
     std::vector<ValidInstance> valid;
+    auto skipInstance = [&](uint32_t i, const std::string& why) {
+        report_.messages.push_back("instance " + std::to_string(i) + ": " + why + "; skipped");
+        ++report_.instancesSkipped;
+    };
+    const auto start = Clock::now();
     for (uint32_t i = 0; i < description.instances.size(); ++i) {
         const InstanceDescription& inst = description.instances[i];
-        if (inst.geometry.kind != GeometryKind::Triangles && inst.geometry.kind != GeometryKind::Spheres) {
-            report_.messages.push_back("instance " + std::to_string(i) + ": unknown geometry kind " +
-                                       std::to_string(static_cast<uint32_t>(inst.geometry.kind)) + "; skipped");
-            ++report_.instancesSkipped;
+        const auto kindIndex = static_cast<uint32_t>(inst.geometry.kind);
+        if (kindIndex > static_cast<uint32_t>(GeometryKind::Cylinders)) {
+            skipInstance(i, "unknown geometry kind " + std::to_string(kindIndex));
             continue;
         }
-        const bool isMesh = inst.geometry.kind == GeometryKind::Triangles;
-        auto& slots = isMesh ? meshSlot : sphereSlot;
-        const std::string name = label(inst.geometry.kind, inst.geometry.index);
-        if (inst.geometry.index >= slots.size()) {
-            report_.messages.push_back("instance " + std::to_string(i) + ": references " + name + ", which does not exist; skipped");
-            ++report_.instancesSkipped;
+        const std::string name = geometryLabel(inst.geometry.kind, inst.geometry.index);
+        if (inst.geometry.index >= geometryCount(description, inst.geometry.kind)) {
+            skipInstance(i, "references " + name + ", which does not exist");
             continue;
         }
         if (!affineAndInvertible(inst.transform)) {
-            report_.messages.push_back("instance " + std::to_string(i) + ": transform is not finite, affine and invertible; skipped");
-            ++report_.instancesSkipped;
+            skipInstance(i, "transform is not finite, affine and invertible");
             continue;
         }
-        int64_t& slot = slots[inst.geometry.index];
+        int64_t& slot = slots[kindIndex][inst.geometry.index];
         if (slot < 0) {
-            PreparedGeometry g;
-            g.kind = inst.geometry.kind;
-            g.index = inst.geometry.index;
-            if (isMesh) prepareMesh(description.meshes[g.index], g, report_);
-            else prepareSpheres(description.sphereSets[g.index], g, report_);
-            (isMesh ? report_.trianglesKept : report_.spheresKept) += g.validPrims.size();
-            slot = static_cast<int64_t>(geometries.size());
-            geometries.push_back(std::move(g));
+            auto prepared = prepareOrReuse(description, inst.geometry.kind, inst.geometry.index, buildOptions,
+                                           previous ? &previous->reusable_ : nullptr, report_);
+            for (const std::string& problem : prepared->problems) report_.messages.push_back(name + ": " + problem);
+            const uint64_t kept = prepared->validPrims.size();
+            switch (inst.geometry.kind) {
+            case GeometryKind::Triangles: report_.trianglesKept += kept; report_.trianglesSkipped += prepared->skipped; break;
+            case GeometryKind::Spheres: report_.spheresKept += kept; report_.spheresSkipped += prepared->skipped; break;
+            case GeometryKind::Cylinders: report_.cylindersKept += kept; report_.cylindersSkipped += prepared->skipped; break;
+            }
+            if (prepared->identity.key != 0) reusable_.push_back(prepared);
+            slot = static_cast<int64_t>(used.size());
+            used.push_back({inst.geometry.kind, inst.geometry.index, std::move(prepared)});
         }
-        if (geometries[slot].validPrims.empty()) {
-            report_.messages.push_back("instance " + std::to_string(i) + ": " + name + " has no valid primitives; skipped");
-            ++report_.instancesSkipped;
+        if (used[slot].prepared->validPrims.empty()) {
+            skipInstance(i, name + " has no valid primitives");
             continue;
         }
-        valid.push_back({i, static_cast<uint32_t>(slot), inst.transform});
+        valid.push_back({i, static_cast<uint32_t>(slot)});
     }
     report_.instancesKept = valid.size();
-
-    // 2. One BLAS per geometry (each build is itself parallel), then the TLAS over instance boxes.
-    auto start = Clock::now();
-    for (auto& g : geometries)
-        if (!g.validPrims.empty()) g.blas = bvh::buildBinnedSah(g.boxes, buildOptions);
     report_.blasBuildSeconds = secondsSince(start);
 
+    // 2. The TLAS over the instances' world boxes.
     std::vector<bvh::Aabb> instanceBoxes;
-    for (const auto& v : valid) instanceBoxes.push_back(transformBox(geometries[v.geometry].blas.bounds, v.transform));
-    start = Clock::now();
+    for (const auto& v : valid)
+        instanceBoxes.push_back(transformBox(used[v.geometry].prepared->blas.bounds, description.instances[v.input].transform));
+    const auto tlasStart = Clock::now();
     bvh::BuildOptions tlasOptions = buildOptions;
     tlasOptions.maxLeafSize = 1;  // the kernel enters one instance per TLAS leaf entry
     const bvh::Bvh tlas = bvh::buildBinnedSah(instanceBoxes, tlasOptions);
-    report_.tlasBuildSeconds = secondsSince(start);
+    report_.tlasBuildSeconds = secondsSince(tlasStart);
     bounds_ = tlas.bounds;
 
-    // 3. Flatten: TLAS nodes first, then each BLAS; primitives and instances in leaf order.
-    std::vector<gpu::BvhNode> nodes = tlas.nodes;
-    std::vector<gpu::TrianglePrim> triangles;
-    std::vector<gpu::SpherePrim> spheres;
-    for (auto& g : geometries) {
-        if (g.validPrims.empty()) continue;
-        g.nodeOffset = static_cast<uint32_t>(nodes.size());
-        nodes.insert(nodes.end(), g.blas.nodes.begin(), g.blas.nodes.end());
-        if (g.kind == GeometryKind::Triangles) {
-            g.primOffset = static_cast<uint32_t>(triangles.size());
-            const TriangleMesh& mesh = description.meshes[g.index];
-            for (uint32_t slot : g.blas.primOrder) {
-                const uint32_t t = g.validPrims[slot];
-                const glm::uvec3 idx = mesh.indices.empty() ? glm::uvec3(3 * t, 3 * t + 1, 3 * t + 2) : mesh.indices[t];
-                triangles.push_back({gpu::vec4(mesh.positions[idx.x], std::bit_cast<float>(t)),
-                                     gpu::vec4(mesh.positions[idx.y], 0.0f), gpu::vec4(mesh.positions[idx.z], 0.0f)});
-            }
-        } else {
-            g.primOffset = static_cast<uint32_t>(spheres.size());
-            const SphereSet& set = description.sphereSets[g.index];
-            for (uint32_t slot : g.blas.primOrder) {
-                const uint32_t s = g.validPrims[slot];
-                const float r = set.radii.size() == 1 ? set.radii[0] : set.radii[s];
-                spheres.push_back({gpu::vec4(set.centers[s], r), s, 0, 0, 0});
-            }
-        }
-    }
+    // 3. Flatten: TLAS nodes first, then each BLAS; primitives in leaf order; shading data per geometry.
+    FlatScene flat;
+    flat.nodes = tlas.nodes;
+    std::vector<uint32_t> geometryRecord(used.size());
+    for (size_t g = 0; g < used.size(); ++g)
+        if (!used[g].prepared->validPrims.empty()) geometryRecord[g] = flattenGeometry(description, used[g], flat, report_);
+
+    ShadingTables shading = buildShadingTables(description);
+    report_.materialsRepaired = shading.materialsRepaired;
+    report_.texturesSkipped = shading.texturesSkipped;
+    report_.lightsKept = shading.lights.size();
+    report_.lightsSkipped = shading.lightsSkipped;
+    report_.messages.insert(report_.messages.end(), shading.messages.begin(), shading.messages.end());
+
     std::vector<gpu::InstancePrim> instances;
     for (uint32_t slot : tlas.primOrder) {
         const ValidInstance& v = valid[slot];
-        const PreparedGeometry& g = geometries[v.geometry];
+        const UsedGeometry& g = used[v.geometry];
         gpu::InstancePrim prim{};
-        const glm::dmat4 toWorld(v.transform);
+        const glm::dmat4 toWorld(description.instances[v.input].transform);
         storeRows(glm::inverse(toWorld), prim.worldToObject);
         storeRows(toWorld, prim.objectToWorld);
         prim.blasNodeOffset = g.nodeOffset;
         prim.primOffset = g.primOffset;
-        prim.geometryKind = g.kind == GeometryKind::Triangles ? gpu::GEOMETRY_TRIANGLES : gpu::GEOMETRY_SPHERES;
-        prim.instanceId = v.instanceId;
+        prim.geometryKind = static_cast<uint32_t>(g.kind);
+        prim.instanceId = v.input;
         instances.push_back(prim);
     }
     instanceCount_ = static_cast<uint32_t>(instances.size());
+
+    std::vector<gpu::InstanceShading> instanceShading(description.instances.size(), gpu::InstanceShading{});
+    uint64_t badMaterial = 0;
+    for (const ValidInstance& v : valid) {
+        const InstanceDescription& inst = description.instances[v.input];
+        gpu::InstanceShading& s = instanceShading[v.input];
+        const glm::dmat4 toWorld(inst.transform);
+        storeRows(glm::inverse(toWorld), s.worldToObject);
+        storeRows(toWorld, s.objectToWorld);
+        s.geometry = geometryRecord[v.geometry];
+        const bool materialValid = inst.materialIndex < description.materials.size();
+        badMaterial += materialValid ? 0 : 1;
+        s.material = materialValid ? inst.materialIndex : defaultMaterialIndex(description);
+        s.objectId = inst.objectId;
+        s.userInstanceId = inst.instanceId;
+    }
+    if (badMaterial)
+        report_.messages.push_back(std::to_string(badMaterial) + " instance(s) name a material index beyond the " +
+                                   std::to_string(description.materials.size()) + " material(s); the default matte is used");
+    lightCount_ = static_cast<uint32_t>(shading.lights.size());
 
     // 4. Upload. Empty arrays still get a (tiny) buffer so every address in SceneDesc is valid.
     auto upload = [&](vk::Buffer& buffer, const auto& items, const char* name) {
@@ -218,14 +328,28 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         buffer = vk::Buffer(context, bytes, name);
         buffer.upload(items.data(), bytes);
         report_.gpuBytes += bytes;
+        return buffer.address();
     };
-    upload(nodes_, nodes, "scene BVH nodes");
-    upload(triangles_, triangles, "scene triangles");
-    upload(spheres_, spheres, "scene spheres");
-    upload(instances_, instances, "scene instances");
-    const std::vector<gpu::SceneDesc> desc{{nodes_.address(), triangles_.address(), spheres_.address(),
-                                            instances_.address(), instanceCount_, 0, 0, 0}};
-    upload(desc_, desc, "scene descriptor");
+    gpu::SceneDesc desc{};
+    desc.nodes = upload(nodes_, flat.nodes, "scene BVH nodes");
+    desc.triangles = upload(triangles_, flat.triangles, "scene triangles");
+    desc.spheres = upload(spheres_, flat.spheres, "scene spheres");
+    desc.cylinders = upload(cylinders_, flat.cylinders, "scene cylinders");
+    desc.instances = upload(instances_, instances, "scene instances");
+    desc.instanceShading = upload(instanceShading_, instanceShading, "scene instance shading");
+    desc.geometries = upload(geometries_, flat.geometries, "scene geometry records");
+    desc.primSlots = upload(primSlots_, flat.primSlots, "scene primitive slots");
+    desc.vertexIndices = upload(vertexIndices_, flat.vertexIndices, "scene vertex indices");
+    desc.attributes = upload(attributes_, flat.attributes, "scene attributes");
+    desc.materials = upload(materials_, shading.materials, "scene materials");
+    desc.textures = upload(textures_, shading.textures, "scene textures");
+    desc.texels = upload(texels_, shading.texels, "scene texels");
+    desc.lights = upload(lights_, shading.lights, "scene lights");
+    desc.instanceCount = instanceCount_;
+    desc.lightCount = lightCount_;
+    desc.materialCount = static_cast<uint32_t>(shading.materials.size());
+    desc.textureCount = static_cast<uint32_t>(shading.textures.size());
+    upload(desc_, std::vector<gpu::SceneDesc>{desc}, "scene descriptor");
 }
 
 }  // namespace ripple::core

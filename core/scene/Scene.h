@@ -1,46 +1,69 @@
-// The flat GPU scene: validates a SceneDescription (skipping and counting bad primitives), builds a BLAS
-// per mesh or sphere set and a TLAS over instances, and uploads everything the trace kernels read.
+// The flat GPU scene: validates a SceneDescription (skipping and counting bad primitives, attributes,
+// materials, textures and lights), builds a BLAS per mesh, sphere set or cylinder set and a TLAS over
+// instances, and uploads everything the trace and shading kernels read (shaders/shared/scene.h).
+//
+// Rebuilding only what changed: pass the Scene built from the previous state of the world as `previous`.
+// Each geometry whose GeometryIdentity has a nonzero key and the same (key, version) as a geometry of
+// `previous` (of the same kind, built with the same bvh::BuildOptions) reuses that geometry's validation
+// and BLAS instead of building them again; everything else (attributes, TLAS, materials, upload) is redone.
+// `previous` is only read during construction and may be destroyed afterwards.
 #pragma once
 
 #include "core/bvh/BinnedSahBuilder.h"
+#include "core/scene/PreparedGeometry.h"
 #include "core/scene/SceneDescription.h"
 #include "core/vk/Buffer.h"
 #include "shaders/shared/scene.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace ripple::core {
 
-// What validation dropped, and why; nothing bad ever reaches a kernel.
+// What validation dropped or repaired, and why; nothing bad ever reaches a kernel.
 struct SceneReport {
     uint64_t trianglesKept = 0;
     uint64_t trianglesSkipped = 0;     // NaN/Inf vertex, index out of range, or zero area
     uint64_t spheresKept = 0;
     uint64_t spheresSkipped = 0;       // NaN/Inf center, radius <= 0 or non-finite
+    uint64_t cylindersKept = 0;
+    uint64_t cylindersSkipped = 0;     // NaN/Inf end, index out of range, zero length, bad radius
     uint64_t instancesKept = 0;
     uint64_t instancesSkipped = 0;     // empty geometry, bad reference, or non-finite/singular transform
-    double blasBuildSeconds = 0.0;
+    uint64_t attributesIgnored = 0;    // optional attributes with a wrong length or NaN/Inf values
+    uint64_t materialsRepaired = 0;    // materials with a value replaced by its default or clamped
+    uint64_t texturesSkipped = 0;      // wrong texel count or format
+    uint64_t lightsKept = 0;
+    uint64_t lightsSkipped = 0;        // NaN/Inf or negative values, zero direction or area
+    uint64_t blasBuilt = 0;
+    uint64_t blasReused = 0;           // taken from `previous` (see the header comment)
+    double blasBuildSeconds = 0.0;     // validation and BLAS builds (reused BLASes cost nothing)
     double tlasBuildSeconds = 0.0;
     uint64_t gpuBytes = 0;
-    std::vector<std::string> messages; // one line per kind of problem per geometry, naming it
+    std::vector<std::string> messages; // one line per kind of problem per object, naming it
 };
 
 class Scene {
 public:
     Scene(const vk::Context& context, const SceneDescription& description,
-          const bvh::BuildOptions& buildOptions = {});
+          const bvh::BuildOptions& buildOptions = {}, const Scene* previous = nullptr);
 
     const SceneReport& report() const { return report_; }
     VkDeviceAddress descAddress() const { return desc_.address(); }
     uint32_t instanceCount() const { return instanceCount_; }
+    uint32_t lightCount() const { return lightCount_; }
     const bvh::Aabb& bounds() const { return bounds_; }
 
 private:
     SceneReport report_;
     bvh::Aabb bounds_;
     uint32_t instanceCount_ = 0;
-    vk::Buffer nodes_, triangles_, spheres_, instances_, desc_;
+    uint32_t lightCount_ = 0;
+    // The validated geometries with an identity, kept so a later Scene can reuse them.
+    std::vector<std::shared_ptr<const PreparedGeometry>> reusable_;
+    vk::Buffer nodes_, triangles_, spheres_, cylinders_, instances_, instanceShading_, geometries_, primSlots_,
+        vertexIndices_, attributes_, materials_, textures_, texels_, lights_, desc_;
 };
 
 }  // namespace ripple::core

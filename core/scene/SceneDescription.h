@@ -11,8 +11,9 @@
 
 namespace ripple::core {
 
-// Identity of a geometry across scene updates: Scene::update reuses the BLAS of a geometry whose key and
-// version are both unchanged. key 0 means "no identity": always rebuilt.
+// Identity of a geometry across scene updates: a Scene constructed with the previous Scene as `previous`
+// reuses the BLAS of a geometry whose key and version are both unchanged (see Scene.h). key 0 means
+// "no identity": always rebuilt.
 struct GeometryIdentity {
     uint64_t key = 0;
     uint64_t version = 0;

@@ -1,5 +1,6 @@
-// The flat GPU scene the traversal kernels read: primitives in BVH leaf order, instances, and one
-// descriptor of device addresses (so no descriptor binding limit caps the size of a scene).
+// The flat GPU scene the trace and shading kernels read: primitives in BVH leaf order, instances, the
+// shading data of each geometry, materials, textures and lights, and one descriptor of device addresses
+// (so no descriptor binding limit caps the size of a scene).
 #ifndef RIPPLE_SHARED_SCENE_H
 #define RIPPLE_SHARED_SCENE_H
 #include "common.h"
@@ -8,6 +9,10 @@ RIPPLE_GPU_BEGIN
 
 RIPPLE_CONST uint GEOMETRY_TRIANGLES = 0u;
 RIPPLE_CONST uint GEOMETRY_SPHERES = 1u;
+RIPPLE_CONST uint GEOMETRY_CYLINDERS = 2u;
+
+// "This attribute is absent" in the offsets of GeometryRecord.
+RIPPLE_CONST uint NO_ATTRIBUTE = 0xFFFFFFFFu;
 
 // One triangle, stored by value in leaf order; v0.w holds the triangle's index in its mesh (float bits).
 struct TrianglePrim {
@@ -25,28 +30,75 @@ struct SpherePrim {
     uint pad2;
 };
 
+// One round cylinder in leaf order, from p0 to p1; primId is its index in its cylinder set. A hit reports
+// u = the axial fraction (0 at p0, 1 at p1) and v = 0 on the side, 1 on a cap.
+struct CylinderPrim {
+    vec4 p0Radius;   // xyz: first end, w: radius
+    vec4 p1;         // xyz: second end
+    uint primId;
+    uint caps;       // 1: flat caps close both ends
+    uint pad0;
+    uint pad1;
+};
+
 // One instance of a BLAS, in TLAS leaf order. Rays are moved into object space with worldToObject
 // without renormalising the direction, so a hit's t is the same in both spaces.
 struct InstancePrim {
     vec4 worldToObject[3];  // rows of the affine 3x4 matrix
-    vec4 objectToWorld[3];  // rows; for normals and hit points in later stages
+    vec4 objectToWorld[3];  // rows
     uint blasNodeOffset;    // first node of this instance's BLAS in SceneDesc.nodes
-    uint primOffset;        // first primitive of the BLAS in triangles[] or spheres[]
-    uint geometryKind;      // GEOMETRY_TRIANGLES or GEOMETRY_SPHERES
-    uint instanceId;        // the index the application gave this instance
+    uint primOffset;        // first primitive of the BLAS in triangles[], spheres[] or cylinders[]
+    uint geometryKind;      // GEOMETRY_*
+    uint instanceId;        // the instance's index in SceneDescription::instances (what a Hit reports)
+};
+
+// What shading needs of an instance, indexed by Hit.instanceId (the input order; instances that were
+// skipped keep a slot that no hit ever names).
+struct InstanceShading {
+    vec4 worldToObject[3];  // rows; its transpose maps object-space normals to world space
+    vec4 objectToWorld[3];  // rows
+    uint geometry;          // index into SceneDesc.geometries
+    uint material;          // index into SceneDesc.materials (always valid: bad indices get the default)
+    uint objectId;          // the application's ids, for the id channels
+    uint userInstanceId;
+};
+
+// Where a geometry's shading data lives. Primitive ids are the input numbering (as in Hit.primId);
+// primSlots[slotOffset + primId] is that primitive's index in triangles[], spheres[] or cylinders[], so
+// the kernels read positions from the trace primitives instead of a second copy. Attribute offsets index
+// SceneDesc.attributes (one vec4 per entry) or are NO_ATTRIBUTE.
+struct GeometryRecord {
+    uint kind;              // GEOMETRY_*
+    uint slotOffset;        // into SceneDesc.primSlots
+    uint indexOffset;       // into SceneDesc.vertexIndices, 3 per triangle; NO_ATTRIBUTE: non-indexed or unused
+    uint normalOffset;      // per vertex (triangles)
+    uint colorOffset;       // per vertex (triangles) or per primitive (spheres, cylinders)
+    uint texcoordOffset;    // per vertex (triangles): xy
+    uint primitiveColorOffset; // per triangle
+    uint trianglesPerPrimitive;
 };
 
 // Everything the kernels need to find the scene. All BVHs live in one node array: the TLAS first, then
 // each BLAS at its instance's blasNodeOffset.
 struct SceneDesc {
-    uint64_t nodes;      // BvhNode[]
-    uint64_t triangles;  // TrianglePrim[]
-    uint64_t spheres;    // SpherePrim[]
-    uint64_t instances;  // InstancePrim[]
-    uint instanceCount;  // 0 for an empty scene: every ray misses
-    uint pad0;
-    uint pad1;
-    uint pad2;
+    uint64_t nodes;           // BvhNode[]
+    uint64_t triangles;       // TrianglePrim[]
+    uint64_t spheres;         // SpherePrim[]
+    uint64_t cylinders;       // CylinderPrim[]
+    uint64_t instances;       // InstancePrim[], TLAS leaf order
+    uint64_t instanceShading; // InstanceShading[], input order
+    uint64_t geometries;      // GeometryRecord[]
+    uint64_t primSlots;       // uint[]
+    uint64_t vertexIndices;   // uint[]
+    uint64_t attributes;      // vec4[]
+    uint64_t materials;       // MaterialRecord[] (shared/material.h)
+    uint64_t textures;        // TextureRecord[]
+    uint64_t texels;          // uint[]: RGBA8 texels one word each, RGBA32F four words each
+    uint64_t lights;          // LightRecord[]
+    uint instanceCount;       // 0 for an empty scene: every ray misses
+    uint lightCount;
+    uint materialCount;
+    uint textureCount;
 };
 
 RIPPLE_GPU_END

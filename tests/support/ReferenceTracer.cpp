@@ -1,5 +1,5 @@
 // Brute-force double-precision reference tracer: validity rules shared with core::Scene, a watertight
-// triangle test with exact edge signs, a stable sphere test, and oneTBB loops over rays.
+// triangle test with exact edge signs, stable sphere and cylinder tests, and oneTBB loops over rays.
 #include "tests/support/ReferenceTracer.h"
 
 #include <tbb/blocked_range.h>
@@ -59,6 +59,32 @@ bool isSphereValid(const core::SphereSet& set, uint32_t i) {
     return isFinite(set.centers[i]) && std::isfinite(r) && r > 0.0f;
 }
 
+uint32_t cylinderCount(const core::CylinderSet& set) {
+    return static_cast<uint32_t>(set.indices.empty() ? set.positions.size() / 2 : set.indices.size());
+}
+
+glm::uvec2 cylinderIndices(const core::CylinderSet& set, uint32_t i) {
+    if (!set.indices.empty()) return set.indices[i];
+    return glm::uvec2(2u * i, 2u * i + 1u);
+}
+
+float cylinderRadius(const core::CylinderSet& set, uint32_t i) {
+    if (set.radii.size() == cylinderCount(set)) return set.radii[i];
+    if (set.radii.size() == 1) return set.radii[0];
+    return 0.0f;
+}
+
+bool isCylinderValid(const core::CylinderSet& set, uint32_t i) {
+    if (i >= cylinderCount(set)) return false;
+    const glm::uvec2 idx = cylinderIndices(set, i);
+    if (idx.x >= set.positions.size() || idx.y >= set.positions.size()) return false;
+    const glm::vec3 &a = set.positions[idx.x], &b = set.positions[idx.y];
+    const float r = cylinderRadius(set, i);
+    if (!isFinite(a) || !isFinite(b) || !(std::isfinite(r) && r > 0.0f)) return false;
+    const glm::vec3 axis = b - a;  // in float, as core::Scene decides
+    return glm::dot(axis, axis) >= std::numeric_limits<float>::min();
+}
+
 bool isTransformValid(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
@@ -83,8 +109,13 @@ bool hasValidPrimitive(const core::SceneDescription& scene, const core::Geometry
             if (isSphereValid(set, s)) return true;
         return false;
     }
-    case core::GeometryKind::Cylinders:
-        return false;  // not yet in the reference tracer
+    case core::GeometryKind::Cylinders: {
+        if (geometry.index >= scene.cylinderSets.size()) return false;
+        const core::CylinderSet& set = scene.cylinderSets[geometry.index];
+        for (uint32_t c = 0; c < cylinderCount(set); ++c)
+            if (isCylinderValid(set, c)) return true;
+        return false;
+    }
     }
     return false;  // a kind value outside the enum
 }
@@ -217,6 +248,54 @@ bool intersectSphere(const ObjectRay& ray, const dvec3& center, double radius, d
     return true;
 }
 
+struct CylinderHit {
+    double t, axial, cap;
+};
+
+// Nearest hit in (tmin, tmax) of the round cylinder from a to b: the side solved as a circle across the
+// unit axis w (the sphere quadratic on the components perpendicular to w) and kept between the ends, then
+// the two cap disks when present.
+bool intersectCylinder(const ObjectRay& ray, const dvec3& a, const dvec3& b, double radius, bool caps, CylinderHit& hit) {
+    const double length = glm::length(b - a);
+    const dvec3 w = (b - a) / length;
+    const dvec3 f = ray.origin - a;
+    const double fa = glm::dot(f, w), da = glm::dot(ray.direction, w);
+    const dvec3 fp = f - fa * w, dp = ray.direction - da * w;
+    bool found = false;
+    hit.t = ray.tmax;
+    const double aa = glm::dot(dp, dp);
+    if (aa > 0.0) {
+        const double beta = glm::dot(fp, dp);
+        const dvec3 l = fp - (beta / aa) * dp;
+        const double disc = radius * radius - glm::dot(l, l);
+        if (disc >= 0.0) {
+            const double c = glm::dot(fp, fp) - radius * radius;
+            const double q = -(beta + std::copysign(std::sqrt(aa * disc), beta));
+            double roots[2] = {q == 0.0 ? 0.0 : c / q, q == 0.0 ? 0.0 : q / aa};
+            if (roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+            for (double t : roots) {
+                const double s = fa + t * da;
+                if (t > ray.tmin && t < hit.t && s >= 0.0 && s <= length) {
+                    hit = {t, s / length, 0.0};
+                    found = true;
+                    break;
+                }
+            }
+        }
+    }
+    if (caps && da != 0.0) {
+        for (int end = 0; end < 2; ++end) {
+            const double t = (end * length - fa) / da;
+            const dvec3 across = fp + t * dp;
+            if (t > ray.tmin && t < hit.t && glm::dot(across, across) <= radius * radius) {
+                hit = {t, double(end), 1.0};
+                found = true;
+            }
+        }
+    }
+    return found;
+}
+
 bool isRayUsable(const gpu::Ray& ray) {
     return isFinite(glm::vec3(ray.origin)) && isFinite(glm::vec3(ray.direction)) && std::isfinite(ray.origin.w) &&
            !std::isnan(ray.direction.w);
@@ -248,6 +327,17 @@ ReferenceScene::ReferenceScene(const core::SceneDescription& scene) {
         }
         validSpheres_ += sphereSets_[s].size();
     }
+    cylinderSets_.resize(scene.cylinderSets.size());
+    for (size_t s = 0; s < scene.cylinderSets.size(); ++s) {
+        const core::CylinderSet& set = scene.cylinderSets[s];
+        for (uint32_t i = 0; i < cylinderCount(set); ++i) {
+            if (!isCylinderValid(set, i)) continue;
+            const glm::uvec2 idx = cylinderIndices(set, i);
+            cylinderSets_[s].push_back({dvec3(set.positions[idx.x]), dvec3(set.positions[idx.y]),
+                                        double(cylinderRadius(set, i)), i, set.caps});
+        }
+        validCylinders_ += cylinderSets_[s].size();
+    }
     for (size_t i = 0; i < scene.instances.size(); ++i) {
         const core::InstanceDescription& inst = scene.instances[i];
         if (!isTransformValid(inst.transform)) continue;
@@ -255,7 +345,8 @@ ReferenceScene::ReferenceScene(const core::SceneDescription& scene) {
         const core::GeometryRef& g = inst.geometry;
         const bool nonEmpty =
             (g.kind == core::GeometryKind::Triangles && g.index < meshes_.size() && !meshes_[g.index].empty()) ||
-            (g.kind == core::GeometryKind::Spheres && g.index < sphereSets_.size() && !sphereSets_[g.index].empty());
+            (g.kind == core::GeometryKind::Spheres && g.index < sphereSets_.size() && !sphereSets_[g.index].empty()) ||
+            (g.kind == core::GeometryKind::Cylinders && g.index < cylinderSets_.size() && !cylinderSets_[g.index].empty());
         if (!nonEmpty) continue;
         instances_.push_back({glm::inverse(glm::dmat3(inst.transform)), dvec3(inst.transform[3]), g.kind, g.index,
                               static_cast<uint32_t>(i)});
@@ -281,11 +372,17 @@ void ReferenceScene::forEachHit(const gpu::Ray& ray, Visit&& visit) const {
                 if (!(h.t > local.tmin && h.t < local.tmax)) continue;
                 if (visit(h.t, h.u, h.v, inst.instanceId, tri.primId)) return;
             }
-        } else {
+        } else if (inst.kind == core::GeometryKind::Spheres) {
             for (const Sphere& sphere : sphereSets_[inst.geometry]) {
                 double t;
                 if (!intersectSphere(local, sphere.center, sphere.radius, t)) continue;
                 if (visit(t, 0.0, 0.0, inst.instanceId, sphere.primId)) return;
+            }
+        } else {
+            for (const Cylinder& cylinder : cylinderSets_[inst.geometry]) {
+                CylinderHit h;
+                if (!intersectCylinder(local, cylinder.a, cylinder.b, cylinder.radius, cylinder.caps, h)) continue;
+                if (visit(h.t, h.axial, h.cap, inst.instanceId, cylinder.primId)) return;
             }
         }
     }

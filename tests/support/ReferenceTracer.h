@@ -47,6 +47,16 @@ float sphereRadius(const core::SphereSet& set, uint32_t i);
 // False for a non-finite center or a radius that is <= 0 or non-finite.
 bool isSphereValid(const core::SphereSet& set, uint32_t i);
 
+// Cylinders of a set: indices.size(), or positions.size() / 2 when indices is empty.
+uint32_t cylinderCount(const core::CylinderSet& set);
+// End indices of cylinder i; unchecked, they may be out of range.
+glm::uvec2 cylinderIndices(const core::CylinderSet& set, uint32_t i);
+// As sphereRadius: one per cylinder, a single one for all, otherwise 0 (the whole set is skipped).
+float cylinderRadius(const core::CylinderSet& set, uint32_t i);
+// False for an index out of range, a NaN or Inf end, a radius that is <= 0 or non-finite, or an axis
+// whose squared float length is below FLT_MIN (zero length).
+bool isCylinderValid(const core::CylinderSet& set, uint32_t i);
+
 // False when any of the 16 entries is non-finite, the bottom row is not (0, 0, 0, 1), or
 // |det(upper 3x3)| <= kSingularDeterminant: the rule of core::Scene.
 bool isTransformValid(const glm::mat4& objectToWorld);
@@ -68,7 +78,9 @@ bool isInstanceValid(const core::SceneDescription& scene, const core::InstanceDe
 // vertices, whatever the rounding. Edges and vertices count as inside, so a ray through a shared edge or
 // vertex hits every triangle around it (a tie). No back-face culling.
 // Spheres use the quadratic of Haines et al. (Ray Tracing Gems, ch. 7) and report the nearest root
-// above tmin, i.e. the far root for rays starting inside.
+// above tmin, i.e. the far root for rays starting inside. Cylinders solve the same quadratic across the
+// axis, keep side hits between the ends, add the cap disks when the set has caps, and report u = the
+// axial fraction (0 at the first end) and v = 0 on the side, 1 on a cap (as gpu::Hit).
 //
 // Among exact ties the lowest (instanceId, primId) wins; among near ties (hitCount > 1) a GPU answer
 // should be accepted if it matches any of them.
@@ -89,16 +101,18 @@ public:
 
     uint64_t validTriangleCount() const { return validTriangles_; }
     uint64_t validSphereCount() const { return validSpheres_; }
+    uint64_t validCylinderCount() const { return validCylinders_; }
     uint32_t validInstanceCount() const { return static_cast<uint32_t>(instances_.size()); }
 
 private:
     struct Triangle { glm::dvec3 a, b, c; uint32_t primId; };
     struct Sphere { glm::dvec3 center; double radius; uint32_t primId; };
+    struct Cylinder { glm::dvec3 a, b; double radius; uint32_t primId; bool caps; };
     struct Instance {
         glm::dmat3 worldToObject;   // inverse of the linear part
         glm::dvec3 translation;     // object-to-world translation
         core::GeometryKind kind;
-        uint32_t geometry;          // index into meshes_ or sphereSets_
+        uint32_t geometry;          // index into meshes_, sphereSets_ or cylinderSets_
         uint32_t instanceId;
     };
 
@@ -106,9 +120,11 @@ private:
 
     std::vector<std::vector<Triangle>> meshes_;     // valid triangles only, per input mesh
     std::vector<std::vector<Sphere>> sphereSets_;   // valid spheres only, per input sphere set
+    std::vector<std::vector<Cylinder>> cylinderSets_; // valid cylinders only, per input cylinder set
     std::vector<Instance> instances_;               // valid instances only, in input order
     uint64_t validTriangles_ = 0;
     uint64_t validSpheres_ = 0;
+    uint64_t validCylinders_ = 0;
 };
 
 // One-shot conveniences; each builds a ReferenceScene, so prefer the class (or the *All forms) for many rays.

@@ -121,8 +121,16 @@ core::SceneDescription sceneOf(core::SphereSet spheres) {
     return scene;
 }
 
+core::SceneDescription sceneOf(core::CylinderSet cylinders) {
+    core::SceneDescription scene;
+    scene.cylinderSets.push_back(std::move(cylinders));
+    scene.instances.push_back({{core::GeometryKind::Cylinders, 0}, glm::mat4(1.0f)});
+    return scene;
+}
+
 bvh::Aabb worldBounds(const core::SceneDescription& scene) {
-    std::vector<bvh::Aabb> meshBounds(scene.meshes.size()), sphereBounds(scene.sphereSets.size());
+    std::vector<bvh::Aabb> meshBounds(scene.meshes.size()), sphereBounds(scene.sphereSets.size()),
+        cylinderBounds(scene.cylinderSets.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const core::TriangleMesh& mesh = scene.meshes[m];
         for (uint32_t t = 0; t < triangleCount(mesh); ++t) {
@@ -140,6 +148,18 @@ bvh::Aabb worldBounds(const core::SceneDescription& scene) {
             sphereBounds[s].extend(set.centers[i] + glm::vec3(r));
         }
     }
+    for (size_t s = 0; s < scene.cylinderSets.size(); ++s) {
+        const core::CylinderSet& set = scene.cylinderSets[s];
+        for (uint32_t i = 0; i < cylinderCount(set); ++i) {
+            if (!isCylinderValid(set, i)) continue;
+            const glm::uvec2 idx = cylinderIndices(set, i);
+            const float r = cylinderRadius(set, i);
+            for (int k = 0; k < 2; ++k) {
+                cylinderBounds[s].extend(set.positions[idx[k]] - glm::vec3(r));
+                cylinderBounds[s].extend(set.positions[idx[k]] + glm::vec3(r));
+            }
+        }
+    }
     bvh::Aabb world;
     for (const core::InstanceDescription& inst : scene.instances) {
         if (!isTransformValid(inst.transform)) continue;
@@ -147,6 +167,7 @@ bvh::Aabb worldBounds(const core::SceneDescription& scene) {
         const bvh::Aabb* local = nullptr;
         if (g.kind == core::GeometryKind::Triangles && g.index < meshBounds.size()) local = &meshBounds[g.index];
         if (g.kind == core::GeometryKind::Spheres && g.index < sphereBounds.size()) local = &sphereBounds[g.index];
+        if (g.kind == core::GeometryKind::Cylinders && g.index < cylinderBounds.size()) local = &cylinderBounds[g.index];
         if (local == nullptr || local->empty()) continue;
         for (int corner = 0; corner < 8; ++corner) {
             const glm::vec3 p((corner & 1) ? local->hi.x : local->lo.x, (corner & 2) ? local->hi.y : local->lo.y,
@@ -335,17 +356,35 @@ core::TriangleMesh gridMesh(uint32_t trianglesAtLeast, float size, float amplitu
     return mesh;
 }
 
+core::CylinderSet randomCylinders(uint32_t count, uint32_t seed, bool caps, float extent, float minRadius,
+                                  float maxRadius, float minLength, float maxLength) {
+    Rng rng(seed);
+    core::CylinderSet set;
+    set.caps = caps;
+    for (uint32_t i = 0; i < count; ++i) {
+        const dvec3 center = rng.inBox(dvec3(-extent), dvec3(extent));
+        const dvec3 halfAxis = 0.5 * rng.uniform(minLength, maxLength) * rng.unitVector();
+        set.positions.push_back(toFloat(center - halfAxis));
+        set.positions.push_back(toFloat(center + halfAxis));
+        set.radii.push_back(float(rng.uniform(minRadius, maxRadius)));
+    }
+    return set;
+}
+
 core::SceneDescription instancedCopies(const core::SceneDescription& base, uint32_t copies, uint32_t seed, float spread) {
     Rng rng(seed);
     core::SceneDescription scene;
     scene.meshes = base.meshes;
     scene.sphereSets = base.sphereSets;
+    scene.cylinderSets = base.cylinderSets;
     std::vector<core::InstanceDescription> originals = base.instances;
     if (originals.empty()) {
         for (uint32_t m = 0; m < base.meshes.size(); ++m)
             originals.push_back({{core::GeometryKind::Triangles, m}, glm::mat4(1.0f)});
         for (uint32_t s = 0; s < base.sphereSets.size(); ++s)
             originals.push_back({{core::GeometryKind::Spheres, s}, glm::mat4(1.0f)});
+        for (uint32_t c = 0; c < base.cylinderSets.size(); ++c)
+            originals.push_back({{core::GeometryKind::Cylinders, c}, glm::mat4(1.0f)});
     }
     scene.instances.reserve(size_t(copies) * originals.size());
     for (uint32_t k = 0; k < copies; ++k)
@@ -360,6 +399,8 @@ core::SceneDescription offset(const core::SceneDescription& scene, const glm::ve
         for (glm::vec3& p : mesh.positions) p += delta;
     for (core::SphereSet& set : moved.sphereSets)
         for (glm::vec3& c : set.centers) c += delta;
+    for (core::CylinderSet& set : moved.cylinderSets)
+        for (glm::vec3& p : set.positions) p += delta;
     return moved;
 }
 
@@ -390,20 +431,25 @@ std::vector<gpu::Ray> randomRays(uint32_t count, uint32_t seed, const glm::vec3&
 std::vector<gpu::Ray> raysTowardPoints(const core::SceneDescription& scene, uint32_t count, uint32_t seed,
                                        bool normalised) {
     // Valid primitives per geometry, gathered once; instances are sampled uniformly, then primitives.
-    std::vector<std::vector<uint32_t>> meshPrims(scene.meshes.size()), spherePrims(scene.sphereSets.size());
+    std::vector<std::vector<uint32_t>> meshPrims(scene.meshes.size()), spherePrims(scene.sphereSets.size()),
+        cylinderPrims(scene.cylinderSets.size());
     for (size_t m = 0; m < scene.meshes.size(); ++m)
         for (uint32_t t = 0; t < triangleCount(scene.meshes[m]); ++t)
             if (isTriangleValid(scene.meshes[m], t)) meshPrims[m].push_back(t);
     for (size_t s = 0; s < scene.sphereSets.size(); ++s)
         for (uint32_t i = 0; i < sphereCount(scene.sphereSets[s]); ++i)
             if (isSphereValid(scene.sphereSets[s], i)) spherePrims[s].push_back(i);
+    for (size_t c = 0; c < scene.cylinderSets.size(); ++c)
+        for (uint32_t i = 0; i < cylinderCount(scene.cylinderSets[c]); ++i)
+            if (isCylinderValid(scene.cylinderSets[c], i)) cylinderPrims[c].push_back(i);
     std::vector<uint32_t> instances;
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const core::InstanceDescription& inst = scene.instances[i];
         const core::GeometryRef& g = inst.geometry;
         const bool nonEmpty =
             (g.kind == core::GeometryKind::Triangles && g.index < meshPrims.size() && !meshPrims[g.index].empty()) ||
-            (g.kind == core::GeometryKind::Spheres && g.index < spherePrims.size() && !spherePrims[g.index].empty());
+            (g.kind == core::GeometryKind::Spheres && g.index < spherePrims.size() && !spherePrims[g.index].empty()) ||
+            (g.kind == core::GeometryKind::Cylinders && g.index < cylinderPrims.size() && !cylinderPrims[g.index].empty());
         if (nonEmpty && isTransformValid(inst.transform)) instances.push_back(i);
     }
     std::vector<gpu::Ray> rays;
@@ -426,11 +472,26 @@ std::vector<gpu::Ray> raysTowardPoints(const core::SceneDescription& scene, uint
             const double su = std::sqrt(rng.uniform(0.01, 0.99)), w = rng.uniform(0.01, 0.99);
             local = (1.0 - su) * dvec3(mesh.positions[idx.x]) + su * (1.0 - w) * dvec3(mesh.positions[idx.y]) +
                     su * w * dvec3(mesh.positions[idx.z]);
-        } else {
+        } else if (g.kind == core::GeometryKind::Spheres) {
             const core::SphereSet& set = scene.sphereSets[g.index];
             const std::vector<uint32_t>& prims = spherePrims[g.index];
             const uint32_t s = prims[rng.below(uint32_t(prims.size()))];
             local = dvec3(set.centers[s]) + double(sphereRadius(set, s)) * rng.unitVector();
+        } else {
+            // A point on the side, or (a quarter of the time, when there are caps) on a cap disk.
+            const core::CylinderSet& set = scene.cylinderSets[g.index];
+            const std::vector<uint32_t>& prims = cylinderPrims[g.index];
+            const uint32_t c = prims[rng.below(uint32_t(prims.size()))];
+            const glm::uvec2 idx = cylinderIndices(set, c);
+            const dvec3 a(set.positions[idx.x]), b(set.positions[idx.y]);
+            const dvec3 w = glm::normalize(b - a);
+            dvec3 across = rng.unitVector();
+            across = glm::normalize(across - glm::dot(across, w) * w);
+            const double r = cylinderRadius(set, c);
+            if (set.caps && rng.uniform() < 0.25)
+                local = (rng.uniform() < 0.5 ? a : b) + r * std::sqrt(rng.uniform(0.0, 0.98)) * across;
+            else
+                local = a + rng.uniform(0.01, 0.99) * (b - a) + r * across;
         }
         const glm::dmat4 transform(inst.transform);
         const dvec3 target = dvec3(transform * glm::dvec4(local, 1.0));

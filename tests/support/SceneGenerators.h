@@ -19,8 +19,10 @@ namespace ripple::test {
 // A scene holding just this geometry under one identity instance.
 core::SceneDescription sceneOf(core::TriangleMesh mesh);
 core::SceneDescription sceneOf(core::SphereSet spheres);
+core::SceneDescription sceneOf(core::CylinderSet cylinders);
 
-// World-space bounds of the valid instances' valid primitives (spheres by their boxes); empty if none.
+// World-space bounds of the valid instances' valid primitives (spheres and cylinders by their boxes);
+// empty if none.
 bvh::Aabb worldBounds(const core::SceneDescription& scene);
 
 // `count` non-indexed triangles inside the box [-extent, extent]^3, each about as large as the spacing
@@ -46,6 +48,12 @@ core::TriangleMesh degenerateAndNeedleMesh(uint32_t seed);
 core::SphereSet randomSpheres(uint32_t count, uint32_t seed, float extent = 1.0f, float minRadius = 0.01f,
                               float maxRadius = 0.1f);
 
+// `count` non-indexed cylinders with centers in [-extent, extent]^3, random axis directions, lengths in
+// [minLength, maxLength] and radii in [minRadius, maxRadius], one radius each.
+core::CylinderSet randomCylinders(uint32_t count, uint32_t seed, bool caps, float extent = 1.0f,
+                                  float minRadius = 0.01f, float maxRadius = 0.1f, float minLength = 0.05f,
+                                  float maxLength = 0.5f);
+
 // A closed unit sphere: an icosahedron subdivided `subdivisions` times (20 * 4^s triangles), vertices shared
 // through indices, each moved radially by a factor in [1 - perturbation, 1 + perturbation]. Outward
 // winding. Watertight by construction: every edge joins two triangles that reference the same vertices.
@@ -67,7 +75,7 @@ core::TriangleMesh gridMesh(uint32_t trianglesAtLeast, float size = 2.0f, float 
 core::SceneDescription instancedCopies(const core::SceneDescription& base, uint32_t copies, uint32_t seed,
                                        float spread = 4.0f);
 
-// Moves every mesh vertex and sphere center by `delta` in object space (float arithmetic, so far offsets
+// Moves every mesh vertex, sphere center and cylinder end by `delta` in object space (float arithmetic, so far offsets
 // round the geometry as a real far-away scene would be). It is a world translation by `delta` whenever the
 // instances' linear parts are identity, as in sceneOf(); instance transforms are left alone.
 core::SceneDescription offset(const core::SceneDescription& scene, const glm::vec3& delta);

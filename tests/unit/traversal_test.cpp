@@ -5,6 +5,7 @@
 #include "tests/support/ReferenceTracer.h"
 #include "tests/support/SceneGenerators.h"
 #include "tests/support/TestContext.h"
+#include "tests/support/TraceChecks.h"
 
 #include <doctest/doctest.h>
 
@@ -15,142 +16,11 @@
 using namespace ripple;
 using ripple::test::testContext;
 
-namespace {
-
-// Agreement of GPU hits with the double-precision reference. Per ray, with scale = the largest
-// coordinate magnitude of the ray origin and hit point (at least 1), cos = |n.d| / |d| at the hit, and
-// kappa = (longest edge)^2 / (2 area) the conditioning of a triangle (1 for spheres):
-//  - exact: same primitive, and t within tT = 1e-6 * scale * kappa / (|d| * max(cos, 1e-3)): float
-//    positions are off by ~1e-7 * scale, which moves t by that over cos along the ray, and by kappa
-//    more on thin triangles, whose plane float pins down poorly;
-//  - tie: another primitive at the reference t (within tT), or the reference itself saw several there;
-//  - edge: hit/miss or primitive differs, and the ray passes within 4e-6 * scale of an edge of the
-//    primitive in question (the reference's or the GPU's), or of a sphere's silhouette: float cannot
-//    resolve which side such a ray passes (needles narrower than that are all edge);
-//  - wrong: anything else. Tests require no wrong ray and state how many may be ties or edges.
-struct Agreement {
-    uint64_t exact = 0, ties = 0, edges = 0, wrong = 0, flagged = 0;
-    uint64_t total() const { return exact + ties + edges + wrong + flagged; }
-    double exactOrTie() const { return total() == 0 ? 1.0 : double(exact + ties) / double(total()); }
-};
-
-struct SurfacePoint {
-    double cosine = 1.0;
-    double kappa = 1.0;
-    double edgeGap = std::numeric_limits<double>::infinity();  // ray to nearest edge or silhouette
-    double scale = 1.0;
-};
-
-// Distance between the line o + s*d and the segment [a, b].
-double lineSegmentDistance(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b) {
-    const glm::dvec3 e = b - a, w = a - o;
-    const double dd = glm::dot(d, d), ee = glm::dot(e, e), de = glm::dot(d, e);
-    const double denom = dd * ee - de * de;
-    double u = denom > 1e-300 ? (de * glm::dot(d, w) - dd * glm::dot(e, w)) / denom : 0.0;  // along the segment
-    u = std::clamp(u, 0.0, 1.0);
-    const glm::dvec3 q = a + u * e;
-    const glm::dvec3 r = q - o;
-    return glm::length(r - (glm::dot(r, d) / dd) * d);
-}
-
-SurfacePoint surfacePoint(const core::SceneDescription& desc, uint32_t instanceId, uint32_t primId, const gpu::Ray& ray, double t) {
-    const glm::dvec3 o(ray.origin), dir(ray.direction);
-    const glm::dvec3 p = o + t * dir;
-    SurfacePoint sp;
-    sp.scale = std::max({1.0, std::abs(p.x), std::abs(p.y), std::abs(p.z), std::abs(o.x), std::abs(o.y), std::abs(o.z)});
-    const core::InstanceDescription& inst = desc.instances[instanceId];
-    const glm::dmat4 m(inst.transform);
-    if (inst.geometry.kind == core::GeometryKind::Triangles) {
-        const core::TriangleMesh& mesh = desc.meshes[inst.geometry.index];
-        const glm::uvec3 idx = test::triangleIndices(mesh, primId);
-        glm::dvec3 v[3];
-        for (int k = 0; k < 3; ++k) v[k] = glm::dvec3(m * glm::dvec4(glm::dvec3(mesh.positions[idx[k]]), 1.0));
-        const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
-        sp.cosine = std::abs(glm::dot(glm::normalize(n), glm::normalize(dir)));
-        double longest = 0.0;
-        for (int k = 0; k < 3; ++k) {
-            longest = std::max(longest, glm::length(v[(k + 1) % 3] - v[k]));
-            sp.edgeGap = std::min(sp.edgeGap, lineSegmentDistance(o, dir, v[k], v[(k + 1) % 3]));
-        }
-        sp.kappa = longest * longest / glm::length(n);
-    } else {
-        const core::SphereSet& set = desc.sphereSets[inst.geometry.index];
-        const glm::dmat4 inv = glm::inverse(m);
-        const glm::dvec3 c(set.centers[primId]);
-        const glm::dvec3 oObject = glm::dvec3(inv * glm::dvec4(o, 1.0)), dObject = glm::dmat3(inv) * dir;
-        const glm::dvec3 n = glm::normalize(glm::transpose(glm::dmat3(inv)) * (glm::dvec3(inv * glm::dvec4(p, 1.0)) - c));
-        sp.cosine = std::abs(glm::dot(n, glm::normalize(dir)));
-        const glm::dvec3 r = c - oObject;
-        const double centerDistance = glm::length(r - (glm::dot(r, dObject) / glm::dot(dObject, dObject)) * dObject);
-        const double stretch = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
-        sp.edgeGap = std::abs(double(test::sphereRadius(set, primId)) - centerDistance) * stretch;
-    }
-    return sp;
-}
-
-Agreement compareClosest(const core::SceneDescription& d, std::span<const gpu::Ray> rays,
-                         std::span<const gpu::Hit> gpuHits, std::span<const test::RefHit> ref) {
-    Agreement a;
-    for (size_t i = 0; i < rays.size(); ++i) {
-        const gpu::Hit& g = gpuHits[i];
-        const test::RefHit& r = ref[i];
-        if ((g.status & ~0xFFu) != 0) { ++a.flagged; continue; }
-        const bool gpuFound = g.status == gpu::HIT_FOUND;
-        if (!gpuFound && !r.found) { ++a.exact; continue; }
-        const double dirLength = glm::length(glm::dvec3(rays[i].direction));
-        auto tTolerance = [&](const SurfacePoint& sp) {
-            return 1e-6 * sp.scale * sp.kappa / (dirLength * std::max(sp.cosine, 1e-3));
-        };
-        auto nearEdge = [&](const SurfacePoint& sp) { return sp.edgeGap <= 4e-6 * sp.scale; };
-        const SurfacePoint refPoint = r.found ? surfacePoint(d, r.instanceId, r.primId, rays[i], r.t) : SurfacePoint{};
-        const SurfacePoint gpuPoint = gpuFound ? surfacePoint(d, g.instanceId, g.primId, rays[i], g.t) : SurfacePoint{};
-        if (gpuFound && r.found && std::abs(double(g.t) - r.t) <= tTolerance(refPoint)) {
-            if (g.instanceId == r.instanceId && g.primId == r.primId) ++a.exact;
-            else ++a.ties;
-        } else if (gpuFound && r.found && r.hitCount > 1 && g.instanceId == r.instanceId && g.primId != r.primId &&
-                   std::abs(double(g.t) - r.t) <= tTolerance(gpuPoint)) {
-            ++a.ties;
-        } else if ((r.found && nearEdge(refPoint)) || (gpuFound && nearEdge(gpuPoint))) {
-            ++a.edges;
-        } else {
-            ++a.wrong;
-        }
-    }
-    return a;
-}
-
-struct TraceResults {
-    std::vector<gpu::Hit> closest;
-    std::vector<uint32_t> any;
-};
-
-TraceResults traceOnGpu(const core::SceneDescription& description, std::span<const gpu::Ray> rays,
-                        const core::TraceOptions& options = {}) {
-    core::Scene scene(testContext(), description);
-    core::TraceKernels kernels(testContext(), options);
-    return {kernels.traceClosest(scene, rays), kernels.traceAny(scene, rays)};
-}
-
-// No wrong and no flagged closest hit, at least `minExactOrTie` of rays exact or tied (the rest edge
-// cases), and any-hit answers equal to the reference's except on those edge rays.
-Agreement checkAgainstReference(const core::SceneDescription& description, std::span<const gpu::Ray> rays,
-                                double minExactOrTie = 0.999) {
-    test::ValidationGuard guard;
-    const TraceResults gpuResults = traceOnGpu(description, rays);
-    const std::vector<test::RefHit> ref = test::traceClosestAll(description, rays);
-    const Agreement a = compareClosest(description, rays, gpuResults.closest, ref);
-    INFO("exact " << a.exact << ", ties " << a.ties << ", edges " << a.edges << ", wrong " << a.wrong << ", flagged " << a.flagged);
-    CHECK(a.wrong == 0);
-    CHECK(a.flagged == 0);
-    CHECK(a.exactOrTie() >= minExactOrTie);
-    uint64_t anyMismatch = 0;
-    for (size_t i = 0; i < rays.size(); ++i)
-        anyMismatch += (gpuResults.any[i] == gpu::HIT_FOUND) != ref[i].found;
-    CHECK(anyMismatch <= a.edges);
-    return a;
-}
-
-}  // namespace
+using test::Agreement;
+using test::checkAgainstReference;
+using test::compareClosest;
+using test::traceOnGpu;
+using test::TraceResults;
 
 TEST_CASE("random triangle soup: closest and any hit equal the reference") {
     const auto scene = test::sceneOf(test::randomTriangleSoup(3000, 1));

@@ -1,0 +1,179 @@
+// Validation of triangle meshes, sphere sets and cylinder sets, and the BLAS over what is kept.
+#include "core/scene/PreparedGeometry.h"
+
+#include <cmath>
+#include <limits>
+
+namespace ripple::core {
+
+namespace {
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool validRadius(float r) { return std::isfinite(r) && r > 0.0f; }
+
+void note(PreparedGeometry& g, uint64_t count, const std::string& what) {
+    if (count == 0) return;
+    g.problems.push_back("skipped " + std::to_string(count) + " " + what);
+    g.skipped += count;
+}
+
+std::shared_ptr<const PreparedGeometry> finish(std::shared_ptr<PreparedGeometry> g, const std::vector<bvh::Aabb>& boxes) {
+    if (!g->validPrims.empty()) g->blas = bvh::buildBinnedSah(boxes, g->buildOptions);
+    return g;
+}
+
+// Box of a round cylinder with caps: across axis i a cap disk reaches r * sqrt(1 - w_i^2) from its
+// centre (w the unit axis). Computed in double and widened a little, so float rounding never makes it
+// smaller than the cylinder.
+bvh::Aabb cylinderBox(const glm::vec3& a, const glm::vec3& b, float r) {
+    const glm::dvec3 w = glm::normalize(glm::dvec3(b) - glm::dvec3(a));
+    const glm::dvec3 reach = double(r) * glm::sqrt(glm::max(glm::dvec3(0.0), 1.0 - w * w)) * (1.0 + 1e-6) +
+                             1e-7 * glm::max(glm::abs(glm::dvec3(a)), glm::abs(glm::dvec3(b)));
+    const glm::dvec3 lo = glm::min(glm::dvec3(a), glm::dvec3(b)) - reach;
+    const glm::dvec3 hi = glm::max(glm::dvec3(a), glm::dvec3(b)) + reach;
+    return {glm::vec3(lo), glm::vec3(hi)};
+}
+
+}  // namespace
+
+std::string geometryLabel(GeometryKind kind, uint32_t index) {
+    switch (kind) {
+    case GeometryKind::Triangles: return "mesh " + std::to_string(index);
+    case GeometryKind::Spheres: return "sphere set " + std::to_string(index);
+    case GeometryKind::Cylinders: return "cylinder set " + std::to_string(index);
+    }
+    return "geometry of kind " + std::to_string(static_cast<uint32_t>(kind)) + " " + std::to_string(index);
+}
+
+uint64_t primitiveCount(const TriangleMesh& mesh) {
+    return mesh.indices.empty() ? mesh.positions.size() / 3 : mesh.indices.size();
+}
+uint64_t primitiveCount(const SphereSet& set) { return set.centers.size(); }
+uint64_t primitiveCount(const CylinderSet& set) {
+    return set.indices.empty() ? set.positions.size() / 2 : set.indices.size();
+}
+
+glm::uvec2 cylinderIndices(const CylinderSet& set, uint64_t i) {
+    if (!set.indices.empty()) return set.indices[i];
+    return glm::uvec2(uint32_t(2 * i), uint32_t(2 * i + 1));
+}
+
+bool fits(const PreparedGeometry& prepared, const TriangleMesh& mesh) {
+    if (prepared.inputPrimCount != primitiveCount(mesh) || prepared.positionCount != mesh.positions.size()) return false;
+    if (mesh.indices.empty()) return true;
+    for (uint32_t t : prepared.validPrims) {
+        const glm::uvec3& idx = mesh.indices[t];
+        if (idx.x >= mesh.positions.size() || idx.y >= mesh.positions.size() || idx.z >= mesh.positions.size()) return false;
+    }
+    return true;
+}
+
+bool fits(const PreparedGeometry& prepared, const SphereSet& set) {
+    return prepared.inputPrimCount == primitiveCount(set) && prepared.positionCount == set.centers.size() &&
+           (set.radii.size() == 1 || set.radii.size() == set.centers.size());
+}
+
+bool fits(const PreparedGeometry& prepared, const CylinderSet& set) {
+    if (prepared.inputPrimCount != primitiveCount(set) || prepared.positionCount != set.positions.size()) return false;
+    if (set.radii.size() != 1 && set.radii.size() != primitiveCount(set)) return false;
+    for (uint32_t i : prepared.validPrims) {
+        const glm::uvec2 idx = cylinderIndices(set, i);
+        if (idx.x >= set.positions.size() || idx.y >= set.positions.size()) return false;
+    }
+    return true;
+}
+
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const TriangleMesh& mesh, const bvh::BuildOptions& options) {
+    auto g = std::make_shared<PreparedGeometry>();
+    g->kind = GeometryKind::Triangles;
+    g->identity = mesh.identity;
+    g->buildOptions = options;
+    const uint64_t positionCount = mesh.positions.size();
+    g->inputPrimCount = primitiveCount(mesh);
+    g->positionCount = mesh.positions.size();
+    std::vector<bvh::Aabb> boxes;
+    uint64_t badIndex = 0, nonFinite = 0, zeroArea = 0;
+    for (uint64_t t = 0; t < g->inputPrimCount; ++t) {
+        const glm::uvec3 idx = mesh.indices.empty() ? glm::uvec3(3 * t, 3 * t + 1, 3 * t + 2) : mesh.indices[t];
+        if (idx.x >= positionCount || idx.y >= positionCount || idx.z >= positionCount) { ++badIndex; continue; }
+        const glm::vec3 &a = mesh.positions[idx.x], &b = mesh.positions[idx.y], &c = mesh.positions[idx.z];
+        if (!finite(a) || !finite(b) || !finite(c)) { ++nonFinite; continue; }
+        const glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
+        if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) { ++zeroArea; continue; }
+        bvh::Aabb box;
+        box.extend(a);
+        box.extend(b);
+        box.extend(c);
+        g->validPrims.push_back(static_cast<uint32_t>(t));
+        boxes.push_back(box);
+    }
+    note(*g, badIndex, "triangle(s) with an index out of range (" + std::to_string(positionCount) + " positions)");
+    note(*g, nonFinite, "triangle(s) with a NaN or Inf vertex");
+    note(*g, zeroArea, "zero-area triangle(s)");
+    return finish(std::move(g), boxes);
+}
+
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const SphereSet& set, const bvh::BuildOptions& options) {
+    auto g = std::make_shared<PreparedGeometry>();
+    g->kind = GeometryKind::Spheres;
+    g->identity = set.identity;
+    g->buildOptions = options;
+    g->inputPrimCount = primitiveCount(set);
+    g->positionCount = set.centers.size();
+    if (set.radii.size() != 1 && set.radii.size() != set.centers.size()) {
+        g->problems.push_back(std::to_string(set.radii.size()) + " radii for " + std::to_string(set.centers.size()) +
+                              " centers (need 1 or one each); set skipped");
+        g->skipped = g->inputPrimCount;
+        return g;
+    }
+    std::vector<bvh::Aabb> boxes;
+    uint64_t badRadius = 0, nonFinite = 0;
+    for (uint32_t i = 0; i < set.centers.size(); ++i) {
+        const float r = radiusOf(set.radii, i);
+        if (!finite(set.centers[i])) { ++nonFinite; continue; }
+        if (!validRadius(r)) { ++badRadius; continue; }
+        g->validPrims.push_back(i);
+        boxes.push_back({set.centers[i] - glm::vec3(r), set.centers[i] + glm::vec3(r)});
+    }
+    note(*g, nonFinite, "sphere(s) with a NaN or Inf center");
+    note(*g, badRadius, "sphere(s) with a radius that is not finite and positive");
+    return finish(std::move(g), boxes);
+}
+
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const CylinderSet& set, const bvh::BuildOptions& options) {
+    auto g = std::make_shared<PreparedGeometry>();
+    g->kind = GeometryKind::Cylinders;
+    g->identity = set.identity;
+    g->buildOptions = options;
+    g->inputPrimCount = primitiveCount(set);
+    g->positionCount = set.positions.size();
+    if (set.radii.size() != 1 && set.radii.size() != g->inputPrimCount) {
+        g->problems.push_back(std::to_string(set.radii.size()) + " radii for " + std::to_string(g->inputPrimCount) +
+                              " cylinders (need 1 or one each); set skipped");
+        g->skipped = g->inputPrimCount;
+        return g;
+    }
+    std::vector<bvh::Aabb> boxes;
+    uint64_t badIndex = 0, nonFinite = 0, badRadius = 0, zeroLength = 0;
+    for (uint64_t i = 0; i < g->inputPrimCount; ++i) {
+        const glm::uvec2 idx = cylinderIndices(set, i);
+        if (idx.x >= set.positions.size() || idx.y >= set.positions.size()) { ++badIndex; continue; }
+        const glm::vec3 &a = set.positions[idx.x], &b = set.positions[idx.y];
+        const float r = radiusOf(set.radii, i);
+        if (!finite(a) || !finite(b)) { ++nonFinite; continue; }
+        if (!validRadius(r)) { ++badRadius; continue; }
+        // The kernel divides by the axis length; one whose square is denormal (GPUs may flush it) is as
+        // bad as zero.
+        const glm::vec3 axis = b - a;
+        if (!(glm::dot(axis, axis) >= std::numeric_limits<float>::min())) { ++zeroLength; continue; }
+        g->validPrims.push_back(static_cast<uint32_t>(i));
+        boxes.push_back(cylinderBox(a, b, r));
+    }
+    note(*g, badIndex, "cylinder(s) with an index out of range (" + std::to_string(set.positions.size()) + " positions)");
+    note(*g, nonFinite, "cylinder(s) with a NaN or Inf end");
+    note(*g, badRadius, "cylinder(s) with a radius that is not finite and positive");
+    note(*g, zeroLength, "cylinder(s) of zero length");
+    return finish(std::move(g), boxes);
+}
+
+}  // namespace ripple::core

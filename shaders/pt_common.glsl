@@ -1,0 +1,32 @@
+// What every path tracing stage (pt_*.comp) shares: the parameter block, buffer views of the frame, the
+// scene and the queues, and the workgroup size (specialization constant 0, set by the host).
+#ifndef RIPPLE_PT_COMMON_GLSL
+#define RIPPLE_PT_COMMON_GLSL
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+
+#include "shared/material.h"
+#include "shared/path.h"
+#include "shared/ray.h"
+#include "shared/scene.h"
+
+layout(local_size_x_id = 0) in;
+
+layout(push_constant) uniform Push { StageParams params; };
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer FrameRef { FrameConstants frame; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneRef { SceneDesc desc; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer PathsRef { PathState paths[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer RaysRef { Ray rays[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer HitsRef { Hit hits[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer ShadowRequestsRef { ShadowRequest requests[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4sRef { vec4 values[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatsRef { float values[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer UintsRef { uint values[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer CountersRef { PathCounters counters; };
+
+#define INFINITY uintBitsToFloat(0x7f800000u)
+
+bool allFinite(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+#endif

@@ -1,0 +1,88 @@
+// The path tracer's GPU state: per-path data that stays at home, shadow requests, per-frame constants and
+// the one parameter block every pt_*.comp stage receives as push constants.
+#ifndef RIPPLE_SHARED_PATH_H
+#define RIPPLE_SHARED_PATH_H
+#include "common.h"
+
+RIPPLE_GPU_BEGIN
+
+RIPPLE_CONST uint PATH_FLAG_CAMERA = 1u;  // no scattering yet: a miss shows the background, not the ambient light
+RIPPLE_CONST uint PATH_PASS_THROUGH_SHIFT = 8u;   // flags >> this = pass-throughs of transparent surfaces so far
+RIPPLE_CONST uint PATH_MAX_PASS_THROUGHS = 16u;   // more than this and the path ends (bounds the bounce loop)
+
+// The home part of a path, parallel to its ray in the same queue slot (the ray is gpu::Ray).
+struct PathState {
+    vec4 throughput;  // rgb; w unused
+    uint pixel;       // y * width + x of the full image, row 0 at the bottom
+    uint depth;       // surface interactions so far (scattering events; pass-throughs do not count)
+    uint flags;       // PATH_FLAG_* | pass-throughs << PATH_PASS_THROUGH_SHIFT
+    uint pad0;
+};
+
+// What an unoccluded shadow ray adds to its pixel (the ray itself sits in a gpu::Ray queue beside it).
+struct ShadowRequest {
+    vec4 contribution;  // rgb; w unused
+    uint pixel;
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
+// Counters the kernels bump with atomics; the host reads the queue counts back after each bounce.
+struct PathCounters {
+    uint nextPaths;     // rays appended to the next path queue
+    uint shadowRays;    // shadow rays appended
+    uint nonFinite;     // samples dropped by pt_accumulate
+    uint flagged;       // traversals flagged HIT_FLAG_* (treated as misses)
+};
+
+RIPPLE_CONST uint CAMERA_PERSPECTIVE = 0u;
+RIPPLE_CONST uint CAMERA_ORTHOGRAPHIC = 1u;
+
+RIPPLE_CONST uint OUTPUT_RGBA8_UNORM = 0u;
+RIPPLE_CONST uint OUTPUT_RGBA8_SRGB = 1u;
+RIPPLE_CONST uint OUTPUT_RGBA32_FLOAT = 2u;
+
+// Constant for a render() call: camera, settings and the frame's buffers.
+struct FrameConstants {
+    vec4 cameraPosition;   // w: CAMERA_* as float bits
+    vec4 cameraForward;    // unit; w: tan(fovy / 2) (perspective) or view height (orthographic)
+    vec4 cameraRight;      // unit; w: aspect (width / height)
+    vec4 cameraUp;         // unit
+    vec4 imageRegion;      // (minX, minY, maxX, maxY) of the screen in [0,1]^2
+    vec4 background;       // RGBA seen by camera rays that miss
+    vec4 ambient;          // rgb: ambientColor * ambientRadiance, seen by secondary rays that miss
+    uint width;
+    uint height;
+    uint maxPathLength;
+    uint seed;
+    uint64_t sampleRadiance;  // vec4 per pixel: this sample's RGBA, summed over the bounces
+    uint64_t accumulation;    // vec4 per pixel: sum of the accepted samples
+    uint64_t sampleCount;     // uint per pixel: accepted samples
+    uint64_t depth;           // float per pixel, or 0 when no depth channel was asked for
+    uint64_t counters;        // PathCounters
+    uint64_t pad0;
+};
+
+// Push constants of every pt_*.comp stage; each reads the fields it needs (0 where unused).
+struct StageParams {
+    uint64_t frame;        // FrameConstants
+    uint64_t scene;        // SceneDesc
+    uint64_t paths;        // PathState[] of the queue being consumed (or written, by pt_generate)
+    uint64_t rays;         // Ray[] beside it
+    uint64_t hits;         // Hit[] beside it
+    uint64_t nextPaths;    // PathState[] of the next queue
+    uint64_t nextRays;     // Ray[] of the next queue
+    uint64_t shadowRays;   // Ray[] of the shadow queue
+    uint64_t shadowRequests; // ShadowRequest[] beside it
+    uint64_t results;      // pt_resolve: the color buffer; pt_shadow_resolve: uint occlusion per shadow ray
+    uint count;            // items to process (paths, shadow rays or pixels)
+    uint firstPixel;       // pixel of invocation 0 (pt_generate, pt_accumulate, pt_resolve)
+    uint sampleIndex;      // the pixel sample this pass computes (over all render() calls)
+    uint bounce;           // pt_shade: interactions every path in the queue has had (RNG key)
+    uint mode;             // pt_resolve: OUTPUT_*
+    uint pad0;
+};
+
+RIPPLE_GPU_END
+#endif

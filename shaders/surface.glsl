@@ -1,0 +1,116 @@
+// The surface at a closest hit: world position from the barycentrics (or the analytic shape) and the
+// instance transform, geometric and shading normals facing the incoming ray, and the interpolated color
+// and texcoord attributes. Needs the buffer views of pt_common.glsl.
+#ifndef RIPPLE_SURFACE_GLSL
+#define RIPPLE_SURFACE_GLSL
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TrianglesRef { TrianglePrim triangles[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceShadingRef { InstanceShading instances[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GeometriesRef { GeometryRecord geometries[]; };
+
+struct SurfacePoint {
+    vec3 position;         // world space
+    vec3 geometricNormal;  // unit, world space, facing the incoming ray
+    vec3 shadingNormal;    // unit, world space, on the same side as geometricNormal
+    bool hasColor;
+    vec4 color;            // the color attribute (per vertex, interpolated, or per primitive)
+    vec2 texcoord;         // (0, 0) where the geometry has none
+    uint material;
+};
+
+vec3 transformPoint(vec4 rows[3], vec3 p) {
+    vec4 h = vec4(p, 1.0);
+    return vec3(dot(rows[0], h), dot(rows[1], h), dot(rows[2], h));
+}
+
+// Object-space normal to world space: by the transpose of worldToObject (the inverse transpose of the
+// instance transform), so normals stay perpendicular under non-uniform scale.
+vec3 transformNormal(vec4 worldToObject[3], vec3 n) {
+    return n.x * worldToObject[0].xyz + n.y * worldToObject[1].xyz + n.z * worldToObject[2].xyz;
+}
+
+vec3 safeNormalize(vec3 v, vec3 fallback) {
+    float l2 = dot(v, v);
+    return (l2 > 0.0 && !isinf(l2)) ? v * inversesqrt(l2) : fallback;
+}
+
+vec4 attributeAt(SceneDesc scene, uint offset, uint index) { return Vec4sRef(scene.attributes).values[offset + index]; }
+
+vec4 interpolate(SceneDesc scene, uint offset, uvec3 idx, vec3 bary) {
+    return bary.x * attributeAt(scene, offset, idx.x) + bary.y * attributeAt(scene, offset, idx.y) +
+           bary.z * attributeAt(scene, offset, idx.z);
+}
+
+SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
+    InstanceShading inst = InstanceShadingRef(scene.instanceShading).instances[hit.instanceId];
+    GeometryRecord geom = GeometriesRef(scene.geometries).geometries[inst.geometry];
+    uint slot = UintsRef(scene.primSlots).values[geom.slotOffset + hit.primId];
+    SurfacePoint s;
+    s.material = inst.material;
+    s.hasColor = false;
+    s.color = vec4(1.0);
+    s.texcoord = vec2(0.0);
+    vec3 objectPoint;
+    vec3 objectNormal;
+    vec3 objectShadingNormal;
+    if (geom.kind == GEOMETRY_TRIANGLES) {
+        TrianglePrim tri = TrianglesRef(scene.triangles).triangles[slot];
+        vec3 bary = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
+        objectPoint = bary.x * tri.v0.xyz + bary.y * tri.v1.xyz + bary.z * tri.v2.xyz;
+        objectNormal = cross(tri.v1.xyz - tri.v0.xyz, tri.v2.xyz - tri.v0.xyz);
+        objectShadingNormal = objectNormal;
+        uvec3 idx = uvec3(3u * hit.primId) + uvec3(0u, 1u, 2u);
+        if (geom.indexOffset != NO_ATTRIBUTE) {
+            UintsRef indices = UintsRef(scene.vertexIndices);
+            uint first = geom.indexOffset + 3u * hit.primId;
+            idx = uvec3(indices.values[first], indices.values[first + 1u], indices.values[first + 2u]);
+        }
+        if (geom.normalOffset != NO_ATTRIBUTE) objectShadingNormal = interpolate(scene, geom.normalOffset, idx, bary).xyz;
+        if (geom.texcoordOffset != NO_ATTRIBUTE) s.texcoord = interpolate(scene, geom.texcoordOffset, idx, bary).xy;
+        if (geom.colorOffset != NO_ATTRIBUTE) {
+            s.hasColor = true;
+            s.color = interpolate(scene, geom.colorOffset, idx, bary);
+        } else if (geom.primitiveColorOffset != NO_ATTRIBUTE) {
+            s.hasColor = true;
+            s.color = attributeAt(scene, geom.primitiveColorOffset, hit.primId);
+        }
+    } else {
+        // Analytic shapes: the hit point from the ray in object space, then put back on the surface.
+        vec3 rayPoint = transformPoint(inst.worldToObject, ray.origin.xyz + hit.t * ray.direction.xyz);
+        if (geom.kind == GEOMETRY_SPHERES) {
+            vec4 sphere = SpheresRef(scene.spheres).spheres[slot].centerRadius;
+            objectNormal = safeNormalize(rayPoint - sphere.xyz, vec3(0.0, 0.0, 1.0));
+            objectPoint = sphere.xyz + sphere.w * objectNormal;
+        } else {
+            CylinderPrim cyl = CylindersRef(scene.cylinders).cylinders[slot];
+            vec3 axis = normalize(cyl.p1.xyz - cyl.p0Radius.xyz);
+            vec3 onAxis = mix(cyl.p0Radius.xyz, cyl.p1.xyz, hit.u);
+            if (hit.v > 0.5) {  // a cap
+                objectNormal = hit.u < 0.5 ? -axis : axis;
+                objectPoint = rayPoint - dot(rayPoint - onAxis, axis) * axis;
+            } else {
+                vec3 across = rayPoint - onAxis;
+                across -= dot(across, axis) * axis;
+                objectNormal = safeNormalize(across, vec3(0.0, 0.0, 1.0));
+                objectPoint = onAxis + cyl.p0Radius.w * objectNormal;
+            }
+        }
+        objectShadingNormal = objectNormal;
+        if (geom.colorOffset != NO_ATTRIBUTE) {
+            s.hasColor = true;
+            s.color = attributeAt(scene, geom.colorOffset, hit.primId);
+        }
+    }
+    s.position = transformPoint(inst.objectToWorld, objectPoint);
+    vec3 ng = safeNormalize(transformNormal(inst.worldToObject, objectNormal), -normalize(ray.direction.xyz));
+    if (dot(ng, ray.direction.xyz) > 0.0) ng = -ng;
+    vec3 ns = safeNormalize(transformNormal(inst.worldToObject, objectShadingNormal), ng);
+    if (dot(ns, ng) < 0.0) ns = -ns;
+    s.geometricNormal = ng;
+    s.shadingNormal = ns;
+    return s;
+}
+
+#endif

@@ -1,0 +1,70 @@
+// Small scenes and a one-call render for the path tracer suites: a square plane, orthographic and
+// perspective cameras, and render() returning linear RGBA (Rgba32Float), depth and the frame statistics.
+#pragma once
+
+#include "core/render/PathTracer.h"
+#include "core/scene/Scene.h"
+#include "tests/support/TestContext.h"
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace ripple::test {
+
+struct Rendered {
+    glm::uvec2 size{0, 0};
+    std::vector<glm::vec4> color;  // linear RGBA, row 0 at the bottom
+    std::vector<float> depth;      // empty unless asked for
+    core::FrameStats stats;
+    const glm::vec4& at(uint32_t x, uint32_t y) const { return color[size_t(y) * size.x + x]; }
+};
+
+inline Rendered render(const core::SceneDescription& description, const core::Camera& camera,
+                       const core::RenderSettings& settings, glm::uvec2 size = {32, 32}, bool wantDepth = false,
+                       const core::PathTracerOptions& options = {}) {
+    core::Scene scene(testContext(), description);
+    core::PathTracer tracer(testContext(), {}, options);
+    tracer.resize(size, wantDepth);
+    Rendered out;
+    out.size = size;
+    out.stats = tracer.render(scene, camera, settings);
+    out.color.resize(size_t(size.x) * size.y);
+    tracer.readColor(core::ColorFormat::Rgba32Float, out.color.data());
+    if (wantDepth) {
+        out.depth.resize(out.color.size());
+        tracer.readDepth(out.depth.data());
+    }
+    return out;
+}
+
+// A square in the plane z = 0, centred on the origin, with side `side`, facing +z; two triangles
+// (0,1,2) and (0,2,3) over the corners (-,-), (+,-), (+,+), (-,+), texcoords 0..1 across it.
+inline core::TriangleMesh squareMesh(float side) {
+    const float h = 0.5f * side;
+    core::TriangleMesh mesh;
+    mesh.positions = {{-h, -h, 0.0f}, {h, -h, 0.0f}, {h, h, 0.0f}, {-h, h, 0.0f}};
+    mesh.indices = {{0, 1, 2}, {0, 2, 3}};
+    mesh.texcoords = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+    return mesh;
+}
+
+// Orthographic camera at height z above the origin looking down -z, +y up on screen, `height` world
+// units tall (square images).
+inline core::Camera lookingDown(float z, float height) {
+    core::Camera camera;
+    camera.kind = core::Camera::Kind::Orthographic;
+    camera.position = {0.0f, 0.0f, z};
+    camera.direction = {0.0f, 0.0f, -1.0f};
+    camera.up = {0.0f, 1.0f, 0.0f};
+    camera.height = height;
+    return camera;
+}
+
+// World point seen through the centre of pixel (x, y) + offset (in pixels) by lookingDown(z, height) on
+// a size x size image.
+inline glm::vec2 groundPoint(float height, uint32_t size, float x, float y) {
+    return glm::vec2((x / float(size) - 0.5f) * height, (y / float(size) - 0.5f) * height);
+}
+
+}  // namespace ripple::test

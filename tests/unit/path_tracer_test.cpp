@@ -1,0 +1,359 @@
+// The path tracer against analytic radiance: direct light from directional, point and quad lights on a
+// matte plane, furnaces (a convex sphere under ambient light, a closed emitting sphere seen from inside),
+// background and depth channels, transparency, the non-finite guard, and bitwise determinism.
+#include "core/render/PathTracer.h"
+#include "tests/support/RenderHelpers.h"
+#include "tests/support/SceneGenerators.h"
+#include "tests/support/TestContext.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+using namespace ripple;
+using test::testContext;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+core::SceneDescription matteFloor(const glm::vec3& albedo, float side = 200.0f) {
+    core::SceneDescription d = test::sceneOf(test::squareMesh(side));
+    core::Material m;
+    m.baseColor = albedo;
+    d.materials.push_back(m);
+    return d;
+}
+
+glm::vec4 meanColor(const test::Rendered& r) {
+    glm::dvec4 sum(0.0);
+    for (const glm::vec4& c : r.color) sum += glm::dvec4(c);
+    return glm::vec4(sum / double(r.color.size()));
+}
+
+}  // namespace
+
+// Matte plane (albedo a) under a directional light of irradiance E arriving at theta from the normal,
+// direct lighting only: every pixel is a / pi * E * cos(theta), deterministically (one light, no
+// randomness reaches the value). Tolerance 1e-5 relative: float rounding of a few operations.
+TEST_CASE("path tracer: directional light on a matte plane gives a/pi * E * cos(theta) everywhere") {
+    test::ValidationGuard guard;
+    const glm::vec3 albedo(0.5f, 0.25f, 0.8f);
+    core::SceneDescription d = matteFloor(albedo);
+    const float theta = 1.0f, irradiance = 3.0f;
+    core::Light light;
+    light.kind = core::Light::Kind::Directional;
+    light.direction = -glm::vec3(std::sin(theta), 0.0f, std::cos(theta));
+    light.intensity = irradiance;
+    light.color = {1.0f, 0.5f, 1.0f};
+    d.lights.push_back(light);
+    core::RenderSettings settings;
+    settings.maxPathLength = 1;
+    const test::Rendered r = test::render(d, test::lookingDown(1.0f, 4.0f), settings);
+    const glm::vec3 expected = albedo / float(kPi) * irradiance * light.color * std::cos(theta);
+    uint64_t off = 0;
+    for (const glm::vec4& c : r.color)
+        for (int k = 0; k < 3; ++k) off += std::abs(c[k] - expected[k]) > 1e-5f * expected[k];
+    CHECK(off == 0);
+    CHECK(r.at(5, 7).r == doctest::Approx(expected.r).epsilon(1e-5));
+    CHECK(r.at(5, 7).a == 1.0f);
+    CHECK(r.stats.raysTraced == 32 * 32);
+    CHECK(r.stats.shadowRays == 32 * 32);
+    CHECK(r.stats.nonFiniteSamples == 0);
+    CHECK(r.stats.flaggedRays == 0);
+}
+
+// A point light of intensity I at height h over the plane: at ground distance rho from its foot,
+// L = a / pi * I * cos / d^2 = a / pi * I * h / (rho^2 + h^2)^(3/2). L falls with rho, so each pixel's
+// value must lie between L at the farthest and nearest point of its footprint (jitter picks the point),
+// within 1e-5 relative for rounding.
+TEST_CASE("path tracer: point light over a plane gives a/pi * I * cos / d^2") {
+    test::ValidationGuard guard;
+    const glm::vec3 albedo(0.7f);
+    core::SceneDescription d = matteFloor(albedo);
+    const float intensity = 5.0f, h = 1.5f, view = 4.0f;
+    core::Light light;
+    light.kind = core::Light::Kind::Point;
+    light.position = {0.0f, 0.0f, h};
+    light.intensity = intensity;
+    d.lights.push_back(light);
+    core::RenderSettings settings;
+    settings.maxPathLength = 1;
+    const uint32_t size = 32;
+    const test::Rendered r = test::render(d, test::lookingDown(1.0f, view), settings);
+    auto radiance = [&](double rho) { return albedo.x / kPi * intensity * h / std::pow(rho * rho + h * h, 1.5); };
+    uint64_t outside = 0;
+    for (uint32_t y = 0; y < size; ++y) {
+        for (uint32_t x = 0; x < size; ++x) {
+            const glm::vec2 lo = test::groundPoint(view, size, float(x), float(y));
+            const glm::vec2 hi = test::groundPoint(view, size, float(x + 1), float(y + 1));
+            const glm::vec2 nearest = glm::clamp(glm::vec2(0.0f), lo, hi);
+            const glm::vec2 farthest(std::max(std::abs(lo.x), std::abs(hi.x)), std::max(std::abs(lo.y), std::abs(hi.y)));
+            const double value = r.at(x, y).g;
+            outside += value > radiance(glm::length(nearest)) * (1 + 1e-5) || value < radiance(glm::length(farthest)) * (1 - 1e-5);
+        }
+    }
+    CHECK(outside == 0);
+}
+
+// A square quad light of side s at height h, emitting downward with radiance L, seen from the point
+// below its centre: irradiance E = L * sum over the four quadrant rectangles of the classic form factor
+// of a rectangle with a corner above the point, F = 1/(2 pi) [a/sqrt(a^2+h^2) atan(b/sqrt(a^2+h^2)) +
+// b/sqrt(b^2+h^2) atan(a/sqrt(b^2+h^2))], times pi. The camera views a 1 mm patch there, so the image mean
+// estimates a / pi * E over 32x32x32 area samples; cos cos / d^2 over the quad spreads by ~0.6 of its
+// mean, so the image mean is within 0.6/sqrt(32768) = 0.33% (1 sigma); tolerance 1.5%.
+TEST_CASE("path tracer: quad light by area sampling matches the analytic form factor") {
+    test::ValidationGuard guard;
+    const glm::vec3 albedo(0.6f);
+    core::SceneDescription d = matteFloor(albedo);
+    const float side = 2.0f, h = 1.0f, radiance = 2.0f;
+    core::Light light;
+    light.kind = core::Light::Kind::Quad;
+    light.position = {-0.5f * side, -0.5f * side, h};
+    light.edge1 = {0.0f, side, 0.0f};  // cross(edge1, edge2) points down, toward the floor
+    light.edge2 = {side, 0.0f, 0.0f};
+    light.intensity = radiance;
+    d.lights.push_back(light);
+    core::RenderSettings settings;
+    settings.maxPathLength = 1;
+    settings.pixelSamples = 32;
+    const test::Rendered r = test::render(d, test::lookingDown(0.5f, 1e-3f), settings);
+    const double a = 0.5 * side, b = 0.5 * side;
+    const double fa = std::sqrt(a * a + h * h), fb = std::sqrt(b * b + h * h);
+    const double quadrant = (a / fa * std::atan(b / fa) + b / fb * std::atan(a / fb)) / (2.0 * kPi);
+    const double irradiance = radiance * kPi * 4.0 * quadrant;
+    CHECK(meanColor(r).r == doctest::Approx(albedo.x / kPi * irradiance).epsilon(0.015));
+    // One-sided: turned to face up, it lights nothing below it.
+    std::swap(d.lights[0].edge1, d.lights[0].edge2);
+    CHECK(meanColor(test::render(d, test::lookingDown(0.5f, 1e-3f), settings, {8, 8})).r == 0.0f);
+}
+
+// White furnace: a white matte sphere under uniform ambient radiance La and nothing else. Each camera
+// sample that hits the sphere bounces once, leaves the (convex) sphere and sees La, so a hit sample is
+// exactly La (alpha 1); a miss is exactly the background. With one sample per pixel, every pixel is one
+// or the other (1e-6 relative), and the hit count matches the sphere's projected disk.
+TEST_CASE("path tracer: white furnace with ambient light, exact background elsewhere") {
+    test::ValidationGuard guard;
+    core::SphereSet sphere;
+    sphere.centers = {{0.0f, 0.0f, 0.0f}};
+    sphere.radii = {1.0f};
+    core::SceneDescription d = test::sceneOf(sphere);
+    core::Material white;
+    white.baseColor = glm::vec3(1.0f);
+    d.materials.push_back(white);
+    core::RenderSettings settings;
+    settings.ambientRadiance = 0.7f;
+    settings.ambientColor = {1.0f, 0.5f, 0.25f};
+    settings.background = {0.1f, 0.2f, 0.3f, 0.4f};
+    settings.maxPathLength = 8;
+    core::Camera camera;
+    camera.position = {0.0f, 0.0f, 4.0f};
+    camera.fovy = 0.7f;
+    const test::Rendered r = test::render(d, camera, settings);
+    const glm::vec3 ambient = settings.ambientColor * settings.ambientRadiance;
+    uint64_t hits = 0, other = 0;
+    for (const glm::vec4& c : r.color) {
+        if (c == settings.background) continue;
+        const bool furnace = c.a == 1.0f && std::abs(c.r - ambient.r) <= 1e-6f * ambient.r &&
+                             std::abs(c.g - ambient.g) <= 1e-6f * ambient.g && std::abs(c.b - ambient.b) <= 1e-6f * ambient.b;
+        (furnace ? hits : other) += 1;
+    }
+    CHECK(other == 0);
+    // Projected disk: half-angle asin(1/4) against the half field of view 0.35 rad: a fraction
+    // pi tan^2(asin(1/4)) / (4 tan^2(0.35)) of the image, ~ 147 of 1024 pixels; jitter moves the boundary.
+    const double alpha = std::asin(0.25);
+    const double expectedHits = kPi * std::tan(alpha) * std::tan(alpha) / (4.0 * std::tan(0.35) * std::tan(0.35)) * 1024.0;
+    CHECK(double(hits) == doctest::Approx(expectedHits).epsilon(0.1));
+}
+
+// Closed furnace: the camera inside a sphere whose inside is matte (albedo a) and emits Le. Every
+// interaction adds Le times the throughput a^k, so with maxPathLength N the pixel expectation is
+// Le (1 - a^N) / (1 - a) (Russian roulette from the third interaction keeps it unbiased but noisy). The
+// image mean over 32x32x8 samples has a relative standard error under 0.5%; tolerance 2%. The first
+// three interactions are deterministic, so no pixel may be below Le (1 + a + a^2).
+TEST_CASE("path tracer: closed emitting sphere seen from inside converges to Le (1 - a^N) / (1 - a)") {
+    test::ValidationGuard guard;
+    core::SphereSet shell;
+    shell.centers = {{0.0f, 0.0f, 0.0f}};
+    shell.radii = {5.0f};
+    core::SceneDescription d = test::sceneOf(shell);
+    core::Material m;
+    const float a = 0.5f, emitted = 1.0f;
+    m.baseColor = glm::vec3(a);
+    m.emissive = glm::vec3(emitted);
+    d.materials.push_back(m);
+    core::RenderSettings settings;
+    settings.maxPathLength = 12;
+    settings.pixelSamples = 8;
+    core::Camera camera;
+    camera.position = {0.5f, -1.0f, 0.25f};
+    camera.direction = {0.3f, 1.0f, -0.2f};
+    const test::Rendered r = test::render(d, camera, settings);
+    const double expected = emitted * (1.0 - std::pow(a, 12)) / (1.0 - a);
+    CHECK(meanColor(r).r == doctest::Approx(expected).epsilon(0.02));
+    const float floor = emitted * (1.0f + a + a * a) * (1.0f - 1e-5f);
+    CHECK(std::all_of(r.color.begin(), r.color.end(), [&](const glm::vec4& c) { return c.r >= floor && c.a == 1.0f; }));
+}
+
+// An empty scene shows the background in every pixel, exactly (two samples: sum and halving are exact),
+// and the 8-bit formats are the exact rounding of it (within half a step, which allows either neighbour
+// only where the exact value is a tie).
+TEST_CASE("path tracer: background pixels are exact in every output format") {
+    test::ValidationGuard guard;
+    core::RenderSettings settings;
+    settings.background = {0.2f, 0.6f, 0.9f, 0.3f};
+    settings.pixelSamples = 2;
+    core::Scene scene(testContext(), core::SceneDescription{});
+    core::PathTracer tracer(testContext());
+    tracer.resize({16, 8}, true);
+    tracer.render(scene, core::Camera{}, settings);
+    std::vector<glm::vec4> linear(16 * 8);
+    tracer.readColor(core::ColorFormat::Rgba32Float, linear.data());
+    CHECK(std::all_of(linear.begin(), linear.end(), [&](const glm::vec4& c) { return c == settings.background; }));
+    std::vector<uint8_t> unorm(16 * 8 * 4), srgb(16 * 8 * 4);
+    tracer.readColor(core::ColorFormat::Rgba8Unorm, unorm.data());
+    tracer.readColor(core::ColorFormat::Rgba8Srgb, srgb.data());
+    auto encode = [](double c) { return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; };
+    for (int k = 0; k < 4; ++k) {
+        const double u = settings.background[k] * 255.0;
+        const double s = (k < 3 ? encode(settings.background[k]) : settings.background[k]) * 255.0;
+        for (size_t p = 0; p < 16 * 8; ++p) {
+            CHECK(std::abs(unorm[4 * p + k] - u) <= 0.5 + 1e-3);
+            CHECK(std::abs(srgb[4 * p + k] - s) <= 0.5 + 1e-3);
+        }
+    }
+    std::vector<float> depth(16 * 8);
+    tracer.readDepth(depth.data());
+    CHECK(std::all_of(depth.begin(), depth.end(), [](float z) { return std::isinf(z) && z > 0.0f; }));
+    CHECK(tracer.accumulatedSamples() == 2);
+}
+
+// Depth = distance along the camera ray to the first hit. Orthographic over the plane z = 0 from z = 3:
+// exactly 3. Perspective toward it from z = 2 with fovy 90 degrees: 2 / cos(angle to the axis), which
+// within a pixel lies between its values at the footprint's nearest and farthest points (1e-5 relative).
+TEST_CASE("path tracer: depth channel equals the analytic distance, +inf on a miss") {
+    test::ValidationGuard guard;
+    core::SceneDescription d = matteFloor(glm::vec3(0.5f), 10.0f);
+    core::RenderSettings settings;
+    settings.maxPathLength = 1;
+    const test::Rendered ortho = test::render(d, test::lookingDown(3.0f, 4.0f), settings, {16, 16}, true);
+    CHECK(std::all_of(ortho.depth.begin(), ortho.depth.end(), [](float z) { return std::abs(z - 3.0f) <= 3e-6f; }));
+
+    core::Camera camera;
+    camera.position = {0.0f, 0.0f, 2.0f};
+    camera.fovy = float(kPi / 2);
+    const uint32_t size = 16;
+    const test::Rendered persp = test::render(d, camera, settings, {size, size}, true);
+    uint64_t outside = 0;
+    for (uint32_t y = 0; y < size; ++y) {
+        for (uint32_t x = 0; x < size; ++x) {
+            // Screen offsets in units of the focal length (tan of half the fov = 1): depth = 2 sqrt(1 + |s|^2).
+            const glm::vec2 lo = 2.0f * glm::vec2(x, y) / float(size) - 1.0f, hi = 2.0f * glm::vec2(x + 1, y + 1) / float(size) - 1.0f;
+            const glm::vec2 nearest = glm::clamp(glm::vec2(0.0f), lo, hi);
+            const glm::vec2 farthest = glm::max(glm::abs(lo), glm::abs(hi));
+            const double z = persp.depth[y * size + x];
+            outside += z < 2.0 * std::sqrt(1.0 + glm::dot(nearest, nearest)) * (1 - 1e-5) ||
+                       z > 2.0 * std::sqrt(1.0 + glm::dot(farthest, farthest)) * (1 + 1e-5);
+        }
+    }
+    CHECK(outside == 0);
+    camera.direction = {0.0f, 0.0f, 1.0f};  // looking away: every ray misses
+    const test::Rendered away = test::render(d, camera, settings, {8, 8}, true);
+    CHECK(std::all_of(away.depth.begin(), away.depth.end(), [](float z) { return std::isinf(z); }));
+}
+
+// A surface of opacity o that emits 1 in front of a black opaque background: a camera sample sees it
+// with probability o, so the mean is o. 32x32x4 samples: standard error sqrt(o (1 - o) / 4096) < 0.008;
+// tolerance 0.03.
+TEST_CASE("path tracer: opacity passes rays through stochastically") {
+    test::ValidationGuard guard;
+    core::SceneDescription d = matteFloor(glm::vec3(0.0f));
+    d.materials[0].emissive = glm::vec3(1.0f);
+    d.materials[0].opacity = 0.3f;
+    core::RenderSettings settings;
+    settings.background = {0.0f, 0.0f, 0.0f, 1.0f};
+    settings.pixelSamples = 4;
+    const test::Rendered r = test::render(d, test::lookingDown(1.0f, 2.0f), settings);
+    CHECK(meanColor(r).r == doctest::Approx(0.3).epsilon(0.1));
+    CHECK(meanColor(r).a == 1.0f);
+}
+
+// Radiance that overflows to +inf (an emitter at the float limit plus a light as strong) is counted and
+// dropped, never accumulated: the image stays 0 and every sample is reported.
+TEST_CASE("path tracer: non-finite samples are counted and dropped") {
+    test::ValidationGuard guard;
+    core::SceneDescription d = matteFloor(glm::vec3(1.0f));
+    d.materials[0].emissive = glm::vec3(3e38f);
+    core::Light light;
+    light.direction = {0.0f, 0.0f, -1.0f};
+    light.intensity = 3e38f;
+    d.lights.push_back(light);
+    core::RenderSettings settings;
+    settings.maxPathLength = 1;
+    settings.pixelSamples = 2;
+    const test::Rendered r = test::render(d, test::lookingDown(1.0f, 2.0f), settings, {8, 8});
+    CHECK(r.stats.nonFiniteSamples == 2 * 64);
+    CHECK(std::all_of(r.color.begin(), r.color.end(), [](const glm::vec4& c) { return c == glm::vec4(0.0f); }));
+}
+
+// Random numbers are keyed by (pixel, sample, bounce, dimension): the same seed gives the same image bit
+// for bit, also when the frame is rendered in many small waves (different queue slots and dispatch
+// sizes); another seed gives another image.
+TEST_CASE("path tracer: same seed, same image, bit for bit, whatever the wave size") {
+    test::ValidationGuard guard;
+    core::SceneDescription d = matteFloor(glm::vec3(0.6f, 0.5f, 0.4f));
+    core::SphereSet balls = test::randomSpheres(20, 51, 1.0f, 0.1f, 0.3f);
+    for (glm::vec3& c : balls.centers) c.z = std::abs(c.z) + 0.3f;
+    d.sphereSets.push_back(balls);
+    d.instances.push_back({{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f), 1});
+    core::Material metal;
+    metal.kind = core::Material::Kind::PhysicallyBased;
+    metal.roughness = 0.3f;
+    d.materials.push_back(metal);
+    core::Light light;
+    light.kind = core::Light::Kind::Quad;
+    light.position = {-1.0f, -1.0f, 3.0f};
+    light.edge1 = {0.0f, 2.0f, 0.0f};
+    light.edge2 = {2.0f, 0.0f, 0.0f};
+    light.intensity = 3.0f;
+    d.lights.push_back(light);
+    core::RenderSettings settings;
+    settings.ambientRadiance = 0.2f;
+    settings.maxPathLength = 6;
+    settings.pixelSamples = 2;
+    settings.seed = 7;
+    core::Camera camera;
+    camera.position = {0.0f, -4.0f, 3.0f};
+    camera.direction = {0.0f, 1.0f, -0.7f};
+    const test::Rendered a = test::render(d, camera, settings);
+    const test::Rendered b = test::render(d, camera, settings, {32, 32}, false, {.queueCapacity = 100});
+    REQUIRE(a.color.size() == b.color.size());
+    CHECK(std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(glm::vec4)) == 0);
+    CHECK(a.stats.raysTraced == b.stats.raysTraced);
+    CHECK(a.stats.raysTraced > 2 * 32 * 32);
+    settings.seed = 8;
+    const test::Rendered c = test::render(d, camera, settings);
+    CHECK(std::memcmp(a.color.data(), c.color.data(), a.color.size() * sizeof(glm::vec4)) != 0);
+}
+
+TEST_CASE("path tracer: bad calls are clear errors") {
+    test::ValidationGuard guard;
+    core::PathTracer tracer(testContext());
+    core::Scene scene(testContext(), core::SceneDescription{});
+    CHECK_THROWS_AS(tracer.render(scene, core::Camera{}, core::RenderSettings{}), std::invalid_argument);
+    CHECK_THROWS_AS(tracer.resize({0, 4}, false), std::invalid_argument);
+    tracer.resize({4, 4}, false);
+    float depth[16];
+    CHECK_THROWS_AS(tracer.readDepth(depth), std::logic_error);
+    core::Camera bad;
+    bad.direction = glm::vec3(0.0f);
+    CHECK_THROWS_AS(tracer.render(scene, bad, core::RenderSettings{}), std::invalid_argument);
+    bad = core::Camera{};
+    bad.position.x = std::numeric_limits<float>::quiet_NaN();
+    CHECK_THROWS_AS(tracer.render(scene, bad, core::RenderSettings{}), std::invalid_argument);
+    std::vector<glm::vec4> color(16);
+    CHECK_THROWS_AS(tracer.readColor(static_cast<core::ColorFormat>(9), color.data()), std::invalid_argument);
+}
