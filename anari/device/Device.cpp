@@ -1,0 +1,360 @@
+// The Ripple device's API entry points: argument checks, object creation through the factory, parameter
+// and reference handling, and forwarding to arrays and frames. Every entry point is guarded: an exception
+// becomes an ERROR status message and a neutral return value.
+#include "anari/device/Device.h"
+
+#include "anari/device/Introspection.h"
+#include "anari/device/ObjectFactory.h"
+#include "anari/device/array/Array.h"
+#include "anari/device/frame/Frame.h"
+#include "anari/device/object/Object.h"
+
+#include <cstring>
+#include <exception>
+
+namespace ripple::device {
+
+namespace {
+
+constexpr int32_t kDeviceVersion = 1;  // the "version" property
+
+template <class Handle> Handle handleOf(Object* object) { return reinterpret_cast<Handle>(object); }
+
+}  // namespace
+
+Device::Device(const char* subtype, ANARIStatusCallback defaultCallback, const void* defaultCallbackUserPtr)
+    : subtype_(subtype ? subtype : "default"), state_(handle(), defaultCallback, defaultCallbackUserPtr) {}
+
+Device::~Device() {
+    for (auto& [key, array] : parameterArrays_) array->release();
+    if (state_.liveObjects > 0)
+        state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_NO_ERROR,
+                      "device released with " + std::to_string(state_.liveObjects.load()) +
+                          " object(s) still alive (not released by the application)");
+}
+
+template <class Body> auto Device::guarded(const char* call, Body&& body) -> decltype(body()) {
+    try {
+        return body();
+    } catch (const std::exception& error) {
+        state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_UNKNOWN_ERROR,
+                      std::string(call) + ": " + error.what());
+    } catch (...) {
+        state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_UNKNOWN_ERROR,
+                      std::string(call) + ": unknown exception");
+    }
+    if constexpr (!std::is_void_v<decltype(body())>) return {};
+}
+
+bool Device::isDevice(ANARIObject object) const {
+    return reinterpret_cast<const void*>(object) == static_cast<const abi::DeviceInterface*>(this);
+}
+
+Object* Device::objectFrom(ANARIObject handle, const char* call) {
+    if (!handle) {
+        state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                      std::string(call) + ": NULL object handle");
+        return nullptr;
+    }
+    return reinterpret_cast<Object*>(handle);
+}
+
+// --- creation ------------------------------------------------------------------------------------------
+
+ANARIArray Device::newArray(ANARIDataType arrayType, const void* appMemory, ANARIMemoryDeleter deleter,
+                            const void* userData, ANARIDataType elementType, uint64_t n1, uint64_t n2,
+                            uint64_t n3) {
+    return guarded("anariNewArray", [&]() -> ANARIArray {
+        if (ripple_anari::sizeOf(elementType) == 0 || elementType == ANARI_STRING) {
+            state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                          "anariNewArray: unsupported element type " + std::string(ripple_anari::typeName(elementType)) +
+                              " (" + std::to_string(elementType) + ")");
+            return nullptr;
+        }
+        if (n1 == 0 || n2 == 0 || n3 == 0) {
+            state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                          "anariNewArray: zero elements along an axis");
+            return nullptr;
+        }
+        return handleOf<ANARIArray>(
+            new Array(state_, arrayType, appMemory, deleter, userData, elementType, n1, n2, n3));
+    });
+}
+
+ANARIArray1D Device::newArray1D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,
+                                ANARIDataType dataType, uint64_t n1) {
+    return reinterpret_cast<ANARIArray1D>(newArray(ANARI_ARRAY1D, appMemory, deleter, userData, dataType, n1, 1, 1));
+}
+
+ANARIArray2D Device::newArray2D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,
+                                ANARIDataType dataType, uint64_t n1, uint64_t n2) {
+    return reinterpret_cast<ANARIArray2D>(newArray(ANARI_ARRAY2D, appMemory, deleter, userData, dataType, n1, n2, 1));
+}
+
+ANARIArray3D Device::newArray3D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,
+                                ANARIDataType dataType, uint64_t n1, uint64_t n2, uint64_t n3) {
+    return reinterpret_cast<ANARIArray3D>(newArray(ANARI_ARRAY3D, appMemory, deleter, userData, dataType, n1, n2, n3));
+}
+
+ANARIObject Device::create(ANARIDataType type, const char* subtype, const char* call) {
+    return guarded(call, [&]() -> ANARIObject {
+        return handleOf<ANARIObject>(createObject(state_, type, subtype ? subtype : ""));
+    });
+}
+
+ANARIGeometry Device::newGeometry(const char* t) { return reinterpret_cast<ANARIGeometry>(create(ANARI_GEOMETRY, t, "anariNewGeometry")); }
+ANARIMaterial Device::newMaterial(const char* t) { return reinterpret_cast<ANARIMaterial>(create(ANARI_MATERIAL, t, "anariNewMaterial")); }
+ANARISampler Device::newSampler(const char* t) { return reinterpret_cast<ANARISampler>(create(ANARI_SAMPLER, t, "anariNewSampler")); }
+ANARISurface Device::newSurface() { return reinterpret_cast<ANARISurface>(create(ANARI_SURFACE, "", "anariNewSurface")); }
+ANARISpatialField Device::newSpatialField(const char* t) { return reinterpret_cast<ANARISpatialField>(create(ANARI_SPATIAL_FIELD, t, "anariNewSpatialField")); }
+ANARIVolume Device::newVolume(const char* t) { return reinterpret_cast<ANARIVolume>(create(ANARI_VOLUME, t, "anariNewVolume")); }
+ANARILight Device::newLight(const char* t) { return reinterpret_cast<ANARILight>(create(ANARI_LIGHT, t, "anariNewLight")); }
+ANARIGroup Device::newGroup() { return reinterpret_cast<ANARIGroup>(create(ANARI_GROUP, "", "anariNewGroup")); }
+ANARIInstance Device::newInstance(const char* t) { return reinterpret_cast<ANARIInstance>(create(ANARI_INSTANCE, t, "anariNewInstance")); }
+ANARIWorld Device::newWorld() { return reinterpret_cast<ANARIWorld>(create(ANARI_WORLD, "", "anariNewWorld")); }
+ANARICamera Device::newCamera(const char* t) { return reinterpret_cast<ANARICamera>(create(ANARI_CAMERA, t, "anariNewCamera")); }
+ANARIRenderer Device::newRenderer(const char* t) { return reinterpret_cast<ANARIRenderer>(create(ANARI_RENDERER, t, "anariNewRenderer")); }
+ANARIFrame Device::newFrame() { return reinterpret_cast<ANARIFrame>(create(ANARI_FRAME, "", "anariNewFrame")); }
+
+ANARIObject Device::newObject(const char* objectType, const char* type) {
+    static const std::pair<const char*, ANARIDataType> kTypes[] = {
+        {"camera", ANARI_CAMERA},     {"frame", ANARI_FRAME},       {"geometry", ANARI_GEOMETRY},
+        {"group", ANARI_GROUP},       {"instance", ANARI_INSTANCE}, {"light", ANARI_LIGHT},
+        {"material", ANARI_MATERIAL}, {"renderer", ANARI_RENDERER}, {"sampler", ANARI_SAMPLER},
+        {"spatialField", ANARI_SPATIAL_FIELD}, {"surface", ANARI_SURFACE}, {"volume", ANARI_VOLUME},
+        {"world", ANARI_WORLD}};
+    for (const auto& [name, dataType] : kTypes)
+        if (objectType && std::strcmp(objectType, name) == 0) return create(dataType, type, "anariNewObject");
+    state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                  std::string("anariNewObject: unknown object type '") + (objectType ? objectType : "NULL") + "'");
+    return nullptr;
+}
+
+// --- parameters ----------------------------------------------------------------------------------------
+
+void Device::setDeviceParameter(const char* name, ANARIDataType type, const void* mem) {
+    const std::string key = name;
+    if (key == "statusCallback" && type == ANARI_STATUS_CALLBACK) {
+        std::memcpy(&pendingCallback_, mem, sizeof(pendingCallback_));
+        callbackSet_ = true;
+    } else if (key == "statusCallbackUserData" && type == ANARI_VOID_POINTER) {
+        std::memcpy(&pendingCallbackUserPtr_, mem, sizeof(pendingCallbackUserPtr_));
+        callbackSet_ = true;
+    } else {
+        state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_ARGUMENT,
+                      "device parameter '" + key + "' of type " + ripple_anari::typeName(type) +
+                          " is not used by Ripple; ignored");
+    }
+}
+
+void Device::setParameter(ANARIObject object, const char* name, ANARIDataType dataType, const void* mem) {
+    guarded("anariSetParameter", [&] {
+        if (!name || !mem) {
+            state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                          "anariSetParameter: NULL name or value");
+            return;
+        }
+        if (isDevice(object)) return setDeviceParameter(name, dataType, mem);
+        if (Object* target = objectFrom(object, "anariSetParameter")) target->setParameter(name, dataType, mem);
+    });
+}
+
+void Device::unsetParameter(ANARIObject object, const char* name) {
+    guarded("anariUnsetParameter", [&] {
+        if (isDevice(object) || !name) return;
+        if (Object* target = objectFrom(object, "anariUnsetParameter")) target->unsetParameter(name);
+    });
+}
+
+void Device::unsetAllParameters(ANARIObject object) {
+    guarded("anariUnsetAllParameters", [&] {
+        if (isDevice(object)) return;
+        if (Object* target = objectFrom(object, "anariUnsetAllParameters")) target->unsetAllParameters();
+    });
+}
+
+void* Device::mapParameterArray(ANARIObject object, const char* name, ANARIDataType arrayType,
+                                ANARIDataType elementType, uint64_t n1, uint64_t n2, uint64_t n3,
+                                uint64_t* elementStride) {
+    return guarded("anariMapParameterArray", [&]() -> void* {
+        Object* target = objectFrom(object, "anariMapParameterArray");
+        if (!target || !name || isDevice(object)) return nullptr;
+        auto* array = reinterpret_cast<Array*>(newArray(arrayType, nullptr, nullptr, nullptr, elementType, n1, n2, n3));
+        if (!array) return nullptr;
+        target->setParameter(name, arrayType, &array);  // the parameter holds its own reference
+        auto& slot = parameterArrays_[{target, name}];
+        if (slot) slot->release();
+        slot = array;  // ours, until unmapped
+        if (elementStride) *elementStride = ripple_anari::sizeOf(elementType);
+        return array->map();
+    });
+}
+
+void* Device::mapParameterArray1D(ANARIObject o, const char* n, ANARIDataType t, uint64_t n1, uint64_t* s) {
+    return mapParameterArray(o, n, ANARI_ARRAY1D, t, n1, 1, 1, s);
+}
+void* Device::mapParameterArray2D(ANARIObject o, const char* n, ANARIDataType t, uint64_t n1, uint64_t n2,
+                                  uint64_t* s) {
+    return mapParameterArray(o, n, ANARI_ARRAY2D, t, n1, n2, 1, s);
+}
+void* Device::mapParameterArray3D(ANARIObject o, const char* n, ANARIDataType t, uint64_t n1, uint64_t n2,
+                                  uint64_t n3, uint64_t* s) {
+    return mapParameterArray(o, n, ANARI_ARRAY3D, t, n1, n2, n3, s);
+}
+
+void Device::unmapParameterArray(ANARIObject object, const char* name) {
+    guarded("anariUnmapParameterArray", [&] {
+        auto it = parameterArrays_.find({reinterpret_cast<Object*>(object), name ? name : ""});
+        if (it == parameterArrays_.end()) {
+            state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_OPERATION,
+                          std::string("anariUnmapParameterArray: parameter '") + (name ? name : "NULL") +
+                              "' was not mapped");
+            return;
+        }
+        Array* array = it->second;
+        parameterArrays_.erase(it);
+        array->unmap();
+        array->release();
+    });
+}
+
+void Device::commitParameters(ANARIObject object) {
+    guarded("anariCommitParameters", [&] {
+        if (isDevice(object)) {
+            if (callbackSet_) state_.setStatusCallback(pendingCallback_, pendingCallbackUserPtr_);
+            return;
+        }
+        if (Object* target = objectFrom(object, "anariCommitParameters")) target->commitParameters();
+    });
+}
+
+// --- lifetime ------------------------------------------------------------------------------------------
+
+void Device::release(ANARIObject object) {
+    if (!object) return;  // anariRelease(device, NULL) is legal and does nothing
+    if (isDevice(object)) {
+        if (--references_ == 0) delete this;
+        return;
+    }
+    guarded("anariRelease", [&] { reinterpret_cast<Object*>(object)->release(); });
+}
+
+void Device::retain(ANARIObject object) {
+    if (!object) return;
+    if (isDevice(object)) {
+        ++references_;
+        return;
+    }
+    guarded("anariRetain", [&] { reinterpret_cast<Object*>(object)->retain(); });
+}
+
+// --- arrays --------------------------------------------------------------------------------------------
+
+void* Device::mapArray(ANARIArray array) {
+    return guarded("anariMapArray", [&]() -> void* {
+        Object* target = objectFrom(array, "anariMapArray");
+        return target ? static_cast<Array*>(target)->map() : nullptr;
+    });
+}
+
+void Device::unmapArray(ANARIArray array) {
+    guarded("anariUnmapArray", [&] {
+        if (Object* target = objectFrom(array, "anariUnmapArray")) static_cast<Array*>(target)->unmap();
+    });
+}
+
+// --- properties and introspection ----------------------------------------------------------------------
+
+int Device::getProperty(ANARIObject object, const char* name, ANARIDataType type, void* mem, uint64_t size,
+                        ANARIWaitMask mask) {
+    return guarded("anariGetProperty", [&]() -> int {
+        if (!name || !mem) return 0;
+        const std::string key = name;
+        if (isDevice(object)) {
+            if (key == "version" && type == ANARI_INT32 && size >= sizeof(int32_t)) {
+                std::memcpy(mem, &kDeviceVersion, sizeof(int32_t));
+                return 1;
+            }
+            if (key == "extension" && type == ANARI_STRING_LIST && size >= sizeof(const char**)) {
+                const char** list = deviceExtensions();
+                std::memcpy(mem, &list, sizeof(list));
+                return 1;
+            }
+            return 0;
+        }
+        Object* target = objectFrom(object, "anariGetProperty");
+        return target && target->getProperty(key, type, mem, size, mask == ANARI_WAIT) ? 1 : 0;
+    });
+}
+
+const char** Device::getObjectSubtypes(ANARIDataType objectType) {
+    return guarded("anariGetObjectSubtypes", [&] { return objectSubtypes(objectType); });
+}
+
+const void* Device::getObjectInfo(ANARIDataType objectType, const char* objectSubtype, const char* infoName,
+                                  ANARIDataType infoType) {
+    return guarded("anariGetObjectInfo", [&] { return objectInfo(objectType, objectSubtype, infoName, infoType); });
+}
+
+const void* Device::getParameterInfo(ANARIDataType objectType, const char* objectSubtype,
+                                     const char* parameterName, ANARIDataType parameterType, const char* infoName,
+                                     ANARIDataType infoType) {
+    return guarded("anariGetParameterInfo", [&] {
+        return parameterInfo(objectType, objectSubtype, parameterName, parameterType, infoName, infoType);
+    });
+}
+
+// --- frames --------------------------------------------------------------------------------------------
+
+namespace {
+Frame* frameFrom(ANARIFrame handle) {
+    auto* object = reinterpret_cast<Object*>(handle);
+    return object && object->type() == ANARI_FRAME ? static_cast<Frame*>(object) : nullptr;
+}
+}  // namespace
+
+const void* Device::mapFrame(ANARIFrame frame, const char* channel, uint32_t* width, uint32_t* height,
+                             ANARIDataType* pixelType) {
+    return guarded("anariMapFrame", [&]() -> const void* {
+        if (width) *width = 0;
+        if (height) *height = 0;
+        if (pixelType) *pixelType = ANARI_UNKNOWN;
+        Frame* target = frameFrom(frame);
+        if (!target || !channel) {
+            state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                          "anariMapFrame: not a frame, or NULL channel");
+            return nullptr;
+        }
+        return target->map(channel, width, height, pixelType);
+    });
+}
+
+void Device::unmapFrame(ANARIFrame frame, const char* channel) {
+    guarded("anariUnmapFrame", [&] {
+        if (Frame* target = frameFrom(frame); target && channel) target->unmap(channel);
+    });
+}
+
+void Device::renderFrame(ANARIFrame frame) {
+    guarded("anariRenderFrame", [&] {
+        if (Frame* target = frameFrom(frame)) return target->renderFrame();
+        state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT, "anariRenderFrame: not a frame");
+    });
+}
+
+int Device::frameReady(ANARIFrame frame, ANARIWaitMask mask) {
+    return guarded("anariFrameReady", [&]() -> int {
+        Frame* target = frameFrom(frame);
+        return target && target->ready(mask == ANARI_WAIT) ? 1 : 0;
+    });
+}
+
+void Device::discardFrame(ANARIFrame frame) {
+    guarded("anariDiscardFrame", [&] {
+        if (Frame* target = frameFrom(frame)) target->discard();
+    });
+}
+
+Device::ProcAddress Device::getProcAddress(const char*) { return nullptr; }  // no extension entry points
+
+}  // namespace ripple::device

@@ -1,0 +1,290 @@
+// Ripple's subtype and parameter tables for anariGetObjectSubtypes / ObjectInfo / ParameterInfo, and its
+// extension list (see Introspection.h). They describe what the object classes read in commit().
+#include "anari/device/Introspection.h"
+
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <string_view>
+#include <vector>
+
+namespace ripple::device {
+namespace {
+
+// Default values, in the parameter's own type.
+constexpr float kZero = 0.0f;
+constexpr float kHalf = 0.5f;
+constexpr float kOne = 1.0f;
+constexpr float kIor = 1.5f;
+constexpr float kFovy = 1.0471975512f;  // pi / 3
+constexpr float kGrey[3] = {0.8f, 0.8f, 0.8f};
+constexpr float kWhite[3] = {1.0f, 1.0f, 1.0f};
+constexpr float kBlack[3] = {0.0f, 0.0f, 0.0f};
+constexpr float kOpaqueBlack[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+constexpr float kOrigin[3] = {0.0f, 0.0f, 0.0f};
+constexpr float kMinusZ[3] = {0.0f, 0.0f, -1.0f};
+constexpr float kPlusY[3] = {0.0f, 1.0f, 0.0f};
+constexpr float kPlusX[3] = {1.0f, 0.0f, 0.0f};
+constexpr float kUnitRegion[4] = {0.0f, 0.0f, 1.0f, 1.0f};
+constexpr float kIdentity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+constexpr float kNoOffset[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+constexpr int32_t kTrue = 1;
+constexpr int32_t kFalse = 0;
+constexpr int32_t kOneSample = 1;
+constexpr int32_t kPathLength = 5;
+
+constexpr const char* kCaps[] = {"none", "first", "second", "both", nullptr};
+constexpr const char* kAlphaModes[] = {"opaque", "blend", "mask", nullptr};
+constexpr const char* kFilters[] = {"nearest", "linear", nullptr};
+constexpr const char* kWrapModes[] = {"clampToEdge", "repeat", "mirrorRepeat", nullptr};
+constexpr const char* kSides[] = {"front", "back", "both", nullptr};
+constexpr const char* kAttributes[] = {"attribute0", nullptr};
+constexpr const char* kColorAttribute[] = {"color", nullptr};
+
+struct Param {
+    const char* name;
+    ANARIDataType type;
+    const char* description;
+    const void* defaultValue = nullptr;  // of `type`; for ANARI_STRING the string itself
+    const char* const* values = nullptr; // accepted strings, nullptr-terminated
+    bool required = false;
+};
+
+struct Entry {
+    ANARIDataType type;
+    const char* subtype;  // "" for types without subtypes
+    const char* description;
+    std::vector<Param> parameters;
+};
+
+std::vector<Param> joined(std::initializer_list<std::vector<Param>> parts) {
+    std::vector<Param> all;
+    for (const std::vector<Param>& part : parts) all.insert(all.end(), part.begin(), part.end());
+    return all;
+}
+
+const std::vector<Param> kName = {{"name", ANARI_STRING, "optional object name"}};
+
+const std::vector<Param> kGeometryCommon = joined({kName, {
+    {"vertex.position", ANARI_ARRAY1D, "vertex positions (FLOAT32_VEC3)", nullptr, nullptr, true},
+    {"vertex.color", ANARI_ARRAY1D, "per-vertex colour (any numeric or sRGB type, up to 4 components)"},
+    {"primitive.color", ANARI_ARRAY1D, "per-primitive colour"},
+    {"color", ANARI_FLOAT32_VEC4, "uniform colour, when no per-vertex or per-primitive colour is given"},
+}});
+
+const std::vector<Param> kMeshExtras = {
+    {"vertex.normal", ANARI_ARRAY1D, "shading normals (FLOAT32_VEC3)"},
+    {"vertex.attribute0", ANARI_ARRAY1D, "texture coordinates read by image2D samplers (FLOAT32_VEC2)"},
+};
+
+const std::vector<Param> kViewCommon = joined({kName, {
+    {"position", ANARI_FLOAT32_VEC3, "camera position", kOrigin},
+    {"direction", ANARI_FLOAT32_VEC3, "main viewing direction", kMinusZ},
+    {"up", ANARI_FLOAT32_VEC3, "up direction", kPlusY},
+    {"imageRegion", ANARI_FLOAT32_BOX2, "region of the screen mapped to the frame", kUnitRegion},
+    {"aspect", ANARI_FLOAT32, "width / height; the frame's when unset"},
+}});
+
+const std::vector<Param> kLightCommon = joined({kName, {{"color", ANARI_FLOAT32_VEC3, "colour of the light", kWhite}}});
+
+const std::vector<Param> kAlpha = {
+    {"alphaMode", ANARI_STRING, "read, not used yet: surfaces render opaque", "opaque", kAlphaModes},
+    {"alphaCutoff", ANARI_FLOAT32, "read, not used yet", &kHalf},
+};
+
+const std::vector<Entry>& table() {
+    static const std::vector<Entry> entries = {
+        {ANARI_GEOMETRY, "triangle", "triangle mesh, indexed (primitive.index UINT32_VEC3) or not",
+         joined({kGeometryCommon, kMeshExtras, {{"primitive.index", ANARI_ARRAY1D, "vertex indices (UINT32_VEC3)"}}})},
+        {ANARI_GEOMETRY, "quad", "quad mesh, rendered as two triangles per quad",
+         joined({kGeometryCommon, kMeshExtras, {{"primitive.index", ANARI_ARRAY1D, "vertex indices (UINT32_VEC4)"}}})},
+        {ANARI_GEOMETRY, "sphere", "spheres centred on the vertices",
+         joined({kGeometryCommon, {
+             {"primitive.index", ANARI_ARRAY1D, "vertices to place spheres on (UINT32)"},
+             {"vertex.radius", ANARI_ARRAY1D, "per-sphere radius (FLOAT32)"},
+             {"radius", ANARI_FLOAT32, "radius of all spheres when vertex.radius is unset", &kOne},
+         }})},
+        {ANARI_GEOMETRY, "cylinder", "cylinders between vertex pairs",
+         joined({kGeometryCommon, {
+             {"primitive.index", ANARI_ARRAY1D, "vertex pairs (UINT32_VEC2)"},
+             {"primitive.radius", ANARI_ARRAY1D, "per-cylinder radius (FLOAT32)"},
+             {"radius", ANARI_FLOAT32, "radius of all cylinders when primitive.radius is unset", &kOne},
+             {"caps", ANARI_STRING, "closed ends; 'first' and 'second' close both", "none", kCaps},
+         }})},
+        {ANARI_MATERIAL, "matte", "Lambertian diffuse",
+         joined({kName, kAlpha, {
+             {"color", ANARI_FLOAT32_VEC3, "diffuse colour", kGrey},
+             {"color", ANARI_SAMPLER, "diffuse colour from an image2D sampler"},
+             {"color", ANARI_STRING, "diffuse colour from the geometry's colour attribute", "color", kColorAttribute},
+             {"opacity", ANARI_FLOAT32, "opacity", &kOne},
+         }})},
+        {ANARI_MATERIAL, "physicallyBased", "glTF metallic-roughness",
+         joined({kName, kAlpha, {
+             {"baseColor", ANARI_FLOAT32_VEC3, "base colour", kWhite},
+             {"baseColor", ANARI_SAMPLER, "base colour from an image2D sampler"},
+             {"baseColor", ANARI_STRING, "base colour from the geometry's colour attribute", "color", kColorAttribute},
+             {"opacity", ANARI_FLOAT32, "opacity", &kOne},
+             {"metallic", ANARI_FLOAT32, "metalness", &kOne},
+             {"roughness", ANARI_FLOAT32, "roughness", &kOne},
+             {"emissive", ANARI_FLOAT32_VEC3, "emitted radiance", kBlack},
+             {"ior", ANARI_FLOAT32, "index of refraction", &kIor},
+         }})},
+        {ANARI_SAMPLER, "image2D", "2D image texture",
+         joined({kName, {
+             {"image", ANARI_ARRAY2D, "texels (UFIXED8_VEC4, UFIXED8_RGBA_SRGB, FLOAT32_VEC4...)", nullptr, nullptr,
+              true},
+             {"inAttribute", ANARI_STRING, "texture coordinate attribute", "attribute0", kAttributes},
+             {"filter", ANARI_STRING, "texel filter", "linear", kFilters},
+             {"wrapMode1", ANARI_STRING, "wrap mode along u", "clampToEdge", kWrapModes},
+             {"wrapMode2", ANARI_STRING, "wrap mode along v", "clampToEdge", kWrapModes},
+             {"inTransform", ANARI_FLOAT32_MAT4, "applied to (u, v, 0, 1) before lookup", kIdentity},
+             {"inOffset", ANARI_FLOAT32_VEC4, "added after inTransform", kNoOffset},
+             {"outTransform", ANARI_FLOAT32_MAT4, "applied to the texel", kIdentity},
+         }})},
+        {ANARI_LIGHT, "directional", "parallel light",
+         joined({kLightCommon, {
+             {"direction", ANARI_FLOAT32_VEC3, "direction the light travels", kMinusZ},
+             {"irradiance", ANARI_FLOAT32, "W/m^2 on a surface facing the light", &kOne},
+         }})},
+        {ANARI_LIGHT, "point", "isotropic point light",
+         joined({kLightCommon, {
+             {"position", ANARI_FLOAT32_VEC3, "position", kOrigin},
+             {"intensity", ANARI_FLOAT32, "W/sr", &kOne},
+             {"power", ANARI_FLOAT32, "W, used when intensity is unset"},
+         }})},
+        {ANARI_LIGHT, "quad", "emitting parallelogram",
+         joined({kLightCommon, {
+             {"position", ANARI_FLOAT32_VEC3, "a corner", kOrigin},
+             {"edge1", ANARI_FLOAT32_VEC3, "first edge", kPlusX},
+             {"edge2", ANARI_FLOAT32_VEC3, "second edge", kPlusY},
+             {"intensity", ANARI_FLOAT32, "W/sr along the normal", &kOne},
+             {"power", ANARI_FLOAT32, "W, used when radiance is unset"},
+             {"radiance", ANARI_FLOAT32, "W/sr/m^2, takes precedence"},
+             {"side", ANARI_STRING, "emitting side(s); front is along edge1 x edge2", "front", kSides},
+         }})},
+        {ANARI_CAMERA, "perspective", "pinhole camera",
+         joined({kViewCommon, {{"fovy", ANARI_FLOAT32, "vertical field of view in radians", &kFovy}}})},
+        {ANARI_CAMERA, "orthographic", "parallel projection",
+         joined({kViewCommon, {{"height", ANARI_FLOAT32, "height of the image plane in world units", &kOne}}})},
+        {ANARI_INSTANCE, "transform", "a group placed by an affine transform",
+         joined({kName, {
+             {"group", ANARI_GROUP, "the group placed", nullptr, nullptr, true},
+             {"transform", ANARI_FLOAT32_MAT4, "object to world, column-major", kIdentity},
+             {"id", ANARI_UINT32, "instance id; the position in the world's array when unset"},
+         }})},
+        {ANARI_RENDERER, "default", "wavefront path tracer",
+         joined({kName, {
+             {"background", ANARI_FLOAT32_VEC4, "colour seen by camera rays that miss", kOpaqueBlack},
+             {"ambientColor", ANARI_FLOAT32_VEC3, "colour of the uniform environment light", kWhite},
+             {"ambientRadiance", ANARI_FLOAT32, "radiance of the uniform environment light", &kZero},
+             {"pixelSamples", ANARI_INT32, "samples per pixel added by each anariRenderFrame", &kOneSample},
+             {"maxPathLength", ANARI_INT32, "surface interactions per path", &kPathLength},
+         }})},
+        {ANARI_SURFACE, "", "a geometry with its material",
+         joined({kName, {
+             {"geometry", ANARI_GEOMETRY, "the geometry", nullptr, nullptr, true},
+             {"material", ANARI_MATERIAL, "the material", nullptr, nullptr, true},
+             {"visible", ANARI_BOOL, "whether it renders", &kTrue},
+             {"id", ANARI_UINT32, "object id; the position in its array when unset"},
+         }})},
+        {ANARI_GROUP, "", "surfaces and lights placed together by instances",
+         joined({kName, {
+             {"surface", ANARI_ARRAY1D, "surfaces (ANARI_SURFACE)"},
+             {"light", ANARI_ARRAY1D, "lights (ANARI_LIGHT)"},
+         }})},
+        {ANARI_WORLD, "", "everything a frame renders",
+         joined({kName, {
+             {"instance", ANARI_ARRAY1D, "instances (ANARI_INSTANCE)"},
+             {"surface", ANARI_ARRAY1D, "surfaces placed without an instance"},
+             {"light", ANARI_ARRAY1D, "lights placed without an instance"},
+         }})},
+        {ANARI_FRAME, "", "an image rendered asynchronously, accumulating while nothing changes",
+         joined({kName, {
+             {"world", ANARI_WORLD, "what to render", nullptr, nullptr, true},
+             {"camera", ANARI_CAMERA, "the view", nullptr, nullptr, true},
+             {"renderer", ANARI_RENDERER, "how", nullptr, nullptr, true},
+             {"size", ANARI_UINT32_VEC2, "width and height in pixels", nullptr, nullptr, true},
+             {"channel.color", ANARI_DATA_TYPE, "UFIXED8_VEC4, UFIXED8_RGBA_SRGB or FLOAT32_VEC4"},
+             {"channel.depth", ANARI_DATA_TYPE, "FLOAT32: distance to the first hit"},
+         }})},
+    };
+    return entries;
+}
+
+bool sameSubtype(const char* a, const char* b) {
+    return std::string_view(a ? a : "") == std::string_view(b ? b : "");
+}
+
+const Entry* find(ANARIDataType type, const char* subtype) {
+    for (const Entry& entry : table())
+        if (entry.type == type && sameSubtype(entry.subtype, subtype)) return &entry;
+    return nullptr;
+}
+
+}  // namespace
+
+const char** deviceSubtypes() {
+    static const char* subtypes[] = {"default", nullptr};
+    return subtypes;
+}
+
+const char** deviceExtensions() {
+    static const char* extensions[] = {
+        "ANARI_KHR_GEOMETRY_TRIANGLE",    "ANARI_KHR_GEOMETRY_QUAD",          "ANARI_KHR_GEOMETRY_SPHERE",
+        "ANARI_KHR_GEOMETRY_CYLINDER",    "ANARI_KHR_MATERIAL_MATTE",         "ANARI_KHR_MATERIAL_PHYSICALLY_BASED",
+        "ANARI_KHR_SAMPLER_IMAGE2D",      "ANARI_KHR_LIGHT_DIRECTIONAL",      "ANARI_KHR_LIGHT_POINT",
+        "ANARI_KHR_LIGHT_QUAD",           "ANARI_KHR_CAMERA_PERSPECTIVE",     "ANARI_KHR_CAMERA_ORTHOGRAPHIC",
+        "ANARI_KHR_INSTANCE_TRANSFORM",   "ANARI_KHR_RENDERER_BACKGROUND_COLOR", "ANARI_KHR_RENDERER_AMBIENT_LIGHT",
+        nullptr};
+    return extensions;
+}
+
+const char** objectSubtypes(ANARIDataType objectType) {
+    static const std::map<ANARIDataType, std::vector<const char*>> lists = [] {
+        std::map<ANARIDataType, std::vector<const char*>> byType;
+        for (const Entry& entry : table())
+            if (entry.subtype[0] != '\0') byType[entry.type].push_back(entry.subtype);
+        for (auto& [type, names] : byType) names.push_back(nullptr);
+        return byType;
+    }();
+    auto it = lists.find(objectType);
+    return it == lists.end() ? nullptr : const_cast<const char**>(it->second.data());
+}
+
+const void* objectInfo(ANARIDataType objectType, const char* subtype, const char* infoName, ANARIDataType infoType) {
+    const Entry* entry = find(objectType, subtype);
+    if (!entry || !infoName) return nullptr;
+    const std::string_view info = infoName;
+    if (info == "description" && infoType == ANARI_STRING) return entry->description;
+    if (info == "parameter" && infoType == ANARI_PARAMETER_LIST) {
+        static const std::map<const Entry*, std::vector<ANARIParameter>> lists = [] {
+            std::map<const Entry*, std::vector<ANARIParameter>> byEntry;
+            for (const Entry& e : table()) {
+                std::vector<ANARIParameter>& list = byEntry[&e];
+                for (const Param& p : e.parameters) list.push_back(ANARIParameter{p.name, p.type});
+                list.push_back(ANARIParameter{nullptr, ANARI_UNKNOWN});
+            }
+            return byEntry;
+        }();
+        return lists.at(entry).data();
+    }
+    return nullptr;
+}
+
+const void* parameterInfo(ANARIDataType objectType, const char* subtype, const char* parameterName,
+                          ANARIDataType parameterType, const char* infoName, ANARIDataType infoType) {
+    const Entry* entry = find(objectType, subtype);
+    if (!entry || !parameterName || !infoName) return nullptr;
+    const Param* param = nullptr;
+    for (const Param& p : entry->parameters)
+        if (std::strcmp(p.name, parameterName) == 0 && p.type == parameterType) param = &p;
+    if (!param) return nullptr;
+    const std::string_view info = infoName;
+    if (info == "description" && infoType == ANARI_STRING) return param->description;
+    if (info == "required" && infoType == ANARI_BOOL) return param->required ? &kTrue : &kFalse;
+    if (info == "default" && infoType == parameterType) return param->defaultValue;
+    if (info == "value" && infoType == ANARI_STRING_LIST) return param->values;
+    return nullptr;
+}
+
+}  // namespace ripple::device

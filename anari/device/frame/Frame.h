@@ -1,0 +1,93 @@
+// ANARI frame: renders a world through a camera with a renderer into the requested channels. renderFrame()
+// syncs the scene on the calling thread, then returns while a worker thread runs core::PathTracer; frames
+// accumulate samples until the world, camera, renderer or size change.
+#pragma once
+
+#include "anari/device/camera/Camera.h"
+#include "anari/device/renderer/Renderer.h"
+#include "anari/device/scene/SceneSync.h"
+#include "anari/device/world/World.h"
+#include "core/render/PathTracer.h"
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace ripple::device {
+
+class Frame final : public Object {
+public:
+    explicit Frame(DeviceState& state);
+    ~Frame() override;
+
+    void commit() override;
+    // "duration" (FLOAT32 seconds of the last frame), "numSamples" (UINT32 accumulated samples per pixel),
+    // "ripple.raysPerSecond" (FLOAT32, closest-hit and shadow rays of the last frame), and for tests of
+    // what a change rebuilds: "ripple.sceneBuilds" (UINT64, scenes built so far) and "ripple.blasBuilt" /
+    // "ripple.blasReused" (UINT64, of the latest scene build).
+    bool getProperty(std::string_view name, ANARIDataType type, void* mem, uint64_t size, bool wait) override;
+
+    // The calls the Device forwards. map() waits for a frame in progress; rows start at the bottom.
+    void renderFrame();
+    bool ready(bool wait);
+    void discard();
+    const void* map(std::string_view channel, uint32_t* width, uint32_t* height, ANARIDataType* pixelType);
+    void unmap(std::string_view channel);
+
+private:
+    // What one renderFrame() call hands to the worker: copies only, so the application may change its
+    // objects while the frame renders.
+    struct Job {
+        glm::uvec2 size{0, 0};
+        ANARIDataType colorType = ANARI_UNKNOWN;
+        bool depth = false;
+        bool restartAccumulation = false;
+        core::Camera camera;
+        core::RenderSettings settings;
+    };
+    // What the worker hands back (guarded by resultsMutex_).
+    struct Results {
+        glm::uvec2 size{0, 0};
+        ANARIDataType colorType = ANARI_UNKNOWN;
+        std::vector<uint8_t> color;
+        std::vector<float> depth;
+        float duration = 0.0f;
+        uint32_t numSamples = 0;
+        float raysPerSecond = 0.0f;
+        uint64_t sceneBuilds = 0;
+        uint64_t blasBuilt = 0;
+        uint64_t blasReused = 0;
+    };
+
+    // Why this frame cannot render now, or empty when it can.
+    std::string whyNotRenderable() const;
+    void run(const Job& job);
+    void waitForWorker();
+
+    // Committed parameters.
+    glm::uvec2 size_{0, 0};
+    ANARIDataType colorType_ = ANARI_UNKNOWN;
+    bool depth_ = false;
+    ObjectRef<World> world_;
+    ObjectRef<Camera> camera_;
+    ObjectRef<Renderer> renderer_;
+
+    // What the accumulation so far was rendered with: a change to any of them starts it over.
+    const Object* renderedCamera_ = nullptr;
+    uint64_t renderedCameraStamp_ = 0;
+    const Object* renderedRenderer_ = nullptr;
+    uint64_t renderedRendererStamp_ = 0;
+
+    SceneSync sync_;                            // used by the API thread, then the worker, never both at once
+    std::unique_ptr<core::PathTracer> tracer_;  // worker only
+    bool tracerHasDepth_ = false;               // worker only
+    std::thread worker_;
+    std::atomic<bool> finished_{true};
+    std::atomic<bool> discarded_{false};
+    mutable std::mutex resultsMutex_;
+    Results results_;
+};
+
+}  // namespace ripple::device

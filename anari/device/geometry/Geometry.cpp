@@ -1,0 +1,186 @@
+// Shared parameter pulling and validation of the geometry subtypes, and the triangle/quad mesh builder.
+#include "anari/device/geometry/Geometry.h"
+
+#include "anari/device/scene/ArrayConversion.h"
+
+#include <algorithm>
+#include <string>
+
+namespace ripple::device {
+namespace {
+
+std::string quoted(std::string_view name) {
+    // Appending, not "'" + std::string(name): GCC 12 at -O3 warns (-Wrestrict) on the latter falsely.
+    std::string text = "'";
+    text.append(name).append("'");
+    return text;
+}
+
+struct BoundsOf {
+    bvh::Aabb operator()(const std::monostate&) const { return {}; }
+    bvh::Aabb operator()(const core::TriangleMesh& mesh) const {
+        bvh::Aabb box;
+        for (const glm::vec3& p : mesh.positions) box.extend(p);
+        return box;
+    }
+    bvh::Aabb operator()(const core::SphereSet& spheres) const {
+        bvh::Aabb box;
+        for (size_t i = 0; i < spheres.centers.size(); ++i) {
+            const float r = spheres.radii.size() == 1 ? spheres.radii[0] : spheres.radii[i];
+            box.extend(spheres.centers[i] - glm::vec3(r));
+            box.extend(spheres.centers[i] + glm::vec3(r));
+        }
+        return box;
+    }
+    bvh::Aabb operator()(const core::CylinderSet& cylinders) const {
+        // Every position is an endpoint of some cylinder; the largest radius bounds them all.
+        float r = 0.0f;
+        for (float radius : cylinders.radii) r = std::max(r, radius);
+        bvh::Aabb box;
+        for (const glm::vec3& p : cylinders.positions) {
+            box.extend(p - glm::vec3(r));
+            box.extend(p + glm::vec3(r));
+        }
+        return box;
+    }
+};
+
+}  // namespace
+
+Geometry::Geometry(DeviceState& state, std::string subtype) : SceneObject(state, ANARI_GEOMETRY, std::move(subtype)) {}
+
+void Geometry::commit() {
+    forgetDependencies();
+    shape_ = build();
+    bounds_ = std::visit(BoundsOf{}, shape_);
+}
+
+bool Geometry::isValid() const {
+    return Object::isValid() && !std::holds_alternative<std::monostate>(shape_);
+}
+
+std::optional<std::vector<glm::vec3>> Geometry::pullPositions() {
+    Array* array = getArray("vertex.position");
+    if (!array) {
+        invalidate(has("vertex.position") ? "parameter 'vertex.position' must be an ARRAY1D of FLOAT32_VEC3"
+                                          : "missing required parameter 'vertex.position'");
+        return std::nullopt;
+    }
+    useArray(array);
+    if (componentCount(array->elementType()) != 3) {
+        invalidate("parameter 'vertex.position' has elements of type " +
+                   std::string(ripple_anari::typeName(array->elementType())) + ", expected FLOAT32_VEC3");
+        return std::nullopt;
+    }
+    const std::vector<glm::vec4> values = *readFloatVectors(*array);
+    if (const int64_t bad = firstNonFinite(values); bad >= 0) {
+        invalidate("parameter 'vertex.position' element " + std::to_string(bad) + " is not finite");
+        return std::nullopt;
+    }
+    std::vector<glm::vec3> positions(values.size());
+    for (size_t i = 0; i < values.size(); ++i) positions[i] = glm::vec3(values[i]);
+    return positions;
+}
+
+bool Geometry::pullIndices(std::string_view name, int components, size_t vertexCount, std::vector<uint64_t>& indices) {
+    indices.clear();
+    if (!has(name)) return true;
+    Array* array = getArray(name);
+    if (!array) {
+        invalidate("parameter " + quoted(name) + " must be an ARRAY1D of indices");
+        return false;
+    }
+    useArray(array);
+    std::optional<std::vector<uint64_t>> values = readIndices(*array, components);
+    if (!values) {
+        invalidate("parameter " + quoted(name) + " has elements of type " +
+                   ripple_anari::typeName(array->elementType()) + ", expected " + std::to_string(components) +
+                   " integers per element (e.g. UINT32" + (components > 1 ? "_VEC" + std::to_string(components) : "") +
+                   ")");
+        return false;
+    }
+    for (size_t i = 0; i < values->size(); ++i) {
+        if ((*values)[i] >= vertexCount) {
+            const uint64_t value = (*values)[i];
+            invalidate("parameter " + quoted(name) + " element " + std::to_string(i / components) +
+                       " refers to vertex " +
+                       (value == UINT64_MAX ? std::string("-1 or below") : std::to_string(value)) + ", but there are " +
+                       std::to_string(vertexCount) + " vertices");
+            return false;
+        }
+    }
+    indices = std::move(*values);
+    return true;
+}
+
+std::vector<glm::vec4> Geometry::pullVectors(std::string_view name, size_t count, glm::vec4 fill) {
+    if (!has(name)) return {};
+    Array* array = getArray(name);
+    if (!array) {
+        reportWarning("parameter " + quoted(name) + " must be an ARRAY1D; ignored");
+        return {};
+    }
+    useArray(array);
+    std::optional<std::vector<glm::vec4>> values = readFloatVectors(*array, fill);
+    if (!values) {
+        reportWarning("parameter " + quoted(name) + " has elements of type " +
+                      ripple_anari::typeName(array->elementType()) + ", which are not numbers; ignored");
+        return {};
+    }
+    if (values->size() != count) {
+        reportWarning("parameter " + quoted(name) + " has " + std::to_string(values->size()) + " elements, expected " +
+                      std::to_string(count) + "; ignored");
+        return {};
+    }
+    if (const int64_t bad = firstNonFinite(*values); bad >= 0) {
+        reportWarning("parameter " + quoted(name) + " element " + std::to_string(bad) + " is not finite; ignored");
+        return {};
+    }
+    return std::move(*values);
+}
+
+std::vector<glm::vec4> Geometry::pullUniformColor(size_t count) {
+    const std::optional<glm::vec4> uniform = getOptional<glm::vec4>("color");
+    return uniform ? std::vector<glm::vec4>(count, *uniform) : std::vector<glm::vec4>{};
+}
+
+Geometry::Shape Geometry::buildPolygonMesh(int corners) {
+    std::optional<std::vector<glm::vec3>> positions = pullPositions();
+    if (!positions) return {};
+    const size_t vertexCount = positions->size();
+    std::vector<uint64_t> polygons;
+    if (!pullIndices("primitive.index", corners, vertexCount, polygons)) return {};
+    if (polygons.empty()) {
+        // Without an index array consecutive vertices form the polygons; a partial last one is dropped.
+        if (vertexCount % corners != 0)
+            reportWarning("'vertex.position' has " + std::to_string(vertexCount) + " vertices, not a multiple of " +
+                          std::to_string(corners) + "; the last " + std::to_string(vertexCount % corners) +
+                          " are ignored");
+        polygons.resize(vertexCount / corners * corners);
+        for (size_t i = 0; i < polygons.size(); ++i) polygons[i] = i;
+    }
+    const size_t polygonCount = polygons.size() / corners;
+
+    core::TriangleMesh mesh;
+    mesh.positions = std::move(*positions);
+    mesh.trianglesPerPrimitive = uint32_t(corners - 2);
+    mesh.indices.reserve(polygonCount * mesh.trianglesPerPrimitive);
+    for (size_t p = 0; p < polygonCount; ++p) {
+        const uint64_t* v = &polygons[p * corners];
+        mesh.indices.emplace_back(v[0], v[1], v[2]);
+        if (corners == 4) mesh.indices.emplace_back(v[0], v[2], v[3]);
+    }
+
+    for (const glm::vec4& n : pullVectors("vertex.normal", vertexCount)) mesh.normals.emplace_back(n);
+    mesh.colors = pullVectors("vertex.color", vertexCount);
+    // attribute0 is the texture coordinate an image2D sampler reads by default.
+    for (const glm::vec4& t : pullVectors("vertex.attribute0", vertexCount)) mesh.texcoords.emplace_back(t);
+    std::vector<glm::vec4> polygonColors = pullVectors("primitive.color", polygonCount);
+    if (polygonColors.empty() && mesh.colors.empty()) polygonColors = pullUniformColor(polygonCount);
+    // Core stores primitive colours per triangle: each quad's colour goes to both of its halves.
+    for (const glm::vec4& color : polygonColors)
+        mesh.primitiveColors.insert(mesh.primitiveColors.end(), mesh.trianglesPerPrimitive, color);
+    return mesh;
+}
+
+}  // namespace ripple::device

@@ -1,0 +1,56 @@
+// ANARI geometry: the subtypes (triangle, quad, sphere, cylinder) pull their arrays at commit, validate
+// them and keep the core geometry they describe, ready to be copied into a core::SceneDescription.
+#pragma once
+
+#include "anari/device/scene/SceneObject.h"
+#include "core/bvh/Aabb.h"
+#include "core/scene/SceneDescription.h"
+
+#include <optional>
+#include <variant>
+
+namespace ripple::device {
+
+class Geometry : public SceneObject {
+public:
+    // monostate: nothing valid was committed.
+    using Shape = std::variant<std::monostate, core::TriangleMesh, core::SphereSet, core::CylinderSet>;
+
+    Geometry(DeviceState& state, std::string subtype);
+
+    void commit() final;
+    bool isValid() const override;
+    const Shape& shape() const { return shape_; }
+    // Object-space bounds of the committed primitives (spheres and cylinders include their radii).
+    const bvh::Aabb& bounds() const { return bounds_; }
+
+protected:
+    // The subtype's part of commit(): pulls its parameters and returns the shape, or monostate after
+    // invalidate() named the parameter at fault.
+    virtual Shape build() = 0;
+
+    // "vertex.position": required, three components, all finite.
+    std::optional<std::vector<glm::vec3>> pullPositions();
+    // An optional index array of `components` integers per primitive, each below vertexCount. Fills
+    // `indices` (empty when unset); false after invalidate() for a wrong type or an index out of range.
+    bool pullIndices(std::string_view name, int components, size_t vertexCount, std::vector<uint64_t>& indices);
+    // An optional per-vertex or per-primitive array of float vectors with exactly `count` elements; empty
+    // when unset. A wrong type or count is reported and the attribute ignored (the geometry still renders).
+    std::vector<glm::vec4> pullVectors(std::string_view name, size_t count, glm::vec4 fill = {0, 0, 0, 1});
+    // The uniform "color" repeated `count` times; empty when unset. It applies when neither
+    // "primitive.color" nor "vertex.color" is given.
+    std::vector<glm::vec4> pullUniformColor(size_t count);
+    // Triangle and quad meshes: polygons of `corners` vertices (3 or 4), quads split into two triangles.
+    Shape buildPolygonMesh(int corners);
+
+private:
+    Shape shape_;
+    bvh::Aabb bounds_;
+};
+
+Geometry* newTriangleGeometry(DeviceState& state);
+Geometry* newQuadGeometry(DeviceState& state);
+Geometry* newSphereGeometry(DeviceState& state);
+Geometry* newCylinderGeometry(DeviceState& state);
+
+}  // namespace ripple::device

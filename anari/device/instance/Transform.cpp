@@ -1,0 +1,41 @@
+// Instance subtype "transform" (KHR_INSTANCE_TRANSFORM): "group" (required) placed by "transform", a
+// column-major FLOAT32_MAT4 that must be affine and invertible.
+#include "anari/device/instance/Instance.h"
+
+#include "anari/device/scene/ArrayConversion.h"
+
+#include <cmath>
+
+namespace ripple::device {
+namespace {
+
+class TransformInstance final : public Instance {
+public:
+    explicit TransformInstance(DeviceState& state) : Instance(state, "transform") {}
+
+    void commit() override {
+        forgetDependencies();
+        group_ = dynamic_cast<Group*>(getObject("group", ANARI_GROUP));
+        useChild(group_);
+        id_ = getOptional<uint32_t>("id");
+        transform_ = get<glm::mat4>("transform", glm::mat4(1.0f));
+        if (!group_) {
+            invalidate("missing required parameter 'group'");
+            return;
+        }
+        const glm::vec4 lastRow(transform_[0][3], transform_[1][3], transform_[2][3], transform_[3][3]);
+        const float determinant = glm::determinant(glm::mat3(transform_));
+        bool finite = true;
+        for (int column = 0; column < 4; ++column) finite = finite && allFinite(transform_[column]);
+        if (!finite || lastRow != glm::vec4(0, 0, 0, 1) || !(std::abs(determinant) > 0.0f))
+            invalidate("parameter 'transform' must be a finite, affine, invertible matrix");
+    }
+};
+
+}  // namespace
+
+Instance* newTransformInstance(DeviceState& state) {
+    return new TransformInstance(state);
+}
+
+}  // namespace ripple::device

@@ -1,0 +1,30 @@
+// ANARI light: directional, point and quad lights become a core::Light (in the space of the group or
+// world that holds them; SceneSync applies instance transforms).
+#pragma once
+
+#include "anari/device/scene/SceneObject.h"
+#include "core/scene/SceneDescription.h"
+
+#include <optional>
+
+namespace ripple::device {
+
+class Light : public SceneObject {
+public:
+    Light(DeviceState& state, std::string subtype) : SceneObject(state, ANARI_LIGHT, std::move(subtype)) {}
+    const core::Light& light() const { return light_; }
+
+protected:
+    // For commit(): "color" (default white), with non-finite or negative values reported.
+    glm::vec3 pullColor();
+    // A non-negative finite float parameter, or nullopt when unset or bad (bad is reported).
+    std::optional<float> pullAmount(std::string_view name);
+
+    core::Light light_;
+};
+
+Light* newDirectionalLight(DeviceState& state);
+Light* newPointLight(DeviceState& state);
+Light* newQuadLight(DeviceState& state);
+
+}  // namespace ripple::device

@@ -1,0 +1,86 @@
+// Parameter pulling shared by the material subtypes (see Material.h).
+#include "anari/device/material/Material.h"
+
+#include "anari/device/scene/ArrayConversion.h"
+
+#include <cmath>
+#include <string>
+
+namespace ripple::device {
+
+void Material::reset(core::Material::Kind kind, glm::vec3 baseColor) {
+    forgetDependencies();
+    material_ = core::Material{};
+    material_.kind = kind;
+    material_.baseColor = baseColor;
+    baseColorSampler_ = nullptr;
+}
+
+void Material::pullBaseColor(std::string_view name) {
+    std::string quotedName = "'";  // appended: GCC 12 -O3 warns falsely (-Wrestrict) on "'" + std::string
+    quotedName.append(name).append("'");
+    switch (parameterType(name)) {
+        case ANARI_UNKNOWN: return;  // unset: the subtype's default
+        case ANARI_FLOAT32_VEC3: material_.baseColor = get<glm::vec3>(name, material_.baseColor); break;
+        case ANARI_FLOAT32_VEC4:
+            material_.baseColor = glm::vec3(get<glm::vec4>(name, glm::vec4(material_.baseColor, 1)));
+            break;
+        case ANARI_SAMPLER: {
+            Object* object = getObject(name, ANARI_SAMPLER);
+            auto* sampler = dynamic_cast<Sampler*>(object);
+            if (!sampler) {
+                reportWarning("parameter " + quotedName +
+                              " is a sampler of an unknown subtype; using the default colour");
+                return;
+            }
+            useChild(sampler);
+            baseColorSampler_ = sampler;
+            // The texture multiplies baseColor, so a textured colour starts from white.
+            material_.baseColor = glm::vec3(1.0f);
+            break;
+        }
+        case ANARI_STRING: {
+            const std::string attribute = getString(name, "");
+            if (attribute == "color") {
+                material_.baseColorFromVertexColor = true;
+            } else {
+                reportWarning("parameter " + quotedName + " names attribute '" + attribute +
+                              "'; only \"color\" is supported, using the default colour");
+            }
+            break;
+        }
+        default:
+            reportWarning("parameter " + quotedName + " has type " + ripple_anari::typeName(parameterType(name)) +
+                          ", expected FLOAT32_VEC3, SAMPLER or STRING; using the default colour");
+            (void)findParameter(name);
+    }
+    if (!allFinite(material_.baseColor)) {
+        reportWarning("parameter " + quotedName + " is not finite; using black");
+        material_.baseColor = glm::vec3(0.0f);
+    }
+}
+
+float Material::pullFactor(std::string_view name, float fallback) {
+    const ANARIDataType type = parameterType(name);
+    if (type == ANARI_SAMPLER || type == ANARI_STRING) {
+        (void)findParameter(name);
+        reportWarning("parameter '" + std::string(name) + "' as a " + ripple_anari::typeName(type) +
+                      " is not supported yet; using " + std::to_string(fallback));
+        return fallback;
+    }
+    const float value = get<float>(name, fallback);
+    if (!std::isfinite(value)) {
+        reportWarning("parameter '" + std::string(name) + "' is not finite; using " + std::to_string(fallback));
+        return fallback;
+    }
+    return value;
+}
+
+void Material::pullAlphaMode() {
+    const std::string mode = getString("alphaMode", "opaque");
+    (void)get<float>("alphaCutoff", 0.5f);
+    if (mode != "opaque")
+        reportWarning("alphaMode '" + mode + "' is not supported yet; the surface is rendered with alphaMode 'opaque'");
+}
+
+}  // namespace ripple::device

@@ -1,0 +1,43 @@
+// Status reporting and the lazily created Vulkan context shared by the objects of one device.
+#include "anari/device/object/DeviceState.h"
+
+#include "anari/device/object/Object.h"
+#include "core/vk/Context.h"
+
+#include <cstdlib>
+
+namespace ripple::device {
+
+DeviceState::DeviceState(ANARIDevice handle, ANARIStatusCallback callback, const void* callbackUserPtr)
+    : handle_(handle), callback_(callback), callbackUserPtr_(callbackUserPtr) {}
+
+DeviceState::~DeviceState() = default;
+
+void DeviceState::setStatusCallback(ANARIStatusCallback callback, const void* userPtr) {
+    std::lock_guard lock(reportMutex_);
+    callback_ = callback;
+    callbackUserPtr_ = userPtr;
+}
+
+void DeviceState::report(const Object* source, ANARIStatusSeverity severity, ANARIStatusCode code,
+                         const std::string& message) const {
+    std::lock_guard lock(reportMutex_);
+    if (!callback_) return;
+    auto* sourceHandle = reinterpret_cast<ANARIObject>(const_cast<Object*>(source));
+    callback_(callbackUserPtr_, handle_, sourceHandle, source ? source->type() : ANARI_DEVICE, severity, code,
+              message.c_str());
+}
+
+vk::Context& DeviceState::vulkan() {
+    std::lock_guard lock(vulkanMutex_);
+    if (!vulkan_) {
+        // RIPPLE_VK_VALIDATION=1 turns the Khronos validation layer on (the tests do).
+        vk::ContextOptions options;
+        const char* validation = std::getenv("RIPPLE_VK_VALIDATION");
+        options.validation = validation && std::string(validation) == "1";
+        vulkan_ = std::make_unique<vk::Context>(options);
+    }
+    return *vulkan_;
+}
+
+}  // namespace ripple::device

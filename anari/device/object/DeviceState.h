@@ -1,0 +1,53 @@
+// What every object of one Ripple device shares: the status callback, the Vulkan context (created on
+// first use, so API-only use never touches Vulkan), and the stamp counter that orders changes.
+#pragma once
+
+#include "anari/anari.h"
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace ripple::vk { class Context; }
+
+namespace ripple::device {
+
+class Object;
+
+class DeviceState {
+public:
+    DeviceState(ANARIDevice handle, ANARIStatusCallback callback, const void* callbackUserPtr);
+    ~DeviceState();
+
+    ANARIDevice handle() const { return handle_; }
+    // The application may replace the callback with the device parameters "statusCallback" and
+    // "statusCallbackUserData".
+    void setStatusCallback(ANARIStatusCallback callback, const void* userPtr);
+    // Thread-safe (frames render on worker threads). source may be null for device-level messages.
+    void report(const Object* source, ANARIStatusSeverity severity, ANARIStatusCode code,
+                const std::string& message) const;
+
+    // Monotonic stamp for change tracking (Object::lastCommitted, array unmaps).
+    uint64_t nextStamp() { return ++stamp_; }
+    uint64_t nextSerial() { return ++serial_; }
+
+    // The Vulkan context all frames render with; created on first call (throws vk::VulkanError).
+    vk::Context& vulkan();
+
+    // Live objects (not counting the device), for the leak report at device release.
+    std::atomic<int64_t> liveObjects{0};
+
+private:
+    ANARIDevice handle_;
+    ANARIStatusCallback callback_;
+    const void* callbackUserPtr_;
+    mutable std::mutex reportMutex_;
+    std::atomic<uint64_t> stamp_{0};
+    std::atomic<uint64_t> serial_{0};
+    std::mutex vulkanMutex_;
+    std::unique_ptr<vk::Context> vulkan_;
+};
+
+}  // namespace ripple::device

@@ -1,0 +1,46 @@
+// Renderer parameters: "background" (KHR_RENDERER_BACKGROUND_COLOR), "ambientColor" and
+// "ambientRadiance" (KHR_RENDERER_AMBIENT_LIGHT), "pixelSamples" and "maxPathLength".
+#include "anari/device/renderer/Renderer.h"
+
+#include "anari/device/scene/ArrayConversion.h"
+
+#include <string>
+
+namespace ripple::device {
+
+void Renderer::commit() {
+    settings_ = core::RenderSettings{};
+    settings_.background = get<glm::vec4>("background", settings_.background);
+    if (!allFinite(settings_.background)) {
+        reportWarning("parameter 'background' is not finite; using opaque black");
+        settings_.background = glm::vec4(0, 0, 0, 1);
+    }
+    settings_.ambientColor = get<glm::vec3>("ambientColor", settings_.ambientColor);
+    settings_.ambientRadiance = get<float>("ambientRadiance", settings_.ambientRadiance);
+    if (!allFinite(settings_.ambientColor) || !std::isfinite(settings_.ambientRadiance) ||
+        settings_.ambientRadiance < 0.0f || glm::any(glm::lessThan(settings_.ambientColor, glm::vec3(0.0f)))) {
+        reportWarning(
+            "parameters 'ambientColor' and 'ambientRadiance' must be finite and not negative; no ambient light");
+        settings_.ambientColor = glm::vec3(1.0f);
+        settings_.ambientRadiance = 0.0f;
+    }
+    // Bounds keep one renderFrame call and one path of a bounded length (lavapipe runs everything on the CPU).
+    settings_.pixelSamples = pullCount("pixelSamples", settings_.pixelSamples, 1024);
+    settings_.maxPathLength = pullCount("maxPathLength", settings_.maxPathLength, 64);
+}
+
+uint32_t Renderer::pullCount(std::string_view name, uint32_t fallback, uint32_t most) {
+    int64_t value = fallback;
+    if (parameterType(name) == ANARI_INT32)
+        value = get<int32_t>(name, int32_t(fallback));
+    else if (has(name))
+        value = get<uint32_t>(name, fallback);
+    if (value < 1 || value > int64_t(most)) {
+        reportWarning("parameter '" + std::string(name) + "' must be between 1 and " + std::to_string(most) +
+                      "; using " + std::to_string(fallback));
+        return fallback;
+    }
+    return uint32_t(value);
+}
+
+}  // namespace ripple::device

@@ -1,0 +1,24 @@
+// ANARI renderer "default": the path tracer's settings (background, ambient light, samples per frame,
+// path length).
+#pragma once
+
+#include "anari/device/object/Object.h"
+#include "core/render/PathTracer.h"
+
+namespace ripple::device {
+
+class Renderer final : public Object {
+public:
+    explicit Renderer(DeviceState& state) : Object(state, ANARI_RENDERER, "default") {}
+
+    void commit() override;
+    const core::RenderSettings& settings() const { return settings_; }
+
+private:
+    // pixelSamples and maxPathLength are Ripple's own; INT32 (as other devices take them) or UINT32.
+    uint32_t pullCount(std::string_view name, uint32_t fallback, uint32_t most);
+
+    core::RenderSettings settings_;
+};
+
+}  // namespace ripple::device

@@ -1,0 +1,120 @@
+// Sampler subtype "image2D" (KHR_SAMPLER_IMAGE2D): a 2D image read at the texture coordinate
+// (attribute0), with filter, per-axis wrap modes and input/output transforms.
+#include "anari/device/sampler/Sampler.h"
+
+#include "anari/device/scene/ArrayConversion.h"
+
+#include <cstring>
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace ripple::device {
+namespace {
+
+core::Texture::Wrap wrapMode(const std::string& name) {
+    if (name == "repeat") return core::Texture::Wrap::Repeat;
+    if (name == "mirrorRepeat") return core::Texture::Wrap::MirrorRepeat;
+    return core::Texture::Wrap::ClampToEdge;
+}
+
+class Image2DSampler final : public Sampler {
+public:
+    explicit Image2DSampler(DeviceState& state) : Sampler(state, "image2D") {}
+
+    const core::Texture* texture() const override { return texture_ ? &*texture_ : nullptr; }
+
+    void commit() override {
+        forgetDependencies();
+        texture_.reset();
+        Array* image = getArray("image", ANARI_ARRAY2D);
+        if (!image) {
+            invalidate(has("image") ? "parameter 'image' must be an ARRAY2D" : "missing required parameter 'image'");
+            return;
+        }
+        useArray(image);
+        core::Texture texture;
+        texture.width = uint32_t(image->dim(0));
+        texture.height = uint32_t(image->dim(1));
+        if (texture.width == 0 || texture.height == 0) {
+            invalidate("parameter 'image' is empty");
+            return;
+        }
+        if (!convertTexels(*image, texture)) return;
+
+        const std::string inAttribute = getString("inAttribute", "attribute0");
+        if (inAttribute != "attribute0")
+            reportWarning("inAttribute '" + inAttribute +
+                          "' is not supported; using 'attribute0' (texture coordinates)");
+        const std::string filter = getString("filter", "linear");
+        if (filter != "linear" && filter != "nearest")
+            reportWarning("parameter 'filter' has unknown value '" + filter + "'; using 'linear'");
+        texture.linearFilter = filter != "nearest";
+        texture.wrapS = wrapMode(checkedWrapMode("wrapMode1"));
+        texture.wrapT = wrapMode(checkedWrapMode("wrapMode2"));
+
+        // The input is (u, v, 0, 1), so an offset folds into the translation column exactly.
+        texture.inTransform = get<glm::mat4>("inTransform", glm::mat4(1.0f));
+        texture.inTransform[3] += get<glm::vec4>("inOffset", glm::vec4(0.0f));
+        texture.outTransform = get<glm::mat4>("outTransform", glm::mat4(1.0f));
+        if (get<glm::vec4>("outOffset", glm::vec4(0.0f)) != glm::vec4(0.0f))
+            reportWarning("parameter 'outOffset' is not supported yet; ignored");
+        texture_ = std::move(texture);
+    }
+
+private:
+    std::string checkedWrapMode(std::string_view name) {
+        const std::string mode = getString(name, "clampToEdge");
+        if (mode != "clampToEdge" && mode != "repeat" && mode != "mirrorRepeat")
+            reportWarning("parameter '" + std::string(name) + "' has unknown value '" + mode +
+                          "'; using 'clampToEdge'");
+        return mode;
+    }
+
+    // 8-bit images stay 8-bit (RGBA, sRGB decoded by the sampler when so typed); everything else becomes
+    // RGBA float. Missing components are (0, 0, 1) for green, blue and alpha.
+    bool convertTexels(const Array& image, core::Texture& texture) {
+        const ANARIDataType type = image.elementType();
+        const int components = componentCount(type);
+        const bool srgb = type >= ANARI_UFIXED8_R_SRGB && type <= ANARI_UFIXED8_RGBA_SRGB;
+        if (components == 0) {
+            invalidate("parameter 'image' has elements of type " + std::string(ripple_anari::typeName(type)) +
+                       ", expected numbers (e.g. UFIXED8_VEC4, UFIXED8_RGBA_SRGB or FLOAT32_VEC4)");
+            return false;
+        }
+        const size_t texelCount = image.size();
+        if (srgb || (type >= ANARI_UFIXED8 && type <= ANARI_UFIXED8_VEC4)) {
+            texture.format = srgb ? core::Texture::Format::Rgba8Srgb : core::Texture::Format::Rgba8Unorm;
+            texture.texels.assign(texelCount * 4, 0);
+            const auto* source = static_cast<const uint8_t*>(image.data());
+            for (size_t i = 0; i < texelCount; ++i) {
+                uint8_t* texel = &texture.texels[i * 4];
+                std::memcpy(texel, source + i * components, size_t(components));
+                if (type == ANARI_UFIXED8_RA_SRGB)
+                    std::swap(texel[1], texel[3]);  // red and alpha
+                else if (components < 4)
+                    texel[3] = 255;
+            }
+            return true;
+        }
+        const std::vector<glm::vec4> values = *readFloatVectors(image, glm::vec4(0, 0, 0, 1));
+        if (const int64_t bad = firstNonFinite(values); bad >= 0) {
+            invalidate("parameter 'image' texel " + std::to_string(bad) + " is not finite");
+            return false;
+        }
+        texture.format = core::Texture::Format::Rgba32Float;
+        texture.texels.resize(texelCount * sizeof(glm::vec4));
+        std::memcpy(texture.texels.data(), values.data(), texture.texels.size());
+        return true;
+    }
+
+    std::optional<core::Texture> texture_;
+};
+
+}  // namespace
+
+Sampler* newImage2DSampler(DeviceState& state) {
+    return new Image2DSampler(state);
+}
+
+}  // namespace ripple::device

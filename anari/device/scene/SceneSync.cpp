@@ -1,0 +1,163 @@
+// The walk over a committed world that SceneSync and the world's bounds share, and the description built
+// from it (see SceneSync.h).
+#include "anari/device/scene/SceneSync.h"
+
+#include "anari/device/world/World.h"
+
+#include <limits>
+#include <unordered_map>
+
+namespace ripple::device {
+namespace {
+
+// Instance id of surfaces and lights placed directly in the world, which no instance names.
+constexpr uint32_t kNoInstance = std::numeric_limits<uint32_t>::max();
+
+struct Placement {
+    glm::mat4 transform{1.0f};
+    uint32_t instanceId = kNoInstance;
+};
+
+// Calls onSurface(surface, placement, objectId) for every renderable surface and onLight(light, placement)
+// for every valid light, in the order the application gave them. Ids default to array positions.
+template <class OnSurface, class OnLight>
+void forEachPlaced(const World& world, OnSurface&& onSurface, OnLight&& onLight) {
+    auto placeGroup = [&](const std::vector<Surface*>& surfaces, const std::vector<Light*>& lights,
+                          const Placement& placement) {
+        for (size_t i = 0; i < surfaces.size(); ++i)
+            if (surfaces[i]->renderable()) onSurface(*surfaces[i], placement, surfaces[i]->id().value_or(uint32_t(i)));
+        for (Light* light : lights)
+            if (light->isValid()) onLight(*light, placement);
+    };
+    placeGroup(world.surfaces(), world.lights(), Placement{});
+    for (size_t i = 0; i < world.instances().size(); ++i) {
+        const Instance& instance = *world.instances()[i];
+        if (!instance.isValid() || !instance.group() || !instance.group()->isValid()) continue;
+        placeGroup(instance.group()->surfaces(), instance.group()->lights(),
+                   Placement{instance.transform(), instance.id().value_or(uint32_t(i))});
+    }
+}
+
+// Lights reach core in world space.
+core::Light placedLight(core::Light light, const glm::mat4& transform) {
+    const glm::mat3 linear(transform);
+    light.position = glm::vec3(transform * glm::vec4(light.position, 1.0f));
+    light.direction = glm::normalize(linear * light.direction);
+    light.edge1 = linear * light.edge1;
+    light.edge2 = linear * light.edge2;
+    return light;
+}
+
+core::GeometryIdentity identityOf(const Geometry& geometry) {
+    return core::GeometryIdentity{reinterpret_cast<uintptr_t>(&geometry), geometry.lastCommitted()};
+}
+
+// Builds a description from a committed world, sharing one core geometry, material and texture between
+// all the placements that use the same ANARI object.
+class DescriptionBuilder {
+public:
+    core::SceneDescription build(const World& world) {
+        forEachPlaced(
+            world,
+            [&](const Surface& surface, const Placement& placement, uint32_t objectId) {
+                core::InstanceDescription instance;
+                instance.geometry = geometryRef(*surface.geometry());
+                instance.transform = placement.transform;
+                instance.materialIndex = materialIndex(*surface.material());
+                instance.objectId = objectId;
+                instance.instanceId = placement.instanceId;
+                description_.instances.push_back(instance);
+            },
+            [&](const Light& light, const Placement& placement) {
+                description_.lights.push_back(placedLight(light.light(), placement.transform));
+            });
+        return std::move(description_);
+    }
+
+private:
+    core::GeometryRef geometryRef(const Geometry& geometry) {
+        auto [it, added] = geometries_.try_emplace(&geometry);
+        if (!added) return it->second;
+        core::GeometryRef& ref = it->second;
+        if (const auto* mesh = std::get_if<core::TriangleMesh>(&geometry.shape())) {
+            ref = {core::GeometryKind::Triangles, uint32_t(description_.meshes.size())};
+            description_.meshes.push_back(*mesh);
+            description_.meshes.back().identity = identityOf(geometry);
+        } else if (const auto* spheres = std::get_if<core::SphereSet>(&geometry.shape())) {
+            ref = {core::GeometryKind::Spheres, uint32_t(description_.sphereSets.size())};
+            description_.sphereSets.push_back(*spheres);
+            description_.sphereSets.back().identity = identityOf(geometry);
+        } else if (const auto* cylinders = std::get_if<core::CylinderSet>(&geometry.shape())) {
+            ref = {core::GeometryKind::Cylinders, uint32_t(description_.cylinderSets.size())};
+            description_.cylinderSets.push_back(*cylinders);
+            description_.cylinderSets.back().identity = identityOf(geometry);
+        }
+        return ref;
+    }
+
+    uint32_t materialIndex(const Material& material) {
+        auto [it, added] = materials_.try_emplace(&material, uint32_t(description_.materials.size()));
+        if (!added) return it->second;
+        core::Material described = material.material();
+        if (const Sampler* sampler = material.baseColorSampler(); sampler && sampler->isValid() && sampler->texture())
+            described.baseColorTexture = textureIndex(*sampler);
+        description_.materials.push_back(described);
+        return it->second;
+    }
+
+    int32_t textureIndex(const Sampler& sampler) {
+        auto [it, added] = textures_.try_emplace(&sampler, int32_t(description_.textures.size()));
+        if (added) description_.textures.push_back(*sampler.texture());
+        return it->second;
+    }
+
+    core::SceneDescription description_;
+    std::unordered_map<const Geometry*, core::GeometryRef> geometries_;
+    std::unordered_map<const Material*, uint32_t> materials_;
+    std::unordered_map<const Sampler*, int32_t> textures_;
+};
+
+}  // namespace
+
+SceneSync::SceneSync() = default;
+SceneSync::~SceneSync() = default;
+
+bool SceneSync::update(World& world) {
+    const uint64_t newest = world.refreshSubtree(SceneObject::newWalk());
+    if (&world == world_ && newest == newestStamp_ && scene_) return false;
+    world_ = &world;
+    newestStamp_ = newest;
+    description_ = DescriptionBuilder().build(world);
+    pending_ = true;
+    return true;
+}
+
+const core::Scene& SceneSync::scene(const vk::Context& context, bool& rebuilt) {
+    rebuilt = pending_ || !scene_;
+    if (rebuilt) {
+        scene_ = std::make_unique<core::Scene>(context, description_, bvh::BuildOptions{}, scene_.get());
+        pending_ = false;
+        ++builds_;
+    }
+    return *scene_;
+}
+
+bvh::Aabb worldBounds(World& world) {
+    world.refreshSubtree(SceneObject::newWalk());
+    bvh::Aabb bounds;
+    forEachPlaced(
+        world,
+        [&](const Surface& surface, const Placement& placement, uint32_t) {
+            const bvh::Aabb& local = surface.geometry()->bounds();
+            if (local.empty()) return;
+            for (int corner = 0; corner < 8; ++corner) {
+                const glm::vec3 p((corner & 1) ? local.hi.x : local.lo.x, (corner & 2) ? local.hi.y : local.lo.y,
+                                  (corner & 4) ? local.hi.z : local.lo.z);
+                bounds.extend(glm::vec3(placement.transform * glm::vec4(p, 1.0f)));
+            }
+        },
+        [](const Light&, const Placement&) {});
+    return bounds;
+}
+
+}  // namespace ripple::device

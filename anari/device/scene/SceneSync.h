@@ -1,0 +1,50 @@
+// Committed world -> core::SceneDescription -> core::Scene, rebuilding only what changed since the last
+// frame: an unchanged world subtree (by commit and unmap stamps) keeps its scene, and a rebuilt scene
+// reuses the BLAS of every geometry whose (key, version) identity is unchanged.
+#pragma once
+
+#include "core/bvh/Aabb.h"
+#include "core/scene/Scene.h"
+#include "core/scene/SceneDescription.h"
+
+#include <cstdint>
+#include <memory>
+
+namespace ripple::vk {
+class Context;
+}
+
+namespace ripple::device {
+
+class World;
+
+class SceneSync {
+public:
+    SceneSync();
+    ~SceneSync();
+
+    // API thread. Brings the host description up to date with `world` (recommitting objects whose arrays
+    // were rewritten since their commit) and says whether it changed since the previous call, which means
+    // the accumulation starts over. Cheap when nothing changed: one walk over the committed objects.
+    bool update(World& world);
+
+    // Worker thread, with the GPU to itself. The core scene of the latest description, built when update()
+    // found a change; `rebuilt` tells the caller to pass the scene's report on.
+    const core::Scene& scene(const vk::Context& context, bool& rebuilt);
+    // Scenes built so far: a camera-only change builds none.
+    uint64_t builds() const { return builds_; }
+
+private:
+    const World* world_ = nullptr;
+    uint64_t newestStamp_ = 0;
+    bool pending_ = false;  // the description changed after the scene was built
+    core::SceneDescription description_;
+    std::unique_ptr<core::Scene> scene_;
+    uint64_t builds_ = 0;
+};
+
+// The world-space bounds of everything renderable in the committed world (empty when nothing is).
+// Host side only: no scene is built and nothing is uploaded.
+bvh::Aabb worldBounds(World& world);
+
+}  // namespace ripple::device

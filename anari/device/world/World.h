@@ -1,0 +1,28 @@
+// ANARI world: everything a frame renders: instances, and surfaces and lights placed without one.
+// Its "bounds" property is computed on the host from the committed geometry.
+#pragma once
+
+#include "anari/device/instance/Instance.h"
+
+#include <vector>
+
+namespace ripple::device {
+
+class World final : public SceneObject {
+public:
+    explicit World(DeviceState& state) : SceneObject(state, ANARI_WORLD, "") {}
+
+    void commit() override;
+    bool getProperty(std::string_view name, ANARIDataType type, void* mem, uint64_t size, bool wait) override;
+
+    const std::vector<Instance*>& instances() const { return instances_; }
+    const std::vector<Surface*>& surfaces() const { return surfaces_; }
+    const std::vector<Light*>& lights() const { return lights_; }
+
+private:
+    std::vector<Instance*> instances_;  // kept alive by useChild()
+    std::vector<Surface*> surfaces_;
+    std::vector<Light*> lights_;
+};
+
+}  // namespace ripple::device

@@ -1,0 +1,11 @@
+# Fails unless LIBRARY's dynamic symbol table defines exactly anari_library_ripple_new_library.
+execute_process(COMMAND nm -D --defined-only "${LIBRARY}" OUTPUT_VARIABLE symbols RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "nm failed on ${LIBRARY}")
+endif()
+string(REGEX MATCHALL "[^\n]+" lines "${symbols}")
+list(LENGTH lines count)
+if(NOT count EQUAL 1 OR NOT symbols MATCHES " T anari_library_ripple_new_library")
+  message(FATAL_ERROR "expected exactly one exported symbol, anari_library_ripple_new_library; got ${count}:\n${symbols}")
+endif()
+message(STATUS "exports: ${symbols}")

@@ -1,0 +1,197 @@
+// ANARI API behaviour of the Ripple device through the public C API and Ripple's loader: reference counts
+// (the device's own included), parameters of the wrong type and unknown subtypes reported, array deleters
+// called exactly once, mapping, introspection answers and world bounds.
+#include "anari/anari.h"
+#include "tests/anari/StatusLog.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using ripple::test::StatusLog;
+
+namespace {
+
+struct Fixture {
+    StatusLog log;
+    ANARILibrary library = nullptr;
+    ANARIDevice device = nullptr;
+
+    Fixture() {
+        library = anariLoadLibrary("ripple", &StatusLog::callback, &log);
+        REQUIRE_MESSAGE(library, log.dump());
+        device = anariNewDevice(library, "default");
+        REQUIRE(device);
+    }
+    ~Fixture() {
+        if (device) anariRelease(device, device);
+        anariUnloadLibrary(library);
+    }
+};
+
+bool listContains(const char** list, const char* name) {
+    for (; list && *list; ++list)
+        if (std::strcmp(*list, name) == 0) return true;
+    return false;
+}
+
+struct DeleterRecord {
+    int calls = 0;
+    const void* memory = nullptr;
+};
+
+void countingDeleter(const void* userPtr, const void* appMemory) {
+    auto* record = const_cast<DeleterRecord*>(static_cast<const DeleterRecord*>(userPtr));
+    ++record->calls;
+    record->memory = appMemory;
+}
+
+}  // namespace
+
+TEST_CASE("device handle is reference counted; releasing NULL does nothing") {
+    Fixture f;
+    anariRetain(f.device, f.device);
+    anariRelease(f.device, f.device);  // back to one reference: still usable
+    ANARIWorld world = anariNewWorld(f.device);
+    CHECK(world);
+    anariRelease(f.device, world);
+    anariRelease(f.device, nullptr);
+    CHECK(f.log.problems() == 0);
+
+    int32_t version = 0;
+    CHECK(anariGetProperty(f.device, f.device, "version", ANARI_INT32, &version, sizeof(version), ANARI_WAIT) == 1);
+    CHECK(version >= 1);
+}
+
+TEST_CASE("unknown subtypes and wrong parameter types are reported, naming object and parameter") {
+    Fixture f;
+    ANARIGeometry teapot = anariNewGeometry(f.device, "teapot");
+    CHECK(teapot);  // an object that renders nothing, never NULL
+    anariCommitParameters(f.device, teapot);
+    CHECK(f.log.count({"teapot"}) >= 1);
+
+    ANARICamera camera = anariNewCamera(f.device, "perspective");
+    const int32_t notAFloat = 3;
+    anariSetParameter(f.device, camera, "fovy", ANARI_INT32, &notAFloat);
+    anariCommitParameters(f.device, camera);
+    CHECK_MESSAGE(f.log.count({"fovy", "ANARI_INT32", "ANARI_FLOAT32"}) == 1, f.log.dump());
+
+    const float value = 1.0f;
+    anariSetParameter(f.device, camera, "notAParameter", ANARI_FLOAT32, &value);
+    anariCommitParameters(f.device, camera);
+    anariCommitParameters(f.device, camera);  // warned once, not at every commit
+    CHECK_MESSAGE(f.log.count({"notAParameter"}) == 1, f.log.dump());
+
+    anariNewObject(f.device, "teapotType", "x");
+    CHECK(f.log.count({"teapotType"}) == 1);
+    anariCommitParameters(f.device, nullptr);
+    CHECK(f.log.count({"NULL"}) >= 1);
+    anariRelease(f.device, camera);
+    anariRelease(f.device, teapot);
+}
+
+TEST_CASE("array deleters run exactly once, when the last reference goes") {
+    Fixture f;
+    static const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    DeleterRecord record;
+    ANARIArray1D array = anariNewArray1D(f.device, positions, &countingDeleter, &record, ANARI_FLOAT32_VEC3, 3);
+    ANARIGeometry geometry = anariNewGeometry(f.device, "triangle");
+    anariSetParameter(f.device, geometry, "vertex.position", ANARI_ARRAY1D, &array);
+    anariRelease(f.device, array);  // the geometry still holds it
+    CHECK(record.calls == 0);
+    anariRelease(f.device, geometry);
+    CHECK(record.calls == 1);
+    CHECK(record.memory == positions);
+}
+
+TEST_CASE("arrays: managed memory, mapping, parameter arrays and object elements") {
+    Fixture f;
+    ANARIArray1D managed = anariNewArray1D(f.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, 4);
+    auto* values = static_cast<float*>(anariMapArray(f.device, managed));
+    REQUIRE(values);
+    for (int i = 0; i < 4; ++i) values[i] = float(i);
+    anariUnmapArray(f.device, managed);
+    anariRelease(f.device, managed);
+
+    ANARIGeometry spheres = anariNewGeometry(f.device, "sphere");
+    uint64_t stride = 0;
+    auto* centers = static_cast<float*>(
+        anariMapParameterArray1D(f.device, spheres, "vertex.position", ANARI_FLOAT32_VEC3, 2, &stride));
+    REQUIRE(centers);
+    CHECK(stride == 12);
+    const float data[] = {0, 0, 0, 2, 0, 0};
+    std::memcpy(centers, data, sizeof(data));
+    anariUnmapParameterArray(f.device, spheres, "vertex.position");
+    const float radius = 0.5f;
+    anariSetParameter(f.device, spheres, "radius", ANARI_FLOAT32, &radius);
+    anariCommitParameters(f.device, spheres);
+
+    // An array of surfaces keeps its elements alive after the application lets go of them.
+    ANARISurface surface = anariNewSurface(f.device);
+    anariSetParameter(f.device, surface, "geometry", ANARI_GEOMETRY, &spheres);
+    ANARIMaterial material = anariNewMaterial(f.device, "matte");
+    anariCommitParameters(f.device, material);
+    anariSetParameter(f.device, surface, "material", ANARI_MATERIAL, &material);
+    anariCommitParameters(f.device, surface);
+    ANARIArray1D surfaces = anariNewArray1D(f.device, &surface, nullptr, nullptr, ANARI_SURFACE, 1);
+    anariRelease(f.device, surface);
+    anariRelease(f.device, material);
+    anariRelease(f.device, spheres);
+
+    ANARIWorld world = anariNewWorld(f.device);
+    anariSetParameter(f.device, world, "surface", ANARI_ARRAY1D, &surfaces);
+    anariRelease(f.device, surfaces);
+    anariCommitParameters(f.device, world);
+
+    float bounds[6] = {};
+    REQUIRE(anariGetProperty(f.device, world, "bounds", ANARI_FLOAT32_BOX3, bounds, sizeof(bounds), ANARI_WAIT) == 1);
+    const float expected[6] = {-0.5f, -0.5f, -0.5f, 2.5f, 0.5f, 0.5f};
+    for (int i = 0; i < 6; ++i) CHECK(bounds[i] == doctest::Approx(expected[i]).epsilon(1e-6));
+    anariRelease(f.device, world);
+    CHECK_MESSAGE(f.log.problems() == 0, f.log.dump());
+}
+
+TEST_CASE("introspection answers from Ripple's own tables") {
+    Fixture f;
+    const char** deviceSubtypes = anariGetDeviceSubtypes(f.library);
+    CHECK(listContains(deviceSubtypes, "default"));
+
+    const char** geometries = anariGetObjectSubtypes(f.device, ANARI_GEOMETRY);
+    for (const char* name : {"triangle", "quad", "sphere", "cylinder"}) CHECK_MESSAGE(listContains(geometries, name), name);
+    CHECK(listContains(anariGetObjectSubtypes(f.device, ANARI_MATERIAL), "physicallyBased"));
+    CHECK(listContains(anariGetObjectSubtypes(f.device, ANARI_LIGHT), "quad"));
+    CHECK(listContains(anariGetObjectSubtypes(f.device, ANARI_CAMERA), "orthographic"));
+    CHECK(listContains(anariGetObjectSubtypes(f.device, ANARI_RENDERER), "default"));
+
+    const char** extensions = nullptr;
+    REQUIRE(anariGetProperty(f.device, f.device, "extension", ANARI_STRING_LIST, &extensions, sizeof(extensions),
+                             ANARI_WAIT) == 1);
+    CHECK(listContains(extensions, "ANARI_KHR_GEOMETRY_SPHERE"));
+    CHECK(listContains(extensions, "ANARI_KHR_CAMERA_PERSPECTIVE"));
+    CHECK_FALSE(listContains(extensions, "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR"));  // no volumes yet
+    CHECK(listContains(anariGetDeviceExtensions(f.library, "default"), "ANARI_KHR_GEOMETRY_TRIANGLE"));
+
+    const auto* parameters = static_cast<const ANARIParameter*>(
+        anariGetObjectInfo(f.device, ANARI_GEOMETRY, "sphere", "parameter", ANARI_PARAMETER_LIST));
+    REQUIRE(parameters);
+    bool hasPosition = false;
+    for (const ANARIParameter* p = parameters; p->name; ++p)
+        hasPosition = hasPosition || (std::strcmp(p->name, "vertex.position") == 0 && p->type == ANARI_ARRAY1D);
+    CHECK(hasPosition);
+
+    const auto* fovy = static_cast<const float*>(
+        anariGetParameterInfo(f.device, ANARI_CAMERA, "perspective", "fovy", ANARI_FLOAT32, "default", ANARI_FLOAT32));
+    REQUIRE(fovy);
+    CHECK(*fovy == doctest::Approx(M_PI / 3.0));
+    CHECK(anariGetObjectInfo(f.device, ANARI_GEOMETRY, "teapot", "parameter", ANARI_PARAMETER_LIST) == nullptr);
+}
+
+TEST_CASE("the loader reports a library that does not exist, naming it") {
+    StatusLog log;
+    ANARILibrary missing = anariLoadLibrary("no_such_ripple_library", &StatusLog::callback, &log);
+    CHECK(missing == nullptr);
+    CHECK(log.count({"no_such_ripple_library"}) >= 1);
+}
