@@ -37,6 +37,8 @@ RenderSession::RenderSession() {
 }
 
 RenderSession::~RenderSession() {
+    // Validation runs inside the device, which reports what it says as an error: none may appear.
+    CHECK_MESSAGE(log.count({"Vulkan validation"}) == 0, log.dump());
     // Frames first: they may still render with everything else.
     for (auto it = objects_.rbegin(); it != objects_.rend(); ++it) anariRelease(device, *it);
     anariRelease(device, device);

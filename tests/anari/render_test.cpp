@@ -408,6 +408,11 @@ TEST_CASE("renderFrame returns before the frame is done; anariFrameReady(NO_WAIT
     float duration = -1.0f;
     CHECK(anariGetProperty(s.device, frame, "duration", ANARI_FLOAT32, &duration, sizeof(duration), ANARI_WAIT) == 1);
     CHECK(duration > 0.0f);
+    float raysPerSecond = -1.0f;
+    CHECK(anariGetProperty(s.device, frame, "ripple.raysPerSecond", ANARI_FLOAT32, &raysPerSecond,
+                           sizeof(raysPerSecond), ANARI_WAIT) == 1);
+    CHECK(raysPerSecond > 0.0f);
+    MESSAGE("48x48, 4 samples, paths of 3: " << duration << " s, " << raysPerSecond / 1e6f << " Mrays/s");
     CHECK(s.log.problems() == 0);
 }
 
@@ -522,4 +527,46 @@ TEST_CASE("a frame missing its camera reports an error, is ready at once and map
     CHECK(anariMapFrame(s.device, frame, "channel.color", &width, &height, &type) == nullptr);
     CHECK(width == 0);
     CHECK_MESSAGE(s.log.count({"cannot render", "camera"}) == 1, s.log.dump());
+}
+
+TEST_CASE("bad parameters are reported, naming object and parameter, and the frame still renders") {
+    RenderSession s;
+    ANARICamera camera = s.perspective({0, 1.6f, 4}, {0, 0.5f, 0});
+    s.set(camera, "fovy", 7.0f);  // beyond pi: the default is used
+    s.commit(camera);
+    ANARIRenderer renderer = s.renderer(1, 2);
+    s.setInt(renderer, "pixelSamples", -3);
+    s.commit(renderer);
+
+    ANARISampler sampler = s.keep(anariNewSampler(s.device, "image2D"));
+    s.setObject(sampler, "image", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, std::vector<glm::vec4>(4)));  // not 2D
+    s.commit(sampler);
+    ANARIMaterial textured = s.keep(anariNewMaterial(s.device, "matte"));
+    s.setObject(textured, "color", ANARI_SAMPLER, sampler);
+    s.commit(textured);
+
+    ANARIGroup group = s.keep(anariNewGroup(s.device));
+    s.setObject(group, "surface", ANARI_ARRAY1D, s.objects(ANARI_SURFACE, {s.surface(s.floor(), textured)}));
+    s.commit(group);
+    ANARIInstance singular = s.keep(anariNewInstance(s.device, "transform"));
+    s.setObject(singular, "group", ANARI_GROUP, group);
+    const glm::mat4 flat(glm::vec4(1, 0, 0, 0), glm::vec4(0, 0, 0, 0), glm::vec4(0, 0, 1, 0), glm::vec4(0, 0, 0, 1));
+    s.setRaw(singular, "transform", ANARI_FLOAT32_MAT4, &flat);
+    s.commit(singular);
+    ANARILight light = s.keep(anariNewLight(s.device, "directional"));
+    s.set(light, "direction", glm::vec3(0.0f));
+    s.commit(light);
+
+    ANARIWorld world = s.world({centralSphere(s)}, {light});
+    s.setObject(world, "instance", ANARI_ARRAY1D, s.objects(ANARI_INSTANCE, {singular}));
+    s.commit(world);
+    const Image image = s.render(s.frame(world, camera, renderer, {16, 16}, ANARI_FLOAT32_VEC4));
+    CHECK(image.linear.size() == 256u);
+    CHECK(s.numSamples(s.frame(world, camera, renderer, {16, 16}, ANARI_FLOAT32_VEC4)) == 0);  // never rendered
+
+    CHECK_MESSAGE(s.log.count({"perspective", "fovy"}) == 1, s.log.dump());
+    CHECK(s.log.count({"renderer", "pixelSamples"}) == 1);
+    CHECK(s.log.count({"image2D", "'image'"}) >= 1);
+    CHECK(s.log.count({"transform", "invertible"}) == 1);
+    CHECK(s.log.count({"directional", "direction"}) == 1);
 }
