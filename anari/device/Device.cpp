@@ -26,6 +26,7 @@ Device::Device(const char* subtype, ANARIStatusCallback defaultCallback, const v
     : subtype_(subtype ? subtype : "default"), state_(handle(), defaultCallback, defaultCallbackUserPtr) {}
 
 Device::~Device() {
+    state_.waitForWork();  // frames still rendering use state_ and its Vulkan context
     for (auto& [key, array] : parameterArrays_) array->release();
     if (state_.liveObjects > 0)
         state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_NO_ERROR,

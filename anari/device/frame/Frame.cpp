@@ -115,7 +115,14 @@ void Frame::renderFrame() {
     renderedRendererStamp_ = renderer_->lastCommitted();
 
     finished_ = false;
-    worker_ = std::thread([this, job] { run(job); });
+    state().beginWork();
+    try {
+        worker_ = std::thread([this, job] { run(job); });
+    } catch (...) {
+        finished_ = true;
+        state().endWork();
+        throw;
+    }
 }
 
 void Frame::run(const Job& job) {
@@ -172,6 +179,7 @@ void Frame::run(const Job& job) {
         reportError("rendering failed: unknown exception");
     }
     finished_ = true;
+    state().endWork();
 }
 
 void Frame::waitForWorker() {

@@ -28,6 +28,21 @@ void DeviceState::report(const Object* source, ANARIStatusSeverity severity, ANA
               message.c_str());
 }
 
+void DeviceState::beginWork() {
+    std::lock_guard lock(workMutex_);
+    ++workInFlight_;
+}
+
+void DeviceState::endWork() {
+    std::lock_guard lock(workMutex_);
+    if (--workInFlight_ == 0) workDone_.notify_all();
+}
+
+void DeviceState::waitForWork() {
+    std::unique_lock lock(workMutex_);
+    workDone_.wait(lock, [this] { return workInFlight_ == 0; });
+}
+
 vk::Context& DeviceState::vulkan() {
     std::lock_guard lock(vulkanMutex_);
     if (!vulkan_) {

@@ -5,6 +5,7 @@
 #include "anari/anari.h"
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -36,6 +37,12 @@ public:
     // The Vulkan context all frames render with; created on first call (throws vk::VulkanError).
     vk::Context& vulkan();
 
+    // Frames render on worker threads that use this state: the device waits for them before it goes,
+    // even for frames the application never released.
+    void beginWork();
+    void endWork();
+    void waitForWork();
+
     // Live objects (not counting the device), for the leak report at device release.
     std::atomic<int64_t> liveObjects{0};
 
@@ -46,6 +53,9 @@ private:
     mutable std::mutex reportMutex_;
     std::atomic<uint64_t> stamp_{0};
     std::atomic<uint64_t> serial_{0};
+    std::mutex workMutex_;
+    std::condition_variable workDone_;
+    int workInFlight_ = 0;
     std::mutex vulkanMutex_;
     std::unique_ptr<vk::Context> vulkan_;
 };
