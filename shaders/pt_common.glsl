@@ -19,6 +19,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Sc
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer PathsRef { PathState paths[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer RaysRef { Ray rays[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer HitsRef { Hit hits[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer SurfacesRef { SurfaceRecord records[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer ShadowRequestsRef { ShadowRequest requests[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer Vec4sRef { vec4 values[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer FloatsRef { float values[]; };

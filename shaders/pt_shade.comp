@@ -1,5 +1,6 @@
 #version 460
-// Stage 3 of a bounce (after the closest-hit trace): for each path, a miss adds the background (camera
+// Stage 4 of a bounce, run at each path's home rank from the SurfaceRecord that pt_surface packed at the
+// hit (no scene geometry or textures are read here, only lights): a miss adds the background (camera
 // rays) or the ambient light (secondary rays); a hit adds its emission, passes through a transparent
 // surface with probability 1 - opacity, requests one shadow ray toward a uniformly chosen light
 // (next-event estimation), and samples the BSDF for the next ray, with Russian roulette from the third
@@ -10,25 +11,17 @@
 #include "rng.glsl"
 #include "bsdf.glsl"
 #include "lights.glsl"
-#include "surface.glsl"
-#include "texture.glsl"
-
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaterialsRef { MaterialRecord materials[]; };
 
 // Russian roulette starts once a path has had this many surface interactions.
 const uint ROULETTE_FROM_DEPTH = 3u;
 
-SurfaceMaterial surfaceMaterial(SceneDesc scene, MaterialRecord rec, SurfacePoint s) {
+SurfaceMaterial surfaceMaterial(SurfaceRecord r) {
     SurfaceMaterial m;
-    m.kind = rec.kind;
-    m.baseColor = rec.baseColorOpacity.rgb;
-    if ((rec.flags & MATERIAL_FLAG_VERTEX_COLOR) != 0u && s.hasColor) m.baseColor = s.color.rgb;
-    if (rec.baseColorTexture != NO_TEXTURE) m.baseColor *= sampleTexture(scene, rec.baseColorTexture, s.texcoord).rgb;
-    m.baseColor = max(m.baseColor, vec3(0.0));
-    m.metallic = rec.metallic;
-    m.alpha = max(rec.roughness * rec.roughness, MIN_GGX_ALPHA);
-    float r = (rec.emissiveIor.w - 1.0) / (rec.emissiveIor.w + 1.0);
-    m.f0 = r * r;
+    m.kind = r.materialKind;
+    m.baseColor = r.baseColor.rgb;
+    m.metallic = r.baseColor.w;
+    m.alpha = r.emission.w;
+    m.f0 = r.f0;
     return m;
 }
 
@@ -56,46 +49,46 @@ void main() {
     FrameConstants f = FrameRef(params.frame).frame;
     SceneDesc scene = SceneRef(params.scene).desc;
     Ray ray = RaysRef(params.rays).rays[i];
-    Hit hit = HitsRef(params.hits).hits[i];
+    SurfaceRecord r = SurfacesRef(params.surfaces).records[i];
     PathState path = PathsRef(params.paths).paths[i];
     Vec4sRef radiance = Vec4sRef(f.sampleRadiance);
     bool camera = (path.flags & PATH_FLAG_CAMERA) != 0u;
     uint passThroughs = path.flags >> PATH_PASS_THROUGH_SHIFT;
 
-    if ((hit.status & ~0xFFu) != 0u) atomicAdd(CountersRef(f.counters).counters.flagged, 1u);
-    if (hit.status != HIT_FOUND) {  // a miss, or a flagged traversal treated as one
+    if ((r.status & ~0xFFu) != 0u) atomicAdd(CountersRef(f.counters).counters.flagged, 1u);
+    if (r.status != HIT_FOUND) {  // a miss, or a flagged traversal treated as one
         if (camera) radiance.values[path.pixel] += vec4(path.throughput.rgb * f.background.rgb, f.background.a);
         else radiance.values[path.pixel].rgb += path.throughput.rgb * f.ambient.rgb;
         return;
     }
-    if (camera && passThroughs == 0u && f.depth != 0ul) FloatsRef(f.depth).values[path.pixel] = hit.t;
+    if (camera && passThroughs == 0u && f.depth != 0ul) FloatsRef(f.depth).values[path.pixel] = r.position.w;
 
-    SurfacePoint s = surfaceAt(scene, ray, hit);
-    MaterialRecord rec = MaterialsRef(scene.materials).materials[s.material];
+    vec3 position = r.position.xyz;
+    vec3 geometricNormal = r.geometricNormal.xyz;
     vec3 wo = -normalize(ray.direction.xyz);
     vec4 uLight = random4(path.pixel, params.sampleIndex, params.bounce, RNG_LIGHT, f.seed);
 
     // Transparency: continue straight on, unchanged, with probability 1 - opacity.
-    if (uLight.w >= rec.baseColorOpacity.a) {
+    if (uLight.w >= r.geometricNormal.w) {
         if (passThroughs >= PATH_MAX_PASS_THROUGHS) return;
         path.flags += 1u << PATH_PASS_THROUGH_SHIFT;
-        appendPath(Ray(vec4(offsetRayOrigin(s.position, -s.geometricNormal), 0.0), vec4(ray.direction.xyz, INFINITY)), path);
+        appendPath(Ray(vec4(offsetRayOrigin(position, -geometricNormal), 0.0), vec4(ray.direction.xyz, INFINITY)), path);
         return;
     }
     if (camera) radiance.values[path.pixel].a = 1.0;
-    radiance.values[path.pixel].rgb += path.throughput.rgb * rec.emissiveIor.rgb;
+    radiance.values[path.pixel].rgb += path.throughput.rgb * r.emission.rgb;
 
-    SurfaceMaterial m = surfaceMaterial(scene, rec, s);
-    vec3 n = s.shadingNormal;
-    if (dot(n, wo) <= 0.0) n = s.geometricNormal;  // interpolated normals can face away from the viewer
-    vec3 up = offsetRayOrigin(s.position, s.geometricNormal);
+    SurfaceMaterial m = surfaceMaterial(r);
+    vec3 n = r.shadingNormal.xyz;
+    if (dot(n, wo) <= 0.0) n = geometricNormal;  // interpolated normals can face away from the viewer
+    vec3 up = offsetRayOrigin(position, geometricNormal);
 
     // Next-event estimation: one light, chosen uniformly (pdf 1 / lightCount).
     if (scene.lightCount > 0u) {
         uint chosen = min(uint(uLight.x * float(scene.lightCount)), scene.lightCount - 1u);
         LightSample ls;
-        if (sampleLight(LightsRef(scene.lights).lights[chosen], s.position, uLight.yz, ls) &&
-            dot(ls.direction, s.geometricNormal) > 0.0) {
+        if (sampleLight(LightsRef(scene.lights).lights[chosen], position, uLight.yz, ls) &&
+            dot(ls.direction, geometricNormal) > 0.0) {
             float pdf;
             vec3 contribution = path.throughput.rgb * evalBsdf(m, n, wo, ls.direction, pdf) * ls.incident *
                                 float(scene.lightCount);
@@ -112,7 +105,7 @@ void main() {
     vec3 wi;
     vec3 weight;
     if (!sampleBsdf(m, n, wo, uBsdf.xyz, wi, weight)) return;
-    if (dot(wi, s.geometricNormal) <= 0.0) return;  // below the true surface: the path ends
+    if (dot(wi, geometricNormal) <= 0.0) return;  // below the true surface: the path ends
     vec3 throughput = path.throughput.rgb * weight;
     if (depth >= ROULETTE_FROM_DEPTH) {
         float survive = min(maxComponent(throughput), 0.95);

@@ -10,6 +10,7 @@
 #include "shaders/pt_resolve.spv.h"
 #include "shaders/pt_shade.spv.h"
 #include "shaders/pt_shadow_resolve.spv.h"
+#include "shaders/pt_surface.spv.h"
 #include "shaders/shared/path.h"
 
 #include <algorithm>
@@ -75,12 +76,12 @@ struct PathTracer::Impl {
     const vk::Context& context;
     PathTracerOptions options;
     TraceKernels trace;
-    vk::ComputePipeline generate, shade, shadowResolve, accumulate, resolve;
+    vk::ComputePipeline generate, surface, shade, shadowResolve, accumulate, resolve;
     vk::Buffer frame, counters;                                     // FrameConstants, PathCounters
     vk::Buffer sampleRadiance, accumulation, sampleCount, depth, color;  // per pixel
     Queue queues[2];
     int current = 0;                                                // the queue the next bounce consumes
-    vk::Buffer hits, shadowRays, shadowRequests, occlusion;          // per path in flight
+    vk::Buffer hits, surfaces, shadowRays, shadowRequests, occlusion; // per path in flight
     uint32_t capacity = 0;
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
@@ -90,6 +91,7 @@ struct PathTracer::Impl {
         const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options.workgroupSize}};
         const auto bytes = static_cast<uint32_t>(sizeof(gpu::StageParams));
         generate = vk::ComputePipeline(ctx, shaders::pt_generate, "pt_generate", bytes, constants);
+        surface = vk::ComputePipeline(ctx, shaders::pt_surface, "pt_surface", bytes, constants);
         shade = vk::ComputePipeline(ctx, shaders::pt_shade, "pt_shade", bytes, constants);
         shadowResolve = vk::ComputePipeline(ctx, shaders::pt_shadow_resolve, "pt_shadow_resolve", bytes, constants);
         accumulate = vk::ComputePipeline(ctx, shaders::pt_accumulate, "pt_accumulate", bytes, constants);
@@ -171,7 +173,8 @@ struct PathTracer::Impl {
         dispatch(cmd, shadowResolve, p, count);
     }
 
-    // Closest hit for the current queue, then shading into the other queue and the shadow queue.
+    // Closest hit for the current queue, the surface at each hit, then shading into the other queue and the
+    // shadow queue.
     void traceAndShade(VkCommandBuffer cmd, const Scene& scene, uint32_t count, uint32_t bounce, uint32_t sampleIndex) {
         if (count == 0) return;
         const Queue& in = queues[current];
@@ -182,6 +185,8 @@ struct PathTracer::Impl {
         p.paths = in.paths.address();
         p.rays = in.rays.address();
         p.hits = hits.address();
+        p.surfaces = surfaces.address();
+        dispatch(cmd, surface, p, count);
         p.nextPaths = out.paths.address();
         p.nextRays = out.rays.address();
         p.shadowRays = shadowRays.address();
@@ -227,6 +232,7 @@ void PathTracer::resize(glm::uvec2 size, bool wantDepth) {
         m.queues[q].rays = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::Ray), "path queue " + std::to_string(q) + " rays");
     }
     m.hits = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::Hit), "path hits");
+    m.surfaces = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::SurfaceRecord), "path surface records");
     m.shadowRays = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::Ray), "shadow rays");
     m.shadowRequests = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::ShadowRequest), "shadow requests");
     m.occlusion = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(uint32_t), "shadow occlusion");

@@ -49,9 +49,11 @@ static_assert(sizeof(FrameConstants) == 176);
 static_assert(offsetof(FrameConstants, width) == 112);
 static_assert(offsetof(FrameConstants, sampleRadiance) == 128);
 static_assert(offsetof(FrameConstants, counters) == 160);
-static_assert(sizeof(StageParams) == 104);
-static_assert(offsetof(StageParams, count) == 80);
-static_assert(offsetof(StageParams, mode) == 96);
+static_assert(sizeof(SurfaceRecord) == 96);
+static_assert(offsetof(SurfaceRecord, status) == 80);
+static_assert(sizeof(StageParams) == 112);
+static_assert(offsetof(StageParams, count) == 88);
+static_assert(offsetof(StageParams, mode) == 104);
 static_assert(sizeof(StageParams) <= 128, "push constants: 128 bytes is all Vulkan guarantees");
 
 static_assert(sizeof(Ray) == 32);

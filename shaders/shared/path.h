@@ -28,6 +28,21 @@ struct ShadowRequest {
     uint pad2;
 };
 
+// What the rank that owns a closest hit learns about the surface there (pt_surface), so that the path's
+// home rank can shade it (pt_shade) without any of the scene's geometry, attributes or textures: this is
+// the "packed material" a data-parallel ray carries home. Directions are world space.
+struct SurfaceRecord {
+    vec4 position;         // xyz: hit point; w: hit t along the ray
+    vec4 geometricNormal;  // xyz: unit, facing the incoming ray; w: opacity
+    vec4 shadingNormal;    // xyz: unit, on the side of geometricNormal
+    vec4 baseColor;        // rgb: base color with vertex color and texture applied; w: metallic
+    vec4 emission;         // rgb: emitted radiance; w: GGX alpha (roughness^2, floored)
+    uint status;           // the hit's status (HIT_MISS, HIT_FOUND, HIT_FLAG_*): shade treats all but HIT_FOUND as a miss
+    uint materialKind;     // MATERIAL_*
+    float f0;              // dielectric reflectance at normal incidence, from the ior
+    uint pad0;
+};
+
 // Counters the kernels bump with atomics; the host reads the queue counts back after each bounce.
 struct PathCounters {
     uint nextPaths;     // rays appended to the next path queue
@@ -76,6 +91,7 @@ struct StageParams {
     uint64_t shadowRays;   // Ray[] of the shadow queue
     uint64_t shadowRequests; // ShadowRequest[] beside it
     uint64_t results;      // pt_resolve: the color buffer; pt_shadow_resolve: uint occlusion per shadow ray
+    uint64_t surfaces;     // SurfaceRecord[] beside the queue being consumed (pt_surface writes, pt_shade reads)
     uint count;            // items to process (paths, shadow rays or pixels)
     uint firstPixel;       // pixel of invocation 0 (pt_generate, pt_accumulate, pt_resolve)
     uint sampleIndex;      // the pixel sample this pass computes (over all render() calls)
