@@ -7,9 +7,10 @@
 
 namespace ripple::bench {
 
-// Flattens every TRIANGLES primitive reachable from the default scene (or from every root node where the
-// file names no scene) into one indexed mesh, positions in world space. Accepts float VEC3 positions and
-// uint8/16/32 indices. Throws std::runtime_error naming the file and the accessor on malformed data.
+// Flattens every instance of every TRIANGLES primitive of the default scene (or of every root node where the
+// file names no scene) into one indexed mesh, positions in world space. Reads through the project's glTF
+// importer (apps/common/GltfScene.h) without decoding images; throws std::runtime_error (a GltfError) naming
+// the file and the element on malformed data.
 core::TriangleMesh loadGltfTriangles(const std::filesystem::path& file);
 
 }  // namespace ripple::bench

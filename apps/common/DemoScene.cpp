@@ -1,0 +1,283 @@
+// The built-in demo scenes: procedural meshes (tiled floor, boxes, torus), sphere and cylinder geometries,
+// matte and physically based materials, a sun, an area light and a camera, all through standard ANARI.
+#include "apps/common/DemoScene.h"
+
+#include "apps/common/AnariParams.h"
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace ripple::apps {
+
+using anari::set;
+using anari::setObject;
+
+namespace {
+
+struct MeshData {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::uvec3> indices;
+    std::vector<glm::vec4> primitiveColors;   // empty, or one per triangle
+
+    // A parallelogram corner + s*edge1 + t*edge2 facing along cross(edge1, edge2).
+    void quad(const glm::vec3& corner, const glm::vec3& edge1, const glm::vec3& edge2) {
+        const uint32_t base = uint32_t(positions.size());
+        const glm::vec3 n = glm::normalize(glm::cross(edge1, edge2));
+        for (const glm::vec3& p : {corner, corner + edge1, corner + edge1 + edge2, corner + edge2}) {
+            positions.push_back(p);
+            normals.push_back(n);
+        }
+        indices.emplace_back(base, base + 1, base + 2);
+        indices.emplace_back(base, base + 2, base + 3);
+    }
+
+    // The unit cube [-0.5, 0.5]^3 under `transform` (rotation, scale, translation), faces outward.
+    void box(const glm::mat4& transform) {
+        const auto at = [&](float x, float y, float z) { return glm::vec3(transform * glm::vec4(x, y, z, 1.0f)); };
+        const glm::vec3 o = at(-0.5f, -0.5f, -0.5f);
+        const glm::vec3 x = at(0.5f, -0.5f, -0.5f) - o, y = at(-0.5f, 0.5f, -0.5f) - o, z = at(-0.5f, -0.5f, 0.5f) - o;
+        quad(o, y, x);            // -Z
+        quad(o + z, x, y);        // +Z
+        quad(o, z, y);            // -X
+        quad(o + x, y, z);        // +X
+        quad(o, x, z);            // -Y
+        quad(o + y, z, x);        // +Y
+    }
+};
+
+// A square floor at y = 0 of tiles x tiles squares in two alternating colours (per-triangle colours).
+MeshData tiledFloor(float halfExtent, int tiles, const glm::vec3& a, const glm::vec3& b) {
+    MeshData mesh;
+    const float step = 2.0f * halfExtent / float(tiles);
+    for (int i = 0; i < tiles; ++i)
+        for (int j = 0; j < tiles; ++j) {
+            mesh.quad(glm::vec3(-halfExtent + float(i) * step, 0.0f, -halfExtent + float(j) * step),
+                      glm::vec3(0.0f, 0.0f, step), glm::vec3(step, 0.0f, 0.0f));
+            const glm::vec4 c((i + j) % 2 ? a : b, 1.0f);
+            mesh.primitiveColors.insert(mesh.primitiveColors.end(), {c, c});
+        }
+    return mesh;
+}
+
+// A torus around the local Y axis (ring radius R, tube radius r), placed by `transform`.
+MeshData torus(float R, float r, int segments, int sides, const glm::mat4& transform) {
+    MeshData mesh;
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+    for (int i = 0; i <= segments; ++i) {
+        const float u = glm::two_pi<float>() * float(i) / float(segments);
+        for (int j = 0; j <= sides; ++j) {
+            const float v = glm::two_pi<float>() * float(j) / float(sides);
+            const glm::vec3 ring(std::cos(u), 0.0f, std::sin(u));
+            const glm::vec3 n = std::cos(v) * ring + glm::vec3(0.0f, std::sin(v), 0.0f);
+            mesh.positions.push_back(glm::vec3(transform * glm::vec4(R * ring + r * n, 1.0f)));
+            mesh.normals.push_back(glm::normalize(normalMatrix * n));
+        }
+    }
+    const uint32_t row = uint32_t(sides + 1);
+    for (uint32_t i = 0; i < uint32_t(segments); ++i)
+        for (uint32_t j = 0; j < uint32_t(sides); ++j) {
+            const uint32_t a = i * row + j, b = (i + 1) * row + j;
+            mesh.indices.emplace_back(a, a + 1, b);
+            mesh.indices.emplace_back(b, a + 1, b + 1);
+        }
+    return mesh;
+}
+
+class DemoBuilder {
+public:
+    explicit DemoBuilder(ANARIDevice d) : d_(d), handles_(d) {}
+
+    ANARIMaterial matte(const glm::vec3& color) {
+        ANARIMaterial m = handles_.keep(anariNewMaterial(d_, "matte"), "matte material");
+        set(d_, m, "color", color);
+        anariCommitParameters(d_, m);
+        return m;
+    }
+
+    // Matte whose colour comes from the geometry's color attribute (per vertex or per primitive).
+    ANARIMaterial matteFromColors() {
+        ANARIMaterial m = handles_.keep(anariNewMaterial(d_, "matte"), "matte material");
+        set(d_, m, "color", "color");
+        anariCommitParameters(d_, m);
+        return m;
+    }
+
+    ANARIMaterial pbr(const glm::vec3& baseColor, float metallic, float roughness) {
+        ANARIMaterial m = handles_.keep(anariNewMaterial(d_, "physicallyBased"), "physicallyBased material");
+        set(d_, m, "baseColor", baseColor);
+        set(d_, m, "metallic", metallic);
+        set(d_, m, "roughness", roughness);
+        anariCommitParameters(d_, m);
+        return m;
+    }
+
+    void mesh(const MeshData& data, ANARIMaterial material) {
+        ANARIGeometry g = handles_.keep(anariNewGeometry(d_, "triangle"), "triangle geometry");
+        attach(g, "vertex.position", data.positions);
+        attach(g, "vertex.normal", data.normals);
+        attach(g, "primitive.index", data.indices);
+        if (!data.primitiveColors.empty()) attach(g, "primitive.color", data.primitiveColors);
+        surface(g, material);
+    }
+
+    void spheres(const std::vector<glm::vec3>& centers, float radius, ANARIMaterial material) {
+        ANARIGeometry g = handles_.keep(anariNewGeometry(d_, "sphere"), "sphere geometry");
+        attach(g, "vertex.position", centers);
+        set(d_, g, "radius", radius);
+        surface(g, material);
+    }
+
+    // Capped cylinders between consecutive pairs of `ends`.
+    void cylinders(const std::vector<glm::vec3>& ends, float radius, ANARIMaterial material) {
+        ANARIGeometry g = handles_.keep(anariNewGeometry(d_, "cylinder"), "cylinder geometry");
+        attach(g, "vertex.position", ends);
+        set(d_, g, "radius", radius);
+        set(d_, g, "caps", "both");
+        surface(g, material);
+    }
+
+    void directionalLight(const glm::vec3& direction, const glm::vec3& color, float irradiance) {
+        ANARILight l = handles_.keep(anariNewLight(d_, "directional"), "directional light");
+        set(d_, l, "direction", glm::normalize(direction));
+        set(d_, l, "color", color);
+        set(d_, l, "irradiance", irradiance);
+        anariCommitParameters(d_, l);
+        lights_.push_back(l);
+    }
+
+    // Emits from the side cross(edge1, edge2) points to.
+    void quadLight(const glm::vec3& corner, const glm::vec3& edge1, const glm::vec3& edge2, const glm::vec3& color,
+                   float radiance) {
+        ANARILight l = handles_.keep(anariNewLight(d_, "quad"), "quad light");
+        set(d_, l, "position", corner);
+        set(d_, l, "edge1", edge1);
+        set(d_, l, "edge2", edge2);
+        set(d_, l, "color", color);
+        set(d_, l, "radiance", radiance);
+        set(d_, l, "side", "front");
+        anariCommitParameters(d_, l);
+        lights_.push_back(l);
+    }
+
+    // Everything in one group under one identity instance, as a glTF scene's meshes are.
+    AnariWorld finish(const CameraView& camera, const glm::vec3& lo, const glm::vec3& hi) {
+        ANARIGroup group = handles_.keep(anariNewGroup(d_), "group");
+        setObject(d_, group, "surface", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, surfaces_, ANARI_SURFACE), "array"));
+        anariCommitParameters(d_, group);
+        ANARIInstance instance = handles_.keep(anariNewInstance(d_, "transform"), "instance");
+        set(d_, instance, "transform", glm::mat4(1.0f));
+        setObject(d_, instance, "group", ANARI_GROUP, group);
+        anariCommitParameters(d_, instance);
+
+        AnariWorld out;
+        out.world = anariNewWorld(d_);
+        if (!out.world) throw std::runtime_error("the ANARI device returned no world");
+        const std::vector<ANARIInstance> instances{instance};
+        setObject(d_, out.world, "instance", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, instances, ANARI_INSTANCE), "array"));
+        if (!lights_.empty())
+            setObject(d_, out.world, "light", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, lights_, ANARI_LIGHT), "array"));
+        anariCommitParameters(d_, out.world);
+        out.cameras.push_back(camera);
+        out.boundsMin = lo;
+        out.boundsMax = hi;
+        return out;
+    }
+
+private:
+    template <typename T>
+    void attach(ANARIGeometry g, const char* name, const std::vector<T>& values) {
+        setObject(d_, g, name, ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, values), "array"));
+    }
+
+    void surface(ANARIGeometry g, ANARIMaterial material) {
+        anariCommitParameters(d_, g);
+        ANARISurface s = handles_.keep(anariNewSurface(d_), "surface");
+        setObject(d_, s, "geometry", ANARI_GEOMETRY, g);
+        setObject(d_, s, "material", ANARI_MATERIAL, material);
+        anariCommitParameters(d_, s);
+        surfaces_.push_back(s);
+    }
+
+    ANARIDevice d_;
+    anari::HandleList handles_;
+    std::vector<ANARISurface> surfaces_;
+    std::vector<ANARILight> lights_;
+};
+
+CameraView lookAt(const glm::vec3& from, const glm::vec3& at, float fovyDegrees) {
+    CameraView view;
+    view.name = "demo";
+    view.position = from;
+    view.direction = glm::normalize(at - from);
+    view.fovy = glm::radians(fovyDegrees);
+    return view;
+}
+
+AnariWorld defaultScene(ANARIDevice d) {
+    DemoBuilder b(d);
+    b.mesh(tiledFloor(6.0f, 12, glm::vec3(0.75f, 0.74f, 0.70f), glm::vec3(0.50f, 0.52f, 0.55f)), b.matteFromColors());
+    b.spheres({{-1.6f, 0.6f, 0.3f}}, 0.6f, b.matte(glm::vec3(0.75f, 0.14f, 0.11f)));                    // matte
+    b.spheres({{0.0f, 0.75f, -0.5f}}, 0.75f, b.pbr(glm::vec3(1.0f, 0.78f, 0.34f), 1.0f, 0.12f));       // polished gold
+    b.spheres({{1.6f, 0.55f, 0.4f}}, 0.55f, b.pbr(glm::vec3(0.12f, 0.32f, 0.80f), 0.0f, 0.45f));        // blue plastic
+    for (int i = 0; i < 5; ++i)  // a row of steel balls, smooth to rough
+        b.spheres({{-1.2f + 0.6f * float(i), 0.18f, 1.7f}}, 0.18f, b.pbr(glm::vec3(0.9f), 1.0f, 0.05f + 0.2f * float(i)));
+    const glm::mat4 torusPlace = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.8f, 0.72f, -2.2f)),
+                                             glm::radians(65.0f), glm::vec3(1.0f, 0.0f, 0.3f));
+    b.mesh(torus(0.5f, 0.18f, 64, 24, torusPlace), b.pbr(glm::vec3(0.95f, 0.64f, 0.54f), 1.0f, 0.3f));  // copper
+    b.cylinders({{-2.7f, 0.0f, -2.6f}, {-2.7f, 2.4f, -2.6f}, {-1.5f, 0.0f, -3.2f}, {-1.5f, 1.6f, -3.2f}}, 0.25f,
+                b.matte(glm::vec3(0.85f)));
+    b.directionalLight(glm::vec3(-0.5f, -1.0f, -0.35f), glm::vec3(1.0f, 0.95f, 0.85f), 2.5f);
+    b.quadLight(glm::vec3(-1.5f, 3.2f, 1.5f), glm::vec3(0.0f, 0.0f, -1.5f), glm::vec3(3.0f, 0.0f, 0.0f),
+                glm::vec3(0.9f, 0.95f, 1.0f), 3.0f);
+    AnariWorld out = b.finish(lookAt({0.0f, 2.0f, 6.5f}, {0.0f, 0.6f, 0.0f}, 40.0f), {-6.0f, 0.0f, -6.0f}, {6.0f, 3.2f, 6.0f});
+    out.ambientRadiance = 0.25f;
+    out.background = glm::vec4(0.55f, 0.65f, 0.80f, 1.0f);
+    return out;
+}
+
+// The room spans x, z in [-1, 1] and y in [0, 2]; its open side faces the camera at +Z.
+AnariWorld cornellScene(ANARIDevice d) {
+    DemoBuilder b(d);
+    const glm::vec3 white(0.725f, 0.71f, 0.68f), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
+    MeshData room;
+    room.quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0});   // floor, facing up
+    room.quad({-1, 2, -1}, {2, 0, 0}, {0, 0, 2});   // ceiling, facing down
+    room.quad({-1, 0, -1}, {2, 0, 0}, {0, 2, 0});   // back wall, facing +Z
+    b.mesh(room, b.matte(white));
+    MeshData left, right;
+    left.quad({-1, 0, -1}, {0, 2, 0}, {0, 0, 2});   // facing +X
+    right.quad({1, 0, -1}, {0, 0, 2}, {0, 2, 0});   // facing -X
+    b.mesh(left, b.matte(red));
+    b.mesh(right, b.matte(green));
+    MeshData boxes;
+    boxes.box(glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(0.33f, 0.3f, 0.37f)),
+                                     glm::radians(-17.0f), glm::vec3(0, 1, 0)), glm::vec3(0.6f)));
+    boxes.box(glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-0.34f, 0.6f, -0.29f)),
+                                     glm::radians(17.0f), glm::vec3(0, 1, 0)), glm::vec3(0.6f, 1.2f, 0.6f)));
+    b.mesh(boxes, b.matte(white));
+    b.quadLight({-0.25f, 1.98f, -0.2f}, {0.5f, 0, 0}, {0, 0, 0.4f}, glm::vec3(1.0f, 0.75f, 0.45f), 25.0f);
+    return b.finish(lookAt({0.0f, 1.0f, 3.9f}, {0.0f, 1.0f, 0.0f}, 39.3f), {-1.0f, 0.0f, -1.0f}, {1.0f, 2.0f, 1.0f});
+}
+
+}  // namespace
+
+std::vector<std::string> demoSceneNames() { return {"default", "cornell"}; }
+
+void checkDemoSceneName(const std::string& name) {
+    const std::vector<std::string> names = demoSceneNames();
+    if (std::find(names.begin(), names.end(), name) != names.end()) return;
+    std::string known;
+    for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown demo scene '" + name + "' (known: " + known + ")");
+}
+
+AnariWorld buildDemoScene(ANARIDevice device, const std::string& name) {
+    checkDemoSceneName(name);
+    return name == "cornell" ? cornellScene(device) : defaultScene(device);
+}
+
+}  // namespace ripple::apps
