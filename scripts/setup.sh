@@ -8,6 +8,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools  # Vulkan + lavapipe, shaders
   libglm-dev libtbb-dev doctest-dev libtinygltf-dev libcli11-dev libstb-dev
   libembree-dev                                                                # ripple-bench comparison only
+  libopenmpi-dev openmpi-bin                                                   # data-parallel rendering
 )
 
 missing=()

@@ -1,24 +1,57 @@
-// The two surface models. Matte: Lambertian, sampled by the cosine. physicallyBased: the glTF
-// metallic-roughness model (glTF 2.0 spec, appendix B): a GGX microfacet specular lobe (Walter et al.
-// 2007, alpha = roughness^2 as Karis 2013, height-correlated Smith masking) whose Schlick Fresnel goes
-// from the dielectric F0 of the ior to the base color with metallic, over a Lambertian lobe weighted by
-// (1 - metallic)(1 - F). The specular lobe is sampled by its visible normals (Heitz, "Sampling the GGX
-// Distribution of Visible Normals", JCGT 2018); the two lobes are picked stochastically and combined in
-// one mixture pdf. All directions are unit vectors pointing away from the surface; n is the shading normal.
+// The surface models. Matte: Lambertian. physicallyBased: the glTF metallic-roughness model with its
+// clearcoat, specular and transmission extensions, as four lobes:
+//   clear coat  GGX, F0 0.04, over everything below it;
+//   specular    GGX whose Schlick F0 goes from the dielectric F0 (ior, times "specular") to the base color
+//               with metallic; Walter et al. 2007, alpha = roughness^2, height-correlated Smith masking;
+//   diffuse     Lambertian, (1 - metallic)(1 - transmission) of what the dielectric specular leaves;
+//   transmission  refraction through GGX microfacets (total internal reflection reflects), tinted by the
+//               base color, transmission's share of what the dielectric specular leaves.
+// Energy: single-scattering GGX loses energy at high roughness; the specular lobes are scaled by
+// 1 + F0 (1 - E) / E (Turquin, "Practical multiple scattering compensation for microfacet models", 2019),
+// and each layer below passes on exactly 1 - (the directional albedo of the layers above), read from
+// tables of E(mu, alpha) computed on the host (core/scene/BsdfTables.h). So a white material reflects all
+// it receives at any roughness (the white furnace test). The transmission lobe's value is its weight
+// times its sampling density, so it conserves energy exactly too. GGX lobes are sampled by their visible
+// normals (Heitz, JCGT 2018); a lobe is picked in proportion to its albedo and the lobes combined in one
+// mixture pdf. Directions are unit vectors pointing away from the surface; n is the shading normal, on the
+// side of wo.
 #ifndef RIPPLE_BSDF_GLSL
 #define RIPPLE_BSDF_GLSL
 
 #include "sampling.glsl"
 
 struct SurfaceMaterial {
-    uint kind;         // MATERIAL_*
+    uint kind;           // MATERIAL_*
     vec3 baseColor;
     float metallic;
-    float alpha;       // GGX roughness: roughness^2, kept above a floor so the lobe stays a function
-    float f0;          // dielectric reflectance at normal incidence, from the ior
+    float alpha;         // GGX roughness: roughness^2, kept above a floor so the lobe stays a function
+    float f0;            // dielectric reflectance at normal incidence, from the ior and the specular factor
+    float transmission;
+    float clearcoat;
+    float clearcoatAlpha;
+    float eta;           // refraction: ior on the other side / ior on wo's side (ior when entering)
+    uint64_t texels;     // SceneDesc.texels, which hold the energy tables
+    uint tableOffset;    // SceneDesc.bsdfTables
 };
 
 const float MIN_GGX_ALPHA = 1e-3;
+const float CLEARCOAT_F0 = 0.04;   // ior 1.5
+// Must match core/scene/BsdfTables.h.
+const uint BSDF_TABLE_SIZE = 32u;
+
+// Table `table` (0: E, the albedo of GGX with F = 1; 1: W, the albedo weighted by (1 - v.h)^5) at
+// (mu, alpha), bilinear over mu and roughness = sqrt(alpha).
+float energyTable(SurfaceMaterial m, uint table, float mu, float alpha) {
+    float n = float(BSDF_TABLE_SIZE);
+    vec2 x = clamp(vec2(mu * n - 0.5, sqrt(alpha) * (n - 1.0)), vec2(0.0), vec2(n - 1.0));
+    vec2 i = min(floor(x), vec2(n - 2.0));
+    vec2 f = x - i;
+    uint base = m.tableOffset + table * BSDF_TABLE_SIZE * BSDF_TABLE_SIZE + uint(i.y) * BSDF_TABLE_SIZE + uint(i.x);
+    UintsRef t = UintsRef(m.texels);
+    float v00 = uintBitsToFloat(t.values[base]), v10 = uintBitsToFloat(t.values[base + 1u]);
+    float v01 = uintBitsToFloat(t.values[base + BSDF_TABLE_SIZE]), v11 = uintBitsToFloat(t.values[base + BSDF_TABLE_SIZE + 1u]);
+    return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
+}
 
 float ggxD(float nh, float a2) {
     float d = nh * nh * (a2 - 1.0) + 1.0;
@@ -37,71 +70,179 @@ vec3 schlick(vec3 f0, float c) {
     return f0 + (1.0 - f0) * (m2 * m2 * m);
 }
 
-// Chance of sampling the specular lobe: its Fresnel weight at normal incidence of wo against the diffuse one.
-float specularChance(SurfaceMaterial m, float nv) {
-    vec3 f = schlick(mix(vec3(m.f0), m.baseColor, m.metallic), nv);
-    float spec = luminance(f);
-    float diffuse = (1.0 - m.metallic) * (1.0 - luminance(schlick(vec3(m.f0), nv))) * luminance(m.baseColor);
-    return spec + diffuse > 0.0 ? clamp(spec / (spec + diffuse), 0.05, 1.0) : 1.0;
+// Directional albedo of a compensated GGX lobe with Schlick F0, and the compensation factor.
+struct LobeEnergy {
+    vec3 albedo;
+    vec3 compensation;
+};
+
+LobeEnergy lobeEnergy(SurfaceMaterial m, vec3 f0, float mu, float alpha) {
+    float e = max(energyTable(m, 0u, mu, alpha), 1e-4);
+    float w = energyTable(m, 1u, mu, alpha);
+    LobeEnergy l;
+    l.compensation = 1.0 + f0 * ((1.0 - e) / e);
+    l.albedo = (f0 * (e - w) + w) * l.compensation;
+    return l;
 }
 
-// f(wo, wi) * cos(n, wi), and the pdf with which sampleBsdf picks wi.
+// The lobes' weights at wo: each lobe's share of the albedo, for picking one.
+struct Lobes {
+    float coat;          // chance of each lobe; they sum to 1 (or all are 0)
+    float specular;
+    float diffuse;
+    float transmission;
+    vec3 coatCompensation;
+    vec3 specularCompensation;
+    vec3 specularF0;
+    float underCoat;     // what the clear coat passes on: 1 - its albedo
+    float underDielectric; // what the dielectric specular passes on to diffuse and transmission
+};
+
+Lobes lobesAt(SurfaceMaterial m, float nv) {
+    Lobes l;
+    l.specularF0 = mix(vec3(m.f0), m.baseColor, m.metallic);
+    LobeEnergy coat = lobeEnergy(m, vec3(CLEARCOAT_F0), nv, m.clearcoatAlpha);
+    LobeEnergy spec = lobeEnergy(m, l.specularF0, nv, m.alpha);
+    LobeEnergy dielectric = lobeEnergy(m, vec3(m.f0), nv, m.alpha);
+    l.coatCompensation = coat.compensation;
+    l.specularCompensation = spec.compensation;
+    float coatAlbedo = m.clearcoat * coat.albedo.x;
+    l.underCoat = 1.0 - coatAlbedo;
+    l.underDielectric = clamp(1.0 - dielectric.albedo.x, 0.0, 1.0);
+    float base = l.underCoat * (1.0 - m.metallic) * l.underDielectric * luminance(m.baseColor);
+    float coatW = coatAlbedo;
+    float specW = l.underCoat * luminance(spec.albedo);
+    float diffW = base * (1.0 - m.transmission);
+    float transW = base * m.transmission;
+    float sum = coatW + specW + diffW + transW;
+    float inv = sum > 0.0 ? 1.0 / sum : 0.0;
+    l.coat = coatW * inv;
+    l.specular = specW * inv;
+    l.diffuse = diffW * inv;
+    l.transmission = transW * inv;
+    return l;
+}
+
+// Visible-normal density of h seen from wo (both in the frame of n): G1(wo) max(0, wo.h) D(h) / n.wo.
+float visibleNormalPdf(float nv, float nh, float vh, float a2) {
+    return vh > 0.0 ? ggxD(nh, a2) * vh / (nv * (1.0 + ggxLambda(nv, a2))) : 0.0;
+}
+
+// A GGX reflection lobe: f * cos (without F0 compensation or weight) and its pdf.
+vec3 ggxReflection(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi, out float pdf) {
+    float nl = dot(n, wi), nv = dot(n, wo);
+    vec3 h = normalize(wo + wi);
+    float nh = max(dot(n, h), 0.0), vh = max(dot(wo, h), 0.0);
+    float a2 = alpha * alpha;
+    float D = ggxD(nh, a2);
+    float lambdaV = ggxLambda(nv, a2);
+    float G2 = 1.0 / (1.0 + lambdaV + ggxLambda(nl, a2));
+    pdf = visibleNormalPdf(nv, nh, vh, a2) / (4.0 * max(vh, 1e-12));
+    return schlick(f0, vh) * (D * G2 / (4.0 * nv));  // times nl / nl
+}
+
+bool totalInternalReflection(float eta, float vh) { return eta * eta * (1.0 - vh * vh) > 1.0; }
+
+// The transmission lobe's sampling density of wi (refracted through h, or reflected where h totally
+// reflects); its f * cos is its weight times this density.
+float transmissionPdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
+    float nv = dot(n, wo), nl = dot(n, wi);
+    float a2 = m.alpha * m.alpha;
+    float e = 1.0 / m.eta;  // refract()'s ratio: ior on the incoming side / ior on the outgoing side
+    if (nl > 0.0) {
+        vec3 h = normalize(wo + wi);
+        float vh = dot(wo, h);
+        if (!totalInternalReflection(e, vh)) return 0.0;
+        return visibleNormalPdf(nv, max(dot(n, h), 0.0), vh, a2) / (4.0 * max(vh, 1e-12));
+    }
+    vec3 h = e * wo + wi;
+    float len = length(h);
+    if (!(len > 0.0)) return 0.0;
+    h /= len;
+    if (dot(h, n) < 0.0) h = -h;
+    float vh = dot(wo, h), lh = dot(wi, h);
+    if (vh <= 0.0 || lh >= 0.0 || totalInternalReflection(e, vh)) return 0.0;
+    float denom = e * vh + lh;
+    return visibleNormalPdf(nv, dot(n, h), vh, a2) * abs(lh) / max(denom * denom, 1e-12);
+}
+
+// f(wo, wi) * |cos(n, wi)|, and the pdf with which sampleBsdf picks wi.
 vec3 evalBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi, out float pdf) {
     pdf = 0.0;
     float nl = dot(n, wi);
     float nv = dot(n, wo);
-    if (nl <= 0.0 || nv <= 0.0) return vec3(0.0);
+    if (nv <= 0.0 || nl == 0.0) return vec3(0.0);
     if (m.kind == MATERIAL_MATTE) {
+        if (nl < 0.0) return vec3(0.0);
         pdf = nl / PI;
         return m.baseColor * (nl / PI);
     }
-    vec3 h = normalize(wo + wi);
-    float nh = max(dot(n, h), 0.0);
-    float vh = max(dot(wo, h), 0.0);
-    float a2 = m.alpha * m.alpha;
-    float D = ggxD(nh, a2);
-    float lambdaV = ggxLambda(nv, a2);
-    float G2 = 1.0 / (1.0 + lambdaV + ggxLambda(nl, a2));
-    float G1 = 1.0 / (1.0 + lambdaV);
-    vec3 F = schlick(mix(vec3(m.f0), m.baseColor, m.metallic), vh);
-    float dielectricF = schlick(vec3(m.f0), vh).x;
-    vec3 specular = F * (D * G2 / (4.0 * nv));                      // times nl / nl
-    vec3 diffuse = (1.0 - m.metallic) * (1.0 - dielectricF) * m.baseColor * (nl / PI);
-    float pSpec = specularChance(m, nv);
-    pdf = pSpec * (G1 * D / (4.0 * nv)) + (1.0 - pSpec) * (nl / PI);
-    return specular + diffuse;
+    Lobes l = lobesAt(m, nv);
+    vec3 value = vec3(0.0);
+    if (nl > 0.0) {
+        float p;
+        if (m.clearcoat > 0.0) {
+            value += m.clearcoat * l.coatCompensation * ggxReflection(vec3(CLEARCOAT_F0), m.clearcoatAlpha, n, wo, wi, p);
+            pdf += l.coat * p;
+        }
+        value += l.underCoat * l.specularCompensation * ggxReflection(l.specularF0, m.alpha, n, wo, wi, p);
+        pdf += l.specular * p;
+        value += l.underCoat * (1.0 - m.metallic) * (1.0 - m.transmission) * l.underDielectric * m.baseColor * (nl / PI);
+        pdf += l.diffuse * (nl / PI);
+    }
+    if (m.transmission > 0.0) {
+        float p = transmissionPdf(m, n, wo, wi);
+        value += l.underCoat * (1.0 - m.metallic) * m.transmission * l.underDielectric * m.baseColor * p;
+        pdf += l.transmission * p;
+    }
+    return value;
 }
 
-// Samples wi; weight = f * cos / pdf. False when the sample carries nothing (below the surface).
-bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec3 weight) {
+// A visible normal of GGX (alpha) seen from v (local frame, v.z > 0) for the uniforms u.
+vec3 sampleVisibleNormal(vec3 v, float alpha, vec2 u) {
+    // Stretch the view to the hemisphere configuration, sample a disk projected on it, unstretch.
+    vec3 vh = normalize(vec3(alpha * v.x, alpha * v.y, v.z));
+    float lensq = vh.x * vh.x + vh.y * vh.y;
+    vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0);
+    vec3 t2 = cross(vh, t1);
+    float r = sqrt(u.x);
+    float phi = 2.0 * PI * u.y;
+    float p1 = r * cos(phi);
+    float p2 = r * sin(phi);
+    float s = 0.5 * (1.0 + vh.z);
+    p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
+    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+    return normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0, nh.z)));
+}
+
+// Samples wi; weight = f * |cos| / pdf, and its pdf. False when the sample carries nothing.
+bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec3 weight, out float pdf) {
     weight = vec3(0.0);
+    pdf = 0.0;
     if (m.kind == MATERIAL_MATTE) {
         wi = toWorld(sampleCosineHemisphere(u.yz), n);
         weight = m.baseColor;  // (base / pi) * cos / (cos / pi)
-        return dot(n, wi) > 0.0;
+        pdf = dot(n, wi) / PI;
+        return pdf > 0.0;
     }
     float nv = dot(n, wo);
-    if (u.x < specularChance(m, nv)) {
-        vec3 v = toLocal(wo, n);
-        // Visible normal: stretch the view to the hemisphere configuration, sample a disk projected on it,
-        // unstretch.
-        vec3 vh = normalize(vec3(m.alpha * v.x, m.alpha * v.y, v.z));
-        float lensq = vh.x * vh.x + vh.y * vh.y;
-        vec3 t1 = lensq > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(lensq) : vec3(1.0, 0.0, 0.0);
-        vec3 t2 = cross(vh, t1);
-        float r = sqrt(u.y);
-        float phi = 2.0 * PI * u.z;
-        float p1 = r * cos(phi);
-        float p2 = r * sin(phi);
-        float s = 0.5 * (1.0 + vh.z);
-        p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
-        vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-        vec3 microNormal = normalize(vec3(m.alpha * nh.x, m.alpha * nh.y, max(0.0, nh.z)));
-        wi = toWorld(reflect(-v, microNormal), n);
-    } else {
+    if (nv <= 0.0) return false;
+    Lobes l = lobesAt(m, nv);
+    vec3 v = toLocal(wo, n);
+    float pick = u.x;
+    if (pick < l.coat) {
+        wi = toWorld(reflect(-v, sampleVisibleNormal(v, m.clearcoatAlpha, u.yz)), n);
+    } else if ((pick -= l.coat) < l.specular) {
+        wi = toWorld(reflect(-v, sampleVisibleNormal(v, m.alpha, u.yz)), n);
+    } else if ((pick -= l.specular) < l.diffuse) {
         wi = toWorld(sampleCosineHemisphere(u.yz), n);
+    } else if (l.transmission > 0.0) {
+        vec3 h = sampleVisibleNormal(v, m.alpha, u.yz);
+        vec3 t = refract(-v, h, 1.0 / m.eta);
+        wi = toWorld(dot(t, t) > 0.0 ? t : reflect(-v, h), n);
+    } else {
+        return false;
     }
-    float pdf;
     vec3 fCos = evalBsdf(m, n, wo, wi, pdf);
     if (!(pdf > 0.0)) return false;
     weight = fCos / pdf;

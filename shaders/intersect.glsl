@@ -85,11 +85,12 @@ bool stableQuadraticRoots(vec3 f, vec3 d, float r, out float t0, out float t1) {
     return true;
 }
 
-// Round cylinder from p0 to p1 (radius in p0Radius.w), with flat caps at both ends when `caps`. The ray is
+// Round cylinder from p0 to p1 (radius in p0Radius.w), with flat caps at the ends named by `caps`
+// (CAP_FIRST, CAP_SECOND). The ray is
 // split into components along and across the unit axis, so the side is the 2D circle problem of the
 // sphere test. Returns true and updates tBest, `axial` (0 at p0, 1 at p1) and `onCap` (0 side, 1 cap)
 // for the nearest hit in (tmin, tBest).
-bool intersectCylinder(vec3 origin, vec3 direction, vec4 p0Radius, vec3 p1, bool caps, float tmin,
+bool intersectCylinder(vec3 origin, vec3 direction, vec4 p0Radius, vec3 p1, uint caps, float tmin,
                        inout float tBest, out float axial, out float onCap) {
     axial = 0.0;
     onCap = 0.0;
@@ -117,8 +118,9 @@ bool intersectCylinder(vec3 origin, vec3 direction, vec4 p0Radius, vec3 p1, bool
             }
         }
     }
-    if (caps && da != 0.0) {
+    if (caps != 0u && da != 0.0) {
         for (int i = 0; i < 2; ++i) {
+            if ((caps & (i == 0 ? CAP_FIRST : CAP_SECOND)) == 0u) continue;
             float end = i == 0 ? 0.0 : len;
             float t = (end - fa) / da;
             vec3 across = fp + t * dp;
@@ -141,6 +143,100 @@ bool intersectSphere(vec3 origin, vec3 direction, vec4 centerRadius, float tmin,
     if (!(t > tmin && t < tBest)) return false;
     tBest = t;
     return true;
+}
+
+// Cone frustum from p0 (radius r0) to p1 (radius r1) with the caps named in `flags`; with CONE_ROUND, a
+// curve segment: spheres at both ends joined by the cone tangent to both. The ray is first moved to its
+// point nearest the segment's middle, so the quadratic's coefficients stay small for a thin cone seen
+// from far away (the cancellation that ruins the textbook form), and the roots come from the
+// cancellation-free pair q/a, c/q. Returns true and updates tBest, `axial` (0 at p0, 1 at p1) and `part`
+// (0 side, 1 flat cap, 2 end sphere) for the nearest hit in (tmin, tBest).
+bool intersectCone(vec3 origin, vec3 direction, vec4 p0Radius, vec4 p1Radius, uint flags, float tmin,
+                   inout float tBest, out float axial, out float part) {
+    axial = 0.0;
+    part = 0.0;
+    bool found = false;
+    vec3 axis = p1Radius.xyz - p0Radius.xyz;
+    float len = length(axis);
+    vec3 w = axis / len;
+    bool round = (flags & CONE_ROUND) != 0u;
+    if (round) {
+        for (int i = 0; i < 2; ++i) {
+            vec4 sphere = i == 0 ? p0Radius : p1Radius;
+            float t0, t1;
+            if (!stableQuadraticRoots(origin - sphere.xyz, direction, sphere.w, t0, t1)) continue;
+            float t = t0 > tmin ? t0 : t1;
+            if (t > tmin && t < tBest) {
+                tBest = t;
+                axial = float(i);
+                part = 2.0;
+                found = true;
+            }
+        }
+    }
+    // The side: for a round segment, the cone tangent to both spheres, which touches them a little
+    // behind their centres (by r sin(alpha), with sin(alpha) the radius change per unit length).
+    vec3 p0 = p0Radius.xyz;
+    float r0 = p0Radius.w;
+    float r1 = p1Radius.w;
+    float sideStart = 0.0;
+    float sideEnd = len;
+    if (round) {
+        float sinAlpha = (r1 - r0) / len;
+        if (abs(sinAlpha) >= 1.0) return found;  // one sphere holds the other: no side
+        float cosAlpha = sqrt(1.0 - sinAlpha * sinAlpha);
+        sideStart = -r0 * sinAlpha;
+        sideEnd = len - r1 * sinAlpha;
+        r0 *= cosAlpha;
+        r1 *= cosAlpha;
+    }
+    float slope = (r1 - r0) / (sideEnd - sideStart);
+    float dd = dot(direction, direction);
+    float shift = dot(0.5 * (p0Radius.xyz + p1Radius.xyz) - origin, direction) / dd;
+    vec3 f = origin + shift * direction - p0;
+    float fa = dot(f, w);
+    float da = dot(direction, w);
+    vec3 fp = f - fa * w;
+    vec3 dp = direction - da * w;
+    float rf = r0 + slope * (fa - sideStart);  // radius of the cone at the shifted origin's axial position
+    // |fp + t dp|^2 = (rf + slope da t)^2, as a t^2 + 2 b t + c = 0
+    float a = dot(dp, dp) - slope * slope * da * da;
+    float b = dot(fp, dp) - rf * slope * da;
+    float c = dot(fp, fp) - rf * rf;
+    float disc = b * b - a * c;
+    if (disc >= 0.0) {
+        float q = -b - (b < 0.0 ? -1.0 : 1.0) * sqrt(disc);
+        float roots[2];
+        roots[0] = q != 0.0 ? c / q : uintBitsToFloat(0xff800000u);  // -inf: no root
+        roots[1] = abs(a) > 0.0 ? q / a : uintBitsToFloat(0xff800000u);
+        for (int i = 0; i < 2; ++i) {
+            float s = fa + roots[i] * da;
+            float t = roots[i] + shift;
+            float radiusThere = rf + slope * roots[i] * da;
+            if (t > tmin && t < tBest && s >= sideStart && s <= sideEnd && radiusThere >= 0.0) {
+                tBest = t;
+                axial = s / len;
+                part = 0.0;
+                found = true;
+            }
+        }
+    }
+    uint caps = round ? 0u : flags;
+    if (caps != 0u && da != 0.0) {
+        for (int i = 0; i < 2; ++i) {
+            if ((caps & (i == 0 ? CAP_FIRST : CAP_SECOND)) == 0u) continue;
+            float t = ((i == 0 ? 0.0 : len) - fa) / da;
+            vec3 across = fp + t * dp;
+            float r = i == 0 ? r0 : r1;
+            if (t + shift > tmin && t + shift < tBest && dot(across, across) <= r * r) {
+                tBest = t + shift;
+                axial = float(i);
+                part = 1.0;
+                found = true;
+            }
+        }
+    }
+    return found;
 }
 
 // 1 + 2*gamma(3) with gamma(n) = n*u/(1-n*u), u = 2^-24: the widening that makes the slab test conservative.

@@ -1,6 +1,9 @@
-// Next-event estimation toward the scene's lights: directional (irradiance from one direction), point
-// (intensity over distance squared) and quad (area sampling: radiance * cos at the light / distance^2 /
-// area pdf). Lights are not geometry: rays never hit them, so nothing is counted twice.
+// Lights for next-event estimation and for BSDF-sampled rays, and the weights that combine the two
+// (multiple importance sampling, power heuristic). Delta lights (directional, point, spot) are reached by
+// next-event estimation only. Area lights: quad, ring and hdri are not geometry, so a BSDF-sampled ray
+// tests them itself (testedLightsRadiance); emissive triangles are geometry, found by the trace, and their
+// light pdf comes from the density pt_surface stores in the SurfaceRecord (surfaceLightPdf). A light is
+// picked with the probability stored in its record (proportional to power). Needs texture.glsl.
 #ifndef RIPPLE_LIGHTS_GLSL
 #define RIPPLE_LIGHTS_GLSL
 
@@ -8,37 +11,194 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Li
 
 struct LightSample {
     vec3 direction;   // unit, from the shading point toward the light
-    float distance;   // to the sampled point on the light; +inf for directional lights
-    vec3 incident;    // what multiplies f * cos: irradiance-like, already divided by the point's pdf
+    float distance;   // to the sampled point on the light; +inf for directional and hdri lights
+    vec3 incident;    // what multiplies f * cos: radiance (or intensity / d^2) divided by the point's pdf
+    float pdf;        // solid-angle pdf of the direction (not counting the light's selection); 0: a delta light
 };
 
-// False when the light sends nothing toward p (behind a one-sided quad, or p on the light).
-bool sampleLight(LightRecord light, vec3 p, vec2 u, out LightSample s) {
+// w of the strategy with pdf a against one with pdf b, power heuristic; safe for huge or infinite pdfs.
+float misWeight(float a, float b) {
+    if (!(a > 0.0)) return 0.0;
+    if (a >= b) { float r = b / a; return 1.0 / (1.0 + r * r); }
+    float r = a / b;
+    return r * r / (1.0 + r * r);
+}
+
+// Index of the light whose cdf interval holds u (binary search over the cdfs in position.w).
+uint pickLight(SceneDesc scene, float u) {
+    LightsRef lights = LightsRef(scene.lights);
+    uint lo = 0u, hi = scene.lightCount - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi) / 2u;
+        if (u < lights.lights[mid].position.w) hi = mid;
+        else lo = mid + 1u;
+    }
+    return lo;
+}
+
+// Full light within the inner cone, none outside the outer, smooth between (cosines in edge1.xy).
+float spotProfile(LightRecord light, float cosAxis) {
+    return smoothstep(light.edge1.x, max(light.edge1.y, light.edge1.x + 1e-6), cosAxis);
+}
+
+// --- the equirectangular environment (hdri) ---
+
+vec3 environmentSide(LightRecord light) { return cross(light.edge2.xyz, light.direction.xyz); }
+
+// Index of the first cdf entry (of n, at word `first`) above u.
+uint searchCdf(uint64_t texels, uint first, uint n, float u) {
+    UintsRef words = UintsRef(texels);
+    uint lo = 0u, hi = n - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi) / 2u;
+        if (u < uintBitsToFloat(words.values[first + mid])) hi = mid;
+        else lo = mid + 1u;
+    }
+    return lo;
+}
+
+float cdfStep(uint64_t texels, uint first, uint i) {
+    UintsRef words = UintsRef(texels);
+    float below = i > 0u ? uintBitsToFloat(words.values[first + i - 1u]) : 0.0;
+    return uintBitsToFloat(words.values[first + i]) - below;
+}
+
+// Radiance of the environment seen along d, and the solid-angle pdf of sampling d.
+vec3 environmentRadiance(SceneDesc scene, LightRecord light, vec3 d, out float pdf) {
+    TextureRecord tex = TexturesRef(scene.textures).textures[light.texture];
+    float x = dot(d, light.direction.xyz), y = dot(d, environmentSide(light)), z = dot(d, light.edge2.xyz);
+    float u = 0.5 + atan(y, x) / (2.0 * PI);
+    float v = acos(clamp(z, -1.0, 1.0)) / PI;
+    uint col = min(uint(u * float(tex.width)), tex.width - 1u);
+    uint row = min(uint(v * float(tex.height)), tex.height - 1u);
+    float sinTheta = sqrt(max(0.0, 1.0 - z * z));
+    float probability = cdfStep(scene.texels, light.distribution, row) *
+                        cdfStep(scene.texels, light.distribution + tex.height + row * tex.width, col);
+    pdf = sinTheta > 0.0 ? probability * float(tex.width * tex.height) / (2.0 * PI * PI * sinTheta) : 0.0;
+    return fetchTexel(tex, scene.texels, int(col), int(row)).rgb * light.emission.rgb;
+}
+
+bool sampleEnvironment(SceneDesc scene, LightRecord light, vec2 u, out LightSample s) {
+    TextureRecord tex = TexturesRef(scene.textures).textures[light.texture];
+    uint row = searchCdf(scene.texels, light.distribution, tex.height, u.x);
+    uint colFirst = light.distribution + tex.height + row * tex.width;
+    uint col = searchCdf(scene.texels, colFirst, tex.width, u.y);
+    // A point within the texel, reusing what is left of u inside the chosen cdf intervals.
+    float rowLow = row > 0u ? uintBitsToFloat(UintsRef(scene.texels).values[light.distribution + row - 1u]) : 0.0;
+    float colLow = col > 0u ? uintBitsToFloat(UintsRef(scene.texels).values[colFirst + col - 1u]) : 0.0;
+    vec2 within = clamp(vec2((u.y - colLow) / max(cdfStep(scene.texels, colFirst, col), 1e-30),
+                             (u.x - rowLow) / max(cdfStep(scene.texels, light.distribution, row), 1e-30)), 0.0, 0.999999);
+    float phi = ((float(col) + within.x) / float(tex.width) - 0.5) * 2.0 * PI;
+    float theta = (float(row) + within.y) / float(tex.height) * PI;
+    s.direction = sin(theta) * (cos(phi) * light.direction.xyz + sin(phi) * environmentSide(light)) + cos(theta) * light.edge2.xyz;
+    s.distance = INFINITY;
+    vec3 radiance = environmentRadiance(scene, light, s.direction, s.pdf);
+    if (!(s.pdf > 0.0)) return false;
+    s.incident = radiance / s.pdf;
+    return true;
+}
+
+// --- sampling a light from a point ---
+
+// False when the light sends nothing toward p (behind a one-sided emitter, outside a spot, p on the light).
+bool sampleLight(SceneDesc scene, LightRecord light, vec3 p, vec2 u, out LightSample s) {
     s.direction = vec3(0.0, 0.0, 1.0);
     s.distance = 0.0;
     s.incident = vec3(0.0);
+    s.pdf = 0.0;
     if (light.kind == LIGHT_DIRECTIONAL) {
         s.direction = -light.direction.xyz;
         s.distance = INFINITY;
         s.incident = light.emission.rgb;
         return true;
     }
+    if (light.kind == LIGHT_HDRI) return sampleEnvironment(scene, light, u, s);
     vec3 target = light.position.xyz;
-    if (light.kind == LIGHT_QUAD) target += u.x * light.edge1.xyz + u.y * light.edge2.xyz;
+    if (light.kind == LIGHT_QUAD) {
+        target += u.x * light.edge1.xyz + u.y * light.edge2.xyz;
+    } else if (light.kind == LIGHT_TRIANGLE) {
+        float su = sqrt(u.x);
+        target += su * (1.0 - u.y) * light.edge1.xyz + su * u.y * light.edge2.xyz;
+    } else if (light.kind == LIGHT_RING) {
+        float inner = light.edge2.w, outer = light.edge1.z;
+        float r = sqrt(mix(inner * inner, outer * outer, u.x));
+        float phi = 2.0 * PI * u.y;
+        vec3 t, b;
+        orthonormalFrame(light.direction.xyz, t, b);
+        target += r * (cos(phi) * t + sin(phi) * b);
+    }
     vec3 toLight = target - p;
     float d2 = dot(toLight, toLight);
     if (!(d2 > 0.0)) return false;
     s.distance = sqrt(d2);
     s.direction = toLight / s.distance;
-    if (light.kind == LIGHT_POINT) {
-        s.incident = light.emission.rgb / d2;
-        return true;
+    if (light.kind == LIGHT_POINT || light.kind == LIGHT_SPOT) {
+        float profile = light.kind == LIGHT_SPOT ? spotProfile(light, dot(light.direction.xyz, -s.direction)) : 1.0;
+        s.incident = light.emission.rgb * (profile / d2);
+        return profile > 0.0;
     }
+    // Area lights: radiance * cos at the light / d^2 / (1 / area).
     float cosLight = -dot(light.direction.xyz, s.direction);
     if (light.twoSided != 0u) cosLight = abs(cosLight);
     if (cosLight <= 0.0) return false;
-    s.incident = light.emission.rgb * (cosLight * light.edge1.w / d2);  // edge1.w: area, the inverse pdf
-    return true;
+    float radiance = light.kind == LIGHT_RING ? spotProfile(light, cosLight) : 1.0;
+    s.pdf = d2 / (cosLight * light.edge1.w);  // edge1.w: area
+    s.incident = light.emission.rgb * (radiance / s.pdf);
+    return radiance > 0.0;
+}
+
+// --- what BSDF-sampled rays find ---
+
+// Solid-angle pdf with which next-event estimation picks a point of an emissive triangle, from the density
+// pt_surface stored (2 pi luminance(emission); the light's power share divided by its area, times
+// lightPowerTotal), the distance to it and the cosine there.
+float surfaceLightPdf(SceneDesc scene, float density, float distance, float cosLight) {
+    if (!(density > 0.0) || !(scene.lightPowerTotal > 0.0)) return 0.0;
+    return density / scene.lightPowerTotal * distance * distance / max(abs(cosLight), 1e-12);
+}
+
+// Emission that a BSDF-sampled ray (from o along unit d, up to tmax; `before` is the distance from the
+// scattering point to o when the ray passed through transparent surfaces) collects from the quad, ring
+// and hdri lights, each weighted against next-event estimation with `bsdfPdf`.
+vec3 testedLightsRadiance(SceneDesc scene, vec3 o, vec3 d, float tmax, float before, float bsdfPdf, uint strategy) {
+    if (strategy == LIGHT_SAMPLING_LIGHTS_ONLY) return vec3(0.0);
+    vec3 sum = vec3(0.0);
+    LightsRef lights = LightsRef(scene.lights);
+    for (uint i = 0u; i < scene.testedLightCount; ++i) {
+        LightRecord light = lights.lights[i];
+        vec3 radiance;
+        float pdf;  // solid angle, of next-event estimation
+        if (light.kind == LIGHT_HDRI) {
+            if (!isinf(tmax)) continue;
+            radiance = environmentRadiance(scene, light, d, pdf);
+        } else {
+            vec3 n = light.direction.xyz;
+            float cosLight = -dot(n, d);
+            if (cosLight == 0.0 || (cosLight < 0.0 && light.twoSided == 0u)) continue;
+            float t = dot(light.position.xyz - o, n) / dot(d, n);
+            if (!(t > 0.0 && t < tmax)) continue;
+            vec3 q = o + t * d - light.position.xyz;
+            if (light.kind == LIGHT_QUAD) {
+                // Coordinates along the (not necessarily orthogonal) edges.
+                vec3 e1 = light.edge1.xyz, e2 = light.edge2.xyz;
+                float a11 = dot(e1, e1), a12 = dot(e1, e2), a22 = dot(e2, e2);
+                float det = a11 * a22 - a12 * a12;
+                float b1 = dot(q, e1), b2 = dot(q, e2);
+                float s1 = (a22 * b1 - a12 * b2) / det, s2 = (a11 * b2 - a12 * b1) / det;
+                if (s1 < 0.0 || s1 > 1.0 || s2 < 0.0 || s2 > 1.0) continue;
+                radiance = light.emission.rgb;
+            } else {
+                float r2 = dot(q, q);
+                if (r2 > light.edge1.z * light.edge1.z || r2 < light.edge2.w * light.edge2.w) continue;
+                radiance = light.emission.rgb * spotProfile(light, cosLight);
+            }
+            float distance = before + t;
+            pdf = distance * distance / (abs(cosLight) * light.edge1.w);
+        }
+        float w = strategy == LIGHT_SAMPLING_BSDF_ONLY || !(bsdfPdf > 0.0) ? 1.0 : misWeight(bsdfPdf, light.emission.w * pdf);
+        sum += radiance * w;
+    }
+    return sum;
 }
 
 #endif

@@ -1,28 +1,42 @@
 #version 460
 // Stage 4 of a bounce, run at each path's home rank from the SurfaceRecord that pt_surface packed at the
-// hit (no scene geometry or textures are read here, only lights): a miss adds the background (camera
-// rays) or the ambient light (secondary rays); a hit adds its emission, passes through a transparent
-// surface with probability 1 - opacity, requests one shadow ray toward a uniformly chosen light
-// (next-event estimation), and samples the BSDF for the next ray, with Russian roulette from the third
-// interaction on. Survivors are appended to the next queue and shadow requests to the shadow queue, each
-// by an atomic counter.
+// hit (no scene geometry is read here, only lights and the BSDF tables). A BSDF-sampled ray first collects
+// the quad, ring and hdri lights it passed (MIS-weighted); then a miss adds the background (camera rays)
+// or the ambient light; a hit adds its emission (MIS-weighted where it is a light), passes through a
+// transparent surface with probability 1 - opacity, requests one shadow ray toward a light picked in
+// proportion to power (next-event estimation, MIS-weighted), and samples the BSDF for the next ray, with
+// Russian roulette from the third interaction on. Survivors are appended to the next queue and shadow
+// requests to the shadow queue, each by an atomic counter.
 #extension GL_GOOGLE_include_directive : require
 #include "pt_common.glsl"
 #include "rng.glsl"
 #include "bsdf.glsl"
+#include "texture.glsl"
 #include "lights.glsl"
 
 // Russian roulette starts once a path has had this many surface interactions.
 const uint ROULETTE_FROM_DEPTH = 3u;
 
-SurfaceMaterial surfaceMaterial(SurfaceRecord r) {
+SurfaceMaterial surfaceMaterial(SurfaceRecord r, SceneDesc scene) {
     SurfaceMaterial m;
     m.kind = r.materialKind;
     m.baseColor = r.baseColor.rgb;
     m.metallic = r.baseColor.w;
     m.alpha = r.emission.w;
     m.f0 = r.f0;
+    m.transmission = r.layers.x;
+    m.clearcoat = r.layers.y;
+    m.clearcoatAlpha = r.layers.z;
+    m.eta = r.layers.w;
+    m.texels = scene.texels;
+    m.tableOffset = scene.bsdfTables;
     return m;
+}
+
+// The optional radiance clamp (FrameConstants.maxRadiance).
+vec3 clamped(FrameConstants f, vec3 c) {
+    float largest = maxComponent(c);
+    return f.maxRadiance > 0.0 && largest > f.maxRadiance ? c * (f.maxRadiance / largest) : c;
 }
 
 // Queue appends. A queue never holds more entries than the queue being shaded (each path appends at most
@@ -43,6 +57,30 @@ void appendShadow(Ray ray, vec3 contribution, uint pixel) {
     ShadowRequestsRef(params.shadowRequests).requests[slot] = ShadowRequest(vec4(contribution, 0.0), pixel, 0u, 0u, 0u);
 }
 
+// Next-event estimation: one light picked in proportion to power, its contribution MIS-weighted against
+// BSDF sampling (weight 1 for delta lights, and where the path ends here so no BSDF ray will follow), as a
+// shadow request.
+void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
+                    vec3 wo, vec3 throughput, uint pixel, vec4 u, bool lastVertex) {
+    if (scene.lightCount == 0u || !(scene.lightPowerTotal > 0.0)) return;
+    LightRecord light = LightsRef(scene.lights).lights[pickLight(scene, u.x)];
+    float selection = light.emission.w;
+    LightSample ls;
+    if (!(selection > 0.0) || !sampleLight(scene, light, position, u.yz, ls)) return;
+    bool delta = ls.pdf == 0.0;
+    if (!delta && f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY && !lastVertex) return;
+    float side = dot(ls.direction, geometricNormal);
+    if (side == 0.0 || (side < 0.0 && m.transmission == 0.0)) return;
+    float bsdfPdf;
+    vec3 fCos = evalBsdf(m, n, wo, ls.direction, bsdfPdf);
+    float w = delta || lastVertex || f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 1.0 : misWeight(selection * ls.pdf, bsdfPdf);
+    vec3 contribution = clamped(f, throughput * fCos * ls.incident * (w / selection));
+    // Stop just short of the light, so geometry at the light itself does not shadow it.
+    float tmax = isinf(ls.distance) ? INFINITY : ls.distance * (1.0 - 1e-4);
+    vec3 origin = offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal);
+    if (maxComponent(contribution) > 0.0) appendShadow(Ray(vec4(origin, 0.0), vec4(ls.direction, tmax)), contribution, pixel);
+}
+
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= params.count) return;
@@ -54,58 +92,61 @@ void main() {
     Vec4sRef radiance = Vec4sRef(f.sampleRadiance);
     bool camera = (path.flags & PATH_FLAG_CAMERA) != 0u;
     uint passThroughs = path.flags >> PATH_PASS_THROUGH_SHIFT;
+    vec3 direction = normalize(ray.direction.xyz);
+    bool found = r.status == HIT_FOUND;  // else a miss, or a flagged traversal treated as one
+    float hitT = found ? r.position.w : INFINITY;
 
     if ((r.status & ~0xFFu) != 0u) atomicAdd(CountersRef(f.counters).counters.flagged, 1u);
-    if (r.status != HIT_FOUND) {  // a miss, or a flagged traversal treated as one
+    if (!camera)
+        radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * testedLightsRadiance(scene, ray.origin.xyz, direction,
+                                                   hitT, path.throughput.w, path.bsdfPdf, f.lightSampling));
+    if (!found) {
         if (camera) radiance.values[path.pixel] += vec4(path.throughput.rgb * f.background.rgb, f.background.a);
-        else radiance.values[path.pixel].rgb += path.throughput.rgb * f.ambient.rgb;
+        else radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * f.ambient.rgb);
         return;
     }
     if (camera && passThroughs == 0u && f.depth != 0ul) FloatsRef(f.depth).values[path.pixel] = r.position.w;
 
     vec3 position = r.position.xyz;
     vec3 geometricNormal = r.geometricNormal.xyz;
-    vec3 wo = -normalize(ray.direction.xyz);
+    vec3 wo = -direction;
     vec4 uLight = random4(path.pixel, params.sampleIndex, params.bounce, RNG_LIGHT, f.seed);
 
     // Transparency: continue straight on, unchanged, with probability 1 - opacity.
     if (uLight.w >= r.geometricNormal.w) {
         if (passThroughs >= PATH_MAX_PASS_THROUGHS) return;
         path.flags += 1u << PATH_PASS_THROUGH_SHIFT;
+        path.throughput.w += hitT;
         appendPath(Ray(vec4(offsetRayOrigin(position, -geometricNormal), 0.0), vec4(ray.direction.xyz, INFINITY)), path);
         return;
     }
     if (camera) radiance.values[path.pixel].a = 1.0;
-    radiance.values[path.pixel].rgb += path.throughput.rgb * r.emission.rgb;
+    float emissionWeight = 1.0;
+    if (!camera && r.shadingNormal.w > 0.0) {  // a light that next-event estimation samples too
+        float lightPdf = surfaceLightPdf(scene, r.shadingNormal.w, path.throughput.w + hitT, dot(geometricNormal, wo));
+        emissionWeight = f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 0.0
+                       : f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY || !(path.bsdfPdf > 0.0) ? 1.0
+                       : misWeight(path.bsdfPdf, lightPdf);
+    }
+    radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * r.emission.rgb * emissionWeight);
 
-    SurfaceMaterial m = surfaceMaterial(r);
+    SurfaceMaterial m = surfaceMaterial(r, scene);
     vec3 n = r.shadingNormal.xyz;
     if (dot(n, wo) <= 0.0) n = geometricNormal;  // interpolated normals can face away from the viewer
-    vec3 up = offsetRayOrigin(position, geometricNormal);
-
-    // Next-event estimation: one light, chosen uniformly (pdf 1 / lightCount).
-    if (scene.lightCount > 0u) {
-        uint chosen = min(uint(uLight.x * float(scene.lightCount)), scene.lightCount - 1u);
-        LightSample ls;
-        if (sampleLight(LightsRef(scene.lights).lights[chosen], position, uLight.yz, ls) &&
-            dot(ls.direction, geometricNormal) > 0.0) {
-            float pdf;
-            vec3 contribution = path.throughput.rgb * evalBsdf(m, n, wo, ls.direction, pdf) * ls.incident *
-                                float(scene.lightCount);
-            // Stop just short of the light, so geometry at the light itself does not shadow it.
-            float tmax = isinf(ls.distance) ? INFINITY : ls.distance * (1.0 - 1e-4);
-            if (maxComponent(contribution) > 0.0)
-                appendShadow(Ray(vec4(up, 0.0), vec4(ls.direction, tmax)), contribution, path.pixel);
-        }
-    }
-
     uint depth = path.depth + 1u;
+    sampleOneLight(f, scene, m, position, geometricNormal, n, wo, path.throughput.rgb, path.pixel, uLight,
+                   depth >= f.maxPathLength);
+
     if (depth >= f.maxPathLength) return;
     vec4 uBsdf = random4(path.pixel, params.sampleIndex, params.bounce, RNG_BSDF, f.seed);
     vec3 wi;
     vec3 weight;
-    if (!sampleBsdf(m, n, wo, uBsdf.xyz, wi, weight)) return;
-    if (dot(wi, geometricNormal) <= 0.0) return;  // below the true surface: the path ends
+    float pdf;
+    if (!sampleBsdf(m, n, wo, uBsdf.xyz, wi, weight, pdf)) return;
+    float side = dot(wi, geometricNormal);
+    // Below the true surface without transmission, or a refraction that the true surface reflects: the
+    // path ends.
+    if (side == 0.0 || (side < 0.0) != (dot(wi, n) < 0.0)) return;
     vec3 throughput = path.throughput.rgb * weight;
     if (depth >= ROULETTE_FROM_DEPTH) {
         float survive = min(maxComponent(throughput), 0.95);
@@ -113,5 +154,7 @@ void main() {
         throughput /= survive;
     }
     if (!(maxComponent(throughput) > 0.0)) return;
-    appendPath(Ray(vec4(up, 0.0), vec4(wi, INFINITY)), PathState(vec4(throughput, 0.0), path.pixel, depth, path.flags & ~PATH_FLAG_CAMERA, 0u));
+    vec3 origin = offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal);
+    appendPath(Ray(vec4(origin, 0.0), vec4(wi, INFINITY)),
+               PathState(vec4(throughput, 0.0), path.pixel, depth, path.flags & ~PATH_FLAG_CAMERA, pdf));
 }

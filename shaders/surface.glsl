@@ -3,10 +3,12 @@
 // and texcoord attributes. Needs the buffer views of pt_common.glsl.
 #ifndef RIPPLE_SURFACE_GLSL
 #define RIPPLE_SURFACE_GLSL
+#include "features.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TrianglesRef { TrianglePrim triangles[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ConesRef { ConePrim cones[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceShadingRef { InstanceShading instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GeometriesRef { GeometryRecord geometries[]; };
 
@@ -18,6 +20,8 @@ struct SurfacePoint {
     vec4 color;            // the color attribute (per vertex, interpolated, or per primitive)
     vec2 texcoord;         // (0, 0) where the geometry has none
     uint material;
+    bool frontFace;        // the ray arrived on the side the object-space normal points to
+    vec3 tangent;          // world space, along increasing texcoord u (normal maps); (0,0,0) where unknown
 };
 
 vec3 transformPoint(vec4 rows[3], vec3 p) {
@@ -43,6 +47,39 @@ vec4 interpolate(SceneDesc scene, uint offset, uvec3 idx, vec3 bary) {
            bary.z * attributeAt(scene, offset, idx.z);
 }
 
+// A cone or curve segment at a ray point near its surface (hit.u: axial fraction, hit.v: 0 side, 1 flat
+// cap, 2 end sphere): the point put back on the surface and the outward normal, both in object space.
+void coneSurface(ConePrim cone, vec3 rayPoint, Hit hit, out vec3 point, out vec3 normal) {
+    vec3 axis = cone.p1Radius.xyz - cone.p0Radius.xyz;
+    float len = length(axis);
+    vec3 w = axis / len;
+    vec4 end = hit.u < 0.5 ? cone.p0Radius : cone.p1Radius;
+    if (hit.v > 1.5) {  // the sphere at a round end
+        normal = safeNormalize(rayPoint - end.xyz, hit.u < 0.5 ? -w : w);
+        point = end.xyz + end.w * normal;
+    } else if (hit.v > 0.5) {  // a flat cap
+        normal = hit.u < 0.5 ? -w : w;
+        point = rayPoint - dot(rayPoint - end.xyz, w) * w;
+    } else {
+        // The side leans by the radius change per unit length (for a round segment, the tangent cone's).
+        float slope = (cone.p1Radius.w - cone.p0Radius.w) / len;
+        if ((cone.flags & CONE_ROUND) != 0u) slope /= sqrt(max(1.0 - slope * slope, 1e-12));
+        vec3 across = rayPoint - cone.p0Radius.xyz;
+        across -= dot(across, w) * w;
+        vec3 radial = safeNormalize(across, abs(w.x) < 0.9 ? normalize(cross(w, vec3(1.0, 0.0, 0.0))) : normalize(cross(w, vec3(0.0, 1.0, 0.0))));
+        normal = normalize(radial - slope * w);
+        point = rayPoint;
+    }
+}
+
+// dp/du of a triangle from its texcoords, object space; (0,0,0) when the texcoords are degenerate.
+vec3 triangleTangent(TrianglePrim tri, vec2 t0, vec2 t1, vec2 t2) {
+    vec2 d1 = t1 - t0, d2 = t2 - t0;
+    float det = d1.x * d2.y - d1.y * d2.x;
+    if (abs(det) < 1e-20) return vec3(0.0);
+    return ((tri.v1.xyz - tri.v0.xyz) * d2.y - (tri.v2.xyz - tri.v0.xyz) * d1.y) / det;
+}
+
 SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
     InstanceShading inst = InstanceShadingRef(scene.instanceShading).instances[hit.instanceId];
     GeometryRecord geom = GeometriesRef(scene.geometries).geometries[inst.geometry];
@@ -52,10 +89,11 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
     s.hasColor = false;
     s.color = vec4(1.0);
     s.texcoord = vec2(0.0);
-    vec3 objectPoint;
-    vec3 objectNormal;
-    vec3 objectShadingNormal;
-    if (geom.kind == GEOMETRY_TRIANGLES) {
+    vec3 objectTangent = vec3(0.0);
+    vec3 objectPoint = vec3(0.0);
+    vec3 objectNormal = vec3(0.0, 0.0, 1.0);
+    vec3 objectShadingNormal = objectNormal;
+    if (hasFeature(FEATURE_TRIANGLES) && geom.kind == GEOMETRY_TRIANGLES) {
         TrianglePrim tri = TrianglesRef(scene.triangles).triangles[slot];
         vec3 bary = vec3(1.0 - hit.u - hit.v, hit.u, hit.v);
         objectPoint = bary.x * tri.v0.xyz + bary.y * tri.v1.xyz + bary.z * tri.v2.xyz;
@@ -68,7 +106,12 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
             idx = uvec3(indices.values[first], indices.values[first + 1u], indices.values[first + 2u]);
         }
         if (geom.normalOffset != NO_ATTRIBUTE) objectShadingNormal = interpolate(scene, geom.normalOffset, idx, bary).xyz;
-        if (geom.texcoordOffset != NO_ATTRIBUTE) s.texcoord = interpolate(scene, geom.texcoordOffset, idx, bary).xy;
+        if (geom.texcoordOffset != NO_ATTRIBUTE) {
+            s.texcoord = interpolate(scene, geom.texcoordOffset, idx, bary).xy;
+            objectTangent = triangleTangent(tri, attributeAt(scene, geom.texcoordOffset, idx.x).xy,
+                                            attributeAt(scene, geom.texcoordOffset, idx.y).xy,
+                                            attributeAt(scene, geom.texcoordOffset, idx.z).xy);
+        }
         if (geom.colorOffset != NO_ATTRIBUTE) {
             s.hasColor = true;
             s.color = interpolate(scene, geom.colorOffset, idx, bary);
@@ -76,14 +119,16 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
             s.hasColor = true;
             s.color = attributeAt(scene, geom.primitiveColorOffset, hit.primId);
         }
-    } else {
+    } else if (hasFeature(FEATURE_SPHERES | FEATURE_CYLINDERS | FEATURE_CONES)) {
         // Analytic shapes: the hit point from the ray in object space, then put back on the surface.
         vec3 rayPoint = transformPoint(inst.worldToObject, ray.origin.xyz + hit.t * ray.direction.xyz);
-        if (geom.kind == GEOMETRY_SPHERES) {
+        if (hasFeature(FEATURE_SPHERES) && geom.kind == GEOMETRY_SPHERES) {
             vec4 sphere = SpheresRef(scene.spheres).spheres[slot].centerRadius;
             objectNormal = safeNormalize(rayPoint - sphere.xyz, vec3(0.0, 0.0, 1.0));
             objectPoint = sphere.xyz + sphere.w * objectNormal;
-        } else {
+        } else if (hasFeature(FEATURE_CONES) && geom.kind == GEOMETRY_CONES) {
+            coneSurface(ConesRef(scene.cones).cones[slot], rayPoint, hit, objectPoint, objectNormal);
+        } else if (hasFeature(FEATURE_CYLINDERS)) {
             CylinderPrim cyl = CylindersRef(scene.cylinders).cylinders[slot];
             vec3 axis = normalize(cyl.p1.xyz - cyl.p0Radius.xyz);
             vec3 onAxis = mix(cyl.p0Radius.xyz, cyl.p1.xyz, hit.u);
@@ -105,7 +150,9 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
     }
     s.position = transformPoint(inst.objectToWorld, objectPoint);
     vec3 ng = safeNormalize(transformNormal(inst.worldToObject, objectNormal), -normalize(ray.direction.xyz));
-    if (dot(ng, ray.direction.xyz) > 0.0) ng = -ng;
+    s.frontFace = dot(ng, ray.direction.xyz) <= 0.0;
+    if (!s.frontFace) ng = -ng;
+    s.tangent = transformPoint(inst.objectToWorld, objectTangent) - transformPoint(inst.objectToWorld, vec3(0.0));
     vec3 ns = safeNormalize(transformNormal(inst.worldToObject, objectShadingNormal), ng);
     if (dot(ns, ng) < 0.0) ns = -ns;
     s.geometricNormal = ng;

@@ -11,6 +11,7 @@
 #include "shared/ray.h"
 #include "shared/scene.h"
 #include "intersect.glsl"
+#include "features.glsl"
 
 layout(local_size_x_id = 0) in;
 
@@ -21,6 +22,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer No
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TrianglesRef { TrianglePrim triangles[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ConesRef { ConePrim cones[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstancesRef { InstancePrim instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RaysRef { Ray rays[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer HitsRef { Hit hits[]; };
@@ -49,6 +51,7 @@ uint64_t sceneInstances;
 uint64_t sceneTriangles;
 uint64_t sceneSpheres;
 uint64_t sceneCylinders;
+uint64_t sceneCones;
 
 // The ray in the space of the BVH being traversed (world for the TLAS, object for a BLAS).
 InstancePrim instance;
@@ -98,7 +101,7 @@ void enterSpace(Ray worldRay) {
         direction = vec4(worldRay.direction.xyz, 0.0) * toObject;
     }
     invDirection = safeReciprocal(direction);
-    triRay = makeTriangleRay(origin, direction);
+    if (hasFeature(FEATURE_TRIANGLES)) triRay = makeTriangleRay(origin, direction);
 }
 
 // Pushes one child of a node: an inner node, a TLAS leaf (its instance) or a BLAS leaf (two words).
@@ -108,23 +111,29 @@ bool pushChild(uint ref, uint count) {
     return push(ref) && push(ENTRY_LEAF | min(count, BVH_MAX_LEAF_SIZE));
 }
 
+// Each kind's test is behind its feature bit, so a pipeline specialised for a scene holds only the tests
+// of the kinds it has.
 void testPrimitive(uint primSlot) {
     float t = best.t;
     float u = 0.0, v = 0.0;
-    bool hit;
-    uint primId;
-    if (instance.geometryKind == GEOMETRY_TRIANGLES) {
+    bool hit = false;
+    uint primId = 0u;
+    if (hasFeature(FEATURE_TRIANGLES) && instance.geometryKind == GEOMETRY_TRIANGLES) {
         TrianglePrim tri = TrianglesRef(sceneTriangles).triangles[primSlot];
         hit = intersectTriangle(triRay, tri.v0.xyz, tri.v1.xyz, tri.v2.xyz, tmin, t, u, v);
         primId = floatBitsToUint(tri.v0.w);
-    } else if (instance.geometryKind == GEOMETRY_SPHERES) {
+    } else if (hasFeature(FEATURE_SPHERES) && instance.geometryKind == GEOMETRY_SPHERES) {
         SpherePrim sphere = SpheresRef(sceneSpheres).spheres[primSlot];
         hit = intersectSphere(origin, direction, sphere.centerRadius, tmin, t);
         primId = sphere.primId;
-    } else {
+    } else if (hasFeature(FEATURE_CYLINDERS) && instance.geometryKind == GEOMETRY_CYLINDERS) {
         CylinderPrim cylinder = CylindersRef(sceneCylinders).cylinders[primSlot];
-        hit = intersectCylinder(origin, direction, cylinder.p0Radius, cylinder.p1.xyz, cylinder.caps != 0u, tmin, t, u, v);
+        hit = intersectCylinder(origin, direction, cylinder.p0Radius, cylinder.p1.xyz, cylinder.caps, tmin, t, u, v);
         primId = cylinder.primId;
+    } else if (hasFeature(FEATURE_CONES) && instance.geometryKind == GEOMETRY_CONES) {
+        ConePrim cone = ConesRef(sceneCones).cones[primSlot];
+        hit = intersectCone(origin, direction, cone.p0Radius, cone.p1Radius, cone.flags, tmin, t, u, v);
+        primId = cone.primId;
     }
     if (hit) best = Hit(t, u, v, instance.instanceId, primId, HIT_FOUND);
 }
@@ -154,6 +163,7 @@ void main() {
     sceneTriangles = sceneRef.desc.triangles;
     sceneSpheres = sceneRef.desc.spheres;
     sceneCylinders = sceneRef.desc.cylinders;
+    sceneCones = sceneRef.desc.cones;
     NodesRef nodes = NodesRef(sceneRef.desc.nodes);
     Ray worldRay = RaysRef(params.rays).rays[rayIndex];
     tmin = worldRay.origin.w;

@@ -27,6 +27,12 @@ Device::Device(const char* subtype, ANARIStatusCallback defaultCallback, const v
 
 Device::~Device() {
     state_.waitForWork();  // frames still rendering use state_ and its Vulkan context
+    try {
+        state_.communicator().barrier();  // the device's last release is collective in data-parallel ANARI
+    } catch (const std::exception& error) {
+        state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_UNKNOWN_ERROR,
+                      std::string("device release: ") + error.what());
+    }
     for (auto& [key, array] : parameterArrays_) array->release();
     if (state_.liveObjects > 0)
         state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_NO_ERROR,
@@ -141,6 +147,11 @@ void Device::setDeviceParameter(const char* name, ANARIDataType type, const void
     } else if (key == "statusCallbackUserData" && type == ANARI_VOID_POINTER) {
         std::memcpy(&pendingCallbackUserPtr_, mem, sizeof(pendingCallbackUserPtr_));
         callbackSet_ = true;
+    } else if ((key == "mpiCommunicator" && type == ANARI_VOID_POINTER) ||
+               (key == "pointer_to_mpi_communicator" && type == ANARI_UINT64)) {
+        const void* communicator = nullptr;  // both are the address of the application's MPI_Comm
+        std::memcpy(&communicator, mem, sizeof(communicator));
+        state_.setCommunicatorHandle(communicator);
     } else {
         state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_ARGUMENT,
                       "device parameter '" + key + "' of type " + ripple_anari::typeName(type) +

@@ -17,6 +17,8 @@ constexpr float kHalf = 0.5f;
 constexpr float kOne = 1.0f;
 constexpr float kIor = 1.5f;
 constexpr float kFovy = 1.0471975512f;  // pi / 3
+constexpr float kPiValue = 3.14159265359f;
+constexpr float kFalloff = 0.1f;
 constexpr float kGrey[3] = {0.8f, 0.8f, 0.8f};
 constexpr float kWhite[3] = {1.0f, 1.0f, 1.0f};
 constexpr float kBlack[3] = {0.0f, 0.0f, 0.0f};
@@ -34,6 +36,7 @@ constexpr int32_t kOneSample = 1;
 constexpr int32_t kPathLength = 5;
 
 constexpr const char* kCaps[] = {"none", "first", "second", "both", nullptr};
+constexpr const char* kLayouts[] = {"equirectangular", nullptr};
 constexpr const char* kAlphaModes[] = {"opaque", "blend", "mask", nullptr};
 constexpr const char* kFilters[] = {"nearest", "linear", nullptr};
 constexpr const char* kWrapModes[] = {"clampToEdge", "repeat", "mirrorRepeat", nullptr};
@@ -109,7 +112,19 @@ const std::vector<Entry>& table() {
              {"primitive.index", ANARI_ARRAY1D, "vertex pairs (UINT32_VEC2)"},
              {"primitive.radius", ANARI_ARRAY1D, "per-cylinder radius (FLOAT32)"},
              {"radius", ANARI_FLOAT32, "radius of all cylinders when primitive.radius is unset", &kOne},
-             {"caps", ANARI_STRING, "closed ends; 'first' and 'second' close both", "none", kCaps},
+             {"caps", ANARI_STRING, "which ends a flat disk closes", "none", kCaps},
+         }})},
+        {ANARI_GEOMETRY, "cone", "cone frusta between vertex pairs, a radius at each vertex",
+         joined({kGeometryCommon, {
+             {"primitive.index", ANARI_ARRAY1D, "vertex pairs (UINT32_VEC2)"},
+             {"vertex.radius", ANARI_ARRAY1D, "radius at each vertex (FLOAT32)", nullptr, nullptr, true},
+             {"caps", ANARI_STRING, "which ends a flat disk closes", "none", kCaps},
+         }})},
+        {ANARI_GEOMETRY, "curve", "round linear segments from each indexed vertex to the next",
+         joined({kGeometryCommon, {
+             {"primitive.index", ANARI_ARRAY1D, "first vertex of each segment (UINT32); one polyline when unset"},
+             {"vertex.radius", ANARI_ARRAY1D, "radius at each vertex (FLOAT32)"},
+             {"radius", ANARI_FLOAT32, "radius of all vertices when vertex.radius is unset", &kOne},
          }})},
         {ANARI_MATERIAL, "matte", "Lambertian diffuse",
          joined({kName, kAlpha, {
@@ -162,15 +177,43 @@ const std::vector<Entry>& table() {
              {"radiance", ANARI_FLOAT32, "W/sr/m^2, takes precedence"},
              {"side", ANARI_STRING, "emitting side(s); front is along edge1 x edge2", "front", kSides},
          }})},
+        {ANARI_LIGHT, "spot", "cone of light from a point",
+         joined({kLightCommon, {
+             {"position", ANARI_FLOAT32_VEC3, "position", kOrigin},
+             {"direction", ANARI_FLOAT32_VEC3, "axis of the cone", kMinusZ},
+             {"openingAngle", ANARI_FLOAT32, "full angle of the cone, radians", &kPiValue},
+             {"falloffAngle", ANARI_FLOAT32, "angle of the fade at the cone's edge, radians", &kFalloff},
+             {"intensity", ANARI_FLOAT32, "W/sr", &kOne},
+             {"power", ANARI_FLOAT32, "W, used when intensity is unset"},
+         }})},
+        {ANARI_LIGHT, "ring", "emitting annulus with a spot profile",
+         joined({kLightCommon, {
+             {"position", ANARI_FLOAT32_VEC3, "centre", kOrigin},
+             {"direction", ANARI_FLOAT32_VEC3, "axis the ring faces", kMinusZ},
+             {"openingAngle", ANARI_FLOAT32, "full angle of the cone, radians", &kPiValue},
+             {"falloffAngle", ANARI_FLOAT32, "angle of the fade at the cone's edge, radians", &kFalloff},
+             {"radius", ANARI_FLOAT32, "outer radius", &kZero},
+             {"innerRadius", ANARI_FLOAT32, "inner radius", &kZero},
+             {"intensity", ANARI_FLOAT32, "W/sr along the axis", &kOne},
+             {"power", ANARI_FLOAT32, "W, used when intensity is unset"},
+             {"radiance", ANARI_FLOAT32, "W/sr/m^2, takes precedence"},
+             {"c0", ANARI_FLOAT32_VEC3, "photometric C0 direction (unused: no intensityDistribution)"},
+         }})},
         {ANARI_CAMERA, "perspective", "pinhole camera",
-         joined({kViewCommon, {{"fovy", ANARI_FLOAT32, "vertical field of view in radians", &kFovy}}})},
+         joined({kViewCommon, {
+             {"fovy", ANARI_FLOAT32, "vertical field of view in radians", &kFovy},
+             {"apertureRadius", ANARI_FLOAT32, "lens radius for depth of field; 0 is a pinhole", &kZero},
+             {"focusDistance", ANARI_FLOAT32, "distance of the plane in focus", &kOne},
+         }})},
         {ANARI_CAMERA, "orthographic", "parallel projection",
          joined({kViewCommon, {{"height", ANARI_FLOAT32, "height of the image plane in world units", &kOne}}})},
+        {ANARI_CAMERA, "omnidirectional", "every direction around the position, equirectangular",
+         joined({kViewCommon, {{"layout", ANARI_STRING, "pixel layout (only equirectangular)", "equirectangular", kLayouts}}})},
         {ANARI_INSTANCE, "transform", "a group placed by an affine transform",
          joined({kName, {
              {"group", ANARI_GROUP, "the group placed", nullptr, nullptr, true},
              {"transform", ANARI_FLOAT32_MAT4, "object to world, column-major", kIdentity},
-             {"id", ANARI_UINT32, "instance id; the position in the world's array when unset"},
+             {"id", ANARI_UINT32, "instance id for the instanceId channel; ~0u when unset"},
          }})},
         {ANARI_RENDERER, "default", "wavefront path tracer",
          joined({kName, {
@@ -185,7 +228,7 @@ const std::vector<Entry>& table() {
              {"geometry", ANARI_GEOMETRY, "the geometry", nullptr, nullptr, true},
              {"material", ANARI_MATERIAL, "the material", nullptr, nullptr, true},
              {"visible", ANARI_BOOL, "whether it renders", &kTrue},
-             {"id", ANARI_UINT32, "object id; the position in its array when unset"},
+             {"id", ANARI_UINT32, "object id for the objectId channel; ~0u when unset"},
          }})},
         {ANARI_GROUP, "", "surfaces and lights placed together by instances",
          joined({kName, {
@@ -206,6 +249,11 @@ const std::vector<Entry>& table() {
              {"size", ANARI_UINT32_VEC2, "width and height in pixels", nullptr, nullptr, true},
              {"channel.color", ANARI_DATA_TYPE, "UFIXED8_VEC4, UFIXED8_RGBA_SRGB or FLOAT32_VEC4"},
              {"channel.depth", ANARI_DATA_TYPE, "FLOAT32: distance to the first hit"},
+             {"channel.albedo", ANARI_DATA_TYPE, "FLOAT32_VEC3: base colour at the first hit"},
+             {"channel.normal", ANARI_DATA_TYPE, "FLOAT32_VEC3: world-space shading normal at the first hit"},
+             {"channel.primitiveId", ANARI_DATA_TYPE, "UINT32: primitive index at the first hit (~0u: none)"},
+             {"channel.objectId", ANARI_DATA_TYPE, "UINT32: the surface's id at the first hit (~0u: none)"},
+             {"channel.instanceId", ANARI_DATA_TYPE, "UINT32: the instance's id at the first hit (~0u: none)"},
          }})},
     };
     return entries;
@@ -233,8 +281,11 @@ const char** deviceExtensions() {
         "ANARI_KHR_GEOMETRY_TRIANGLE",    "ANARI_KHR_GEOMETRY_QUAD",          "ANARI_KHR_GEOMETRY_SPHERE",
         "ANARI_KHR_GEOMETRY_CYLINDER",    "ANARI_KHR_MATERIAL_MATTE",         "ANARI_KHR_MATERIAL_PHYSICALLY_BASED",
         "ANARI_KHR_SAMPLER_IMAGE2D",      "ANARI_KHR_LIGHT_DIRECTIONAL",      "ANARI_KHR_LIGHT_POINT",
-        "ANARI_KHR_LIGHT_QUAD",           "ANARI_KHR_CAMERA_PERSPECTIVE",     "ANARI_KHR_CAMERA_ORTHOGRAPHIC",
+        "ANARI_KHR_LIGHT_QUAD",           "ANARI_KHR_LIGHT_SPOT",             "ANARI_KHR_LIGHT_RING",           "ANARI_KHR_CAMERA_PERSPECTIVE",     "ANARI_KHR_CAMERA_ORTHOGRAPHIC",
         "ANARI_KHR_INSTANCE_TRANSFORM",   "ANARI_KHR_RENDERER_BACKGROUND_COLOR", "ANARI_KHR_RENDERER_AMBIENT_LIGHT",
+        "ANARI_KHR_GEOMETRY_CONE",        "ANARI_KHR_GEOMETRY_CURVE",         "ANARI_KHR_CAMERA_OMNIDIRECTIONAL",
+        "ANARI_KHR_CAMERA_DEPTH_OF_FIELD", "ANARI_KHR_FRAME_CHANNEL_ALBEDO",  "ANARI_KHR_FRAME_CHANNEL_NORMAL",
+        "ANARI_KHR_FRAME_CHANNEL_PRIMITIVE_ID", "ANARI_KHR_FRAME_CHANNEL_OBJECT_ID", "ANARI_KHR_FRAME_CHANNEL_INSTANCE_ID",
         nullptr};
     return extensions;
 }

@@ -4,6 +4,9 @@
 // version needs the same count for its allreduce.
 #include "core/render/PathTracer.h"
 
+#include "core/render/CameraRays.h"
+#include "core/render/PixelTiles.h"
+#include "core/render/VisitorTracer.h"
 #include "core/vk/ComputePipeline.h"
 #include "shaders/pt_accumulate.spv.h"
 #include "shaders/pt_generate.spv.h"
@@ -27,41 +30,18 @@ namespace {
 
 constexpr uint32_t kWorkgroupSizeConstant = 0;  // layout(local_size_x_id = 0) in pt_common.glsl
 
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
 // Camera and settings as the kernels read them; throws std::invalid_argument for a camera that cannot
 // produce rays.
 gpu::FrameConstants frameConstants(const Camera& camera, const RenderSettings& settings) {
-    auto reject = [](const std::string& why) { throw std::invalid_argument("PathTracer: camera " + why); };
-    if (!finite(camera.position) || !finite(camera.direction) || !finite(camera.up)) reject("position, direction or up is NaN or Inf");
-    if (glm::length(camera.direction) == 0.0f) reject("direction is zero");
-    if (!(camera.aspect > 0.0f && std::isfinite(camera.aspect))) reject("aspect must be finite and positive");
-    const bool ortho = camera.kind == Camera::Kind::Orthographic;
-    if (!ortho && camera.kind != Camera::Kind::Perspective) reject("kind is unknown");
-    if (ortho && !(camera.height > 0.0f && std::isfinite(camera.height))) reject("height must be finite and positive");
-    if (!ortho && !(camera.fovy > 0.0f && camera.fovy < 3.14159f)) reject("fovy must be in (0, pi)");
-    for (int i = 0; i < 4; ++i)
-        if (!std::isfinite(camera.imageRegion[i])) reject("imageRegion is NaN or Inf");
-
-    const glm::vec3 forward = glm::normalize(camera.direction);
-    glm::vec3 right = glm::cross(forward, camera.up);
-    if (glm::length(right) < 1e-6f * glm::length(camera.up)) {  // up along the view: any perpendicular will do
-        const glm::vec3 a = glm::abs(forward);
-        right = glm::cross(forward, a.x < a.y && a.x < a.z ? glm::vec3(1, 0, 0) : a.y < a.z ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, 1));
-    }
-    right = glm::normalize(right);
-    const glm::vec3 up = glm::cross(right, forward);
-
     gpu::FrameConstants f{};
-    f.cameraPosition = gpu::vec4(camera.position, std::bit_cast<float>(ortho ? gpu::CAMERA_ORTHOGRAPHIC : gpu::CAMERA_PERSPECTIVE));
-    f.cameraForward = gpu::vec4(forward, ortho ? camera.height : std::tan(0.5f * camera.fovy));
-    f.cameraRight = gpu::vec4(right, camera.aspect);
-    f.cameraUp = gpu::vec4(up, 0.0f);
-    f.imageRegion = camera.imageRegion;
+    writeCamera(camera, f);
     f.background = settings.background;
     f.ambient = gpu::vec4(settings.ambientColor * settings.ambientRadiance, 0.0f);
     f.maxPathLength = std::max(1u, settings.maxPathLength);
     f.seed = settings.seed;
+    f.maxRadiance = settings.maxRadiance > 0.0f && std::isfinite(settings.maxRadiance) ? settings.maxRadiance : 0.0f;
+    f.lightSampling = static_cast<uint32_t>(settings.lightSampling) <= gpu::LIGHT_SAMPLING_BSDF_ONLY
+                          ? static_cast<uint32_t>(settings.lightSampling) : gpu::LIGHT_SAMPLING_MIS;
     return f;
 }
 
@@ -83,9 +63,16 @@ struct PathTracer::Impl {
     int current = 0;                                                // the queue the next bounce consumes
     vk::Buffer hits, surfaces, shadowRays, shadowRequests, occlusion; // per path in flight
     uint32_t capacity = 0;
+    LocalRayExchange localExchange;
+    PipelineCache pipelines;                                        // variants of `surface` per FeatureSet
+    SurfaceChannels channels;                                       // albedo, normal and id channels
+    uint32_t channelBits = 0;                                       // FEATURE_CHANNEL_* asked for in resize
+    FeatureSet features = FeatureSet::all();                        // of the latest render
+    VisitorTracer visitors;                                         // traces rays from other ranks
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
-        : context(ctx), options(opts), trace(ctx, traceOptions) {
+        : context(ctx), options(opts), trace(ctx, traceOptions), pipelines(ctx), channels(ctx, opts.workgroupSize),
+          visitors(ctx, trace, opts.workgroupSize) {
         if (options.queueCapacity == 0 || options.workgroupSize == 0)
             throw std::invalid_argument("PathTracerOptions: queueCapacity and workgroupSize must be positive");
         const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options.workgroupSize}};
@@ -153,32 +140,39 @@ struct PathTracer::Impl {
         }
     }
 
-    void generateRays(VkCommandBuffer cmd, uint64_t firstPixel, uint32_t count, uint32_t sampleIndex) {
-        gpu::StageParams p = params(nullptr);
-        p.paths = queues[current].paths.address();
-        p.rays = queues[current].rays.address();
-        p.firstPixel = static_cast<uint32_t>(firstPixel);
-        p.sampleIndex = sampleIndex;
-        dispatch(cmd, generate, p, count);
+    void generateRays(VkCommandBuffer cmd, const Wave& wave, uint32_t sampleIndex) {
+        for (const WavePart& part : wave.parts) {
+            gpu::StageParams p = params(nullptr);
+            p.paths = queues[current].paths.address() + uint64_t(part.queueOffset) * sizeof(gpu::PathState);
+            p.rays = queues[current].rays.address() + uint64_t(part.queueOffset) * sizeof(gpu::Ray);
+            p.firstPixel = part.pixels.first;
+            p.sampleIndex = sampleIndex;
+            p.results = channels.tableAddress();
+            dispatch(cmd, generate, p, part.pixels.count);
+        }
     }
 
-    // Any-hit for the shadow rays of the previous bounce, then their contributions.
+    RayExchange& exchange() { return options.exchange ? *options.exchange : localExchange; }
+
+    // Any-hit for the shadow rays of the previous bounce; their contributions follow the exchange.
     void occlude(VkCommandBuffer cmd, const Scene& scene, uint32_t count) {
         if (count == 0) return;
         vk::computeBarrier(cmd);
         trace.traceAny(cmd, scene, shadowRays, occlusion, count);
+    }
+
+    void resolveShadows(VkCommandBuffer cmd, const Scene& scene, uint32_t count) {
+        if (count == 0) return;
         gpu::StageParams p = params(&scene);
         p.shadowRequests = shadowRequests.address();
         p.results = occlusion.address();
         dispatch(cmd, shadowResolve, p, count);
     }
 
-    // Closest hit for the current queue, the surface at each hit, then shading into the other queue and the
-    // shadow queue.
-    void traceAndShade(VkCommandBuffer cmd, const Scene& scene, uint32_t count, uint32_t bounce, uint32_t sampleIndex) {
+    // Closest hit for the current queue and the surface at each hit; shading follows the exchange.
+    void traceAndShade(VkCommandBuffer cmd, const Scene& scene, uint32_t count) {
         if (count == 0) return;
         const Queue& in = queues[current];
-        const Queue& out = queues[1 - current];
         vk::computeBarrier(cmd);
         trace.traceClosest(cmd, scene, in.rays, hits, count);
         gpu::StageParams p = params(&scene);
@@ -187,6 +181,23 @@ struct PathTracer::Impl {
         p.hits = hits.address();
         p.surfaces = surfaces.address();
         dispatch(cmd, surface, p, count);
+    }
+
+    // Shading into the other queue and the shadow queue.
+    void shadePaths(VkCommandBuffer cmd, const Scene& scene, uint32_t count, uint32_t bounce, uint32_t sampleIndex) {
+        if (count == 0) return;
+        const Queue& in = queues[current];
+        const Queue& out = queues[1 - current];
+        gpu::StageParams p = params(&scene);
+        p.paths = in.paths.address();
+        p.rays = in.rays.address();
+        p.hits = hits.address();
+        p.surfaces = surfaces.address();
+        if (bounce == 0 && channels.any()) {  // the camera rays' first hits fill the surface channels
+            gpu::StageParams c = p;
+            c.results = channels.tableAddress();
+            dispatch(cmd, channels.pipeline(), c, count);
+        }
         p.nextPaths = out.paths.address();
         p.nextRays = out.rays.address();
         p.shadowRays = shadowRays.address();
@@ -194,6 +205,37 @@ struct PathTracer::Impl {
         p.bounce = bounce;
         p.sampleIndex = sampleIndex;
         dispatch(cmd, shade, p, count);
+    }
+
+    // With more than one rank: the queues as traced here go round the other ranks and come back with
+    // the globally closest hits (their records) and occlusion, ready to shade.
+    void exchangeRays(const Scene& scene, uint32_t paths, uint32_t shadows) {
+        RayExchange& ranks = exchange();
+        visitors.use(scene, frame.address(), surface);
+        std::vector<gpu::Ray> rays(std::max(paths, shadows));
+        std::vector<gpu::SurfaceRecord> records(paths);
+        if (paths > 0) {
+            queues[current].rays.download(rays.data(), paths * sizeof(gpu::Ray));
+            surfaces.download(records.data(), paths * sizeof(gpu::SurfaceRecord));
+        }
+        std::vector<WireRay> wire(paths);
+        for (uint32_t i = 0; i < paths; ++i) wire[i] = WireRay{rays[i], ranks.rank(), i, 0, 0, records[i]};
+        ranks.exchangeClosest(wire, visitors);
+        if (wire.size() != paths) throw std::runtime_error("RayExchange: path rays came back in a different number");
+        for (uint32_t i = 0; i < paths; ++i) records[i] = wire[i].record;
+        if (paths > 0) surfaces.upload(records.data(), paths * sizeof(gpu::SurfaceRecord));
+
+        std::vector<uint32_t> occluded(shadows);
+        if (shadows > 0) {
+            shadowRays.download(rays.data(), shadows * sizeof(gpu::Ray));
+            occlusion.download(occluded.data(), shadows * sizeof(uint32_t));
+        }
+        std::vector<WireShadowRay> shadowWire(shadows);
+        for (uint32_t i = 0; i < shadows; ++i) shadowWire[i] = WireShadowRay{rays[i], ranks.rank(), i, occluded[i], 0};
+        ranks.exchangeShadow(shadowWire, visitors);
+        if (shadowWire.size() != shadows) throw std::runtime_error("RayExchange: shadow rays came back in a different number");
+        for (uint32_t i = 0; i < shadows; ++i) occluded[i] = shadowWire[i].occlusion;
+        if (shadows > 0) occlusion.upload(occluded.data(), shadows * sizeof(uint32_t));
     }
 
     // After a bounce: the lengths of the queues it filled, which become the ones to consume next.
@@ -212,7 +254,10 @@ PathTracer::PathTracer(const vk::Context& context, const TraceOptions& traceOpti
 
 PathTracer::~PathTracer() = default;
 
-void PathTracer::resize(glm::uvec2 size, bool wantDepth) {
+void PathTracer::resize(glm::uvec2 size, bool wantDepth) { resize(size, FrameChannels{.depth = wantDepth}); }
+
+void PathTracer::resize(glm::uvec2 size, const FrameChannels& channels) {
+    const bool wantDepth = channels.depth;
     const uint64_t pixels = uint64_t(size.x) * size.y;
     if (pixels == 0 || pixels > UINT32_MAX)
         throw std::invalid_argument("PathTracer::resize: " + std::to_string(size.x) + "x" + std::to_string(size.y) +
@@ -224,6 +269,8 @@ void PathTracer::resize(glm::uvec2 size, bool wantDepth) {
     m.sampleCount = vk::Buffer(ctx, pixels * sizeof(uint32_t), "frame sample count");
     m.depth = wantDepth ? vk::Buffer(ctx, pixels * sizeof(float), "frame depth") : vk::Buffer();
     m.color = vk::Buffer();  // allocated by the first readColor
+    m.channels.resize(pixels, channels);
+    m.channelBits = channelFeatures(channels);
     // Queue stages index their queue by invocation, so one dispatch must cover a whole queue.
     const uint64_t oneDispatch = uint64_t(ctx.properties().limits.maxComputeWorkGroupCount[0]) * m.options.workgroupSize;
     m.capacity = static_cast<uint32_t>(std::min<uint64_t>({pixels, m.options.queueCapacity, oneDispatch}));
@@ -258,30 +305,58 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     Impl& m = *impl_;
     m.uploadFrame(frameConstants(camera, settings), size_);
     m.writeCounters({});
+    // Leave out what this frame does not need: kernels specialised for its FeatureSet (FeatureSet.h).
+    m.features = m.options.specialize ? FeatureSet{scene.features() | m.channelBits |
+                                                   (m.exchange().rankCount() > 1 ? gpu::FEATURE_MULTI_RANK : 0u)}
+                                      : FeatureSet::all();
+    m.trace.useFeatures(m.features.bits);
+    m.pipelines.select({shaders::pt_surface, "pt_surface", static_cast<uint32_t>(sizeof(gpu::StageParams)),
+                        m.options.workgroupSize, gpu::FEATURE_GEOMETRY | gpu::FEATURE_TEXTURES | gpu::FEATURE_SURFACE_CHANNELS},
+                       m.features.bits, m.surface);
 
     FrameStats stats;
-    const uint64_t pixels = uint64_t(size_.x) * size_.y;
     // Bounces a path can take: its interactions plus pass-throughs, plus the one that resolves the last
     // shadow rays. The kernels end paths before this; the bound only guards the loop.
     const uint32_t maxBounces = std::max(1u, settings.maxPathLength) + gpu::PATH_MAX_PASS_THROUGHS + 2;
+    // This rank's pixels (all of them with one rank); every rank runs as many waves and bounces as the
+    // busiest one, since each exchange needs all ranks.
+    RayExchange& ranks = m.exchange();
+    const std::vector<PixelRange> owned = ownedPixels(size_, ranks.rank(), ranks.rankCount());
+    const std::vector<Wave> waves = packWaves(owned, m.capacity);
+    const uint64_t waveCount = ranks.max(waves.size());
     for (uint32_t s = 0; s < settings.pixelSamples; ++s) {
         const uint32_t sampleIndex = accumulatedSamples_;
-        for (uint64_t first = 0; first < pixels; first += m.capacity) {
-            uint32_t paths = static_cast<uint32_t>(std::min<uint64_t>(m.capacity, pixels - first)), shadows = 0;
-            for (uint32_t bounce = 0; (paths > 0 || shadows > 0) && bounce <= maxBounces; ++bounce) {
-                m.context.submitAndWait([&](VkCommandBuffer cmd) {
-                    if (bounce == 0) m.generateRays(cmd, first, paths, sampleIndex);
+        for (uint64_t w = 0; w < waveCount; ++w) {
+            uint32_t paths = w < waves.size() ? waves[w].paths : 0, shadows = 0;
+            for (uint32_t bounce = 0; bounce <= maxBounces && ranks.sum(paths + shadows) > 0; ++bounce) {
+                auto traceLocally = [&](VkCommandBuffer cmd) {
+                    if (bounce == 0 && paths > 0) m.generateRays(cmd, waves[w], sampleIndex);
                     m.occlude(cmd, scene, shadows);
-                    m.traceAndShade(cmd, scene, paths, bounce, sampleIndex);
+                    m.traceAndShade(cmd, scene, paths);
+                };
+                auto shadeAtHome = [&](VkCommandBuffer cmd) {
+                    m.resolveShadows(cmd, scene, shadows);
+                    m.shadePaths(cmd, scene, paths, bounce, sampleIndex);
                     Impl::hostReadBarrier(cmd);
-                });
+                };
+                if (ranks.rankCount() == 1) {
+                    m.context.submitAndWait([&](VkCommandBuffer cmd) { traceLocally(cmd); shadeAtHome(cmd); });
+                } else {
+                    m.context.submitAndWait([&](VkCommandBuffer cmd) { traceLocally(cmd); Impl::hostReadBarrier(cmd); });
+                    m.exchangeRays(scene, paths, shadows);
+                    m.context.submitAndWait(shadeAtHome);
+                }
                 stats.raysTraced += paths;
                 stats.shadowRays += shadows;
                 std::tie(paths, shadows) = m.takeQueueCounts();
             }
         }
         m.context.submitAndWait([&](VkCommandBuffer cmd) {
-            m.dispatch(cmd, m.accumulate, m.params(nullptr), pixels);
+            for (const PixelRange& range : owned) {
+                gpu::StageParams p = m.params(nullptr);
+                p.firstPixel = range.first;
+                m.dispatch(cmd, m.accumulate, p, range.count);
+            }
             Impl::hostReadBarrier(cmd);
         });
         ++accumulatedSamples_;
@@ -305,6 +380,22 @@ void PathTracer::readColor(ColorFormat format, void* destination) const {
     p.mode = static_cast<uint32_t>(format);
     m.context.submitAndWait([&](VkCommandBuffer cmd) { m.dispatch(cmd, m.resolve, p, pixels); });
     m.color.download(destination, pixels * (format == ColorFormat::Rgba32Float ? 16 : 4));
+}
+
+void PathTracer::readChannel(SurfaceChannel channel, void* destination) const {
+    impl_->channels.read(channel, destination);
+}
+
+FeatureSet PathTracer::features() const { return impl_->features; }
+
+std::vector<PipelineCache::Entry> PathTracer::pipelines() const {
+    std::vector<PipelineCache::Entry> list = impl_->pipelines.entries();
+    for (const PipelineCache::Entry& e : impl_->trace.pipelines().entries()) list.push_back(e);
+    return list;
+}
+
+uint64_t PathTracer::channelBytes() const {
+    return impl_->channels.bytes() + (impl_->depth ? uint64_t(size_.x) * size_.y * sizeof(float) : 0);
 }
 
 void PathTracer::readDepth(float* destination) const {

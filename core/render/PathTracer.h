@@ -3,13 +3,18 @@
 // the accumulation into the requested channels. One .comp per stage (shaders/pt_*.comp). Synchronous: the
 // ANARI layer runs it on a worker thread to make frames asynchronous. Knows nothing of ANARI or MPI.
 //
-// What the images contain: lights are sampled by next-event estimation only (rays never hit them);
-// emissive materials are found only by BSDF-sampled rays, and emit from both sides; there is no MIS, so
-// glossy surfaces near small lights are noisy. Shadow rays treat every surface as opaque. Random numbers
+// What the images contain: area lights (quad, ring, hdri, and the triangles of emissive materials without
+// an emission texture) are found both by next-event estimation and by BSDF-sampled rays, combined by
+// multiple importance sampling (power heuristic); lights are picked in proportion to their power. Camera
+// rays do not see quad and ring lights. Emissive surfaces emit from both sides. Shadow rays treat every
+// surface as opaque (light through partly transparent surfaces reaches a point only by BSDF rays). Random numbers
 // are keyed by (pixel, sample index, bounce, dimension, seed), so the same inputs give the same image bit
 // for bit, however the frame is split into waves.
 #pragma once
 
+#include "core/render/RayExchange.h"
+#include "core/render/FeatureSet.h"
+#include "core/render/SurfaceChannels.h"
 #include "core/render/TraceKernels.h"
 #include "core/scene/Scene.h"
 #include "core/vk/Buffer.h"
@@ -24,7 +29,7 @@
 namespace ripple::core {
 
 struct Camera {
-    enum class Kind : uint32_t { Perspective = 0, Orthographic = 1 };
+    enum class Kind : uint32_t { Perspective = 0, Orthographic = 1, Omnidirectional = 2 };
     Kind kind = Kind::Perspective;
     glm::vec3 position{0.0f};
     glm::vec3 direction{0.0f, 0.0f, -1.0f};
@@ -32,6 +37,8 @@ struct Camera {
     float fovy = 1.0471976f;              // perspective: vertical field of view, radians (ANARI default pi/3)
     float aspect = 1.0f;                  // width / height of the image region
     float height = 1.0f;                  // orthographic: height of the view in world units
+    float apertureRadius = 0.0f;          // perspective: lens radius for depth of field (0: pinhole)
+    float focusDistance = 1.0f;           // perspective: distance of the plane in focus along `direction`
     glm::vec4 imageRegion{0.0f, 0.0f, 1.0f, 1.0f}; // (minX, minY, maxX, maxY) of the screen in [0,1]^2
 };
 
@@ -42,6 +49,13 @@ struct RenderSettings {
     uint32_t maxPathLength = 5;           // surface interactions per path (1: direct lighting only)
     uint32_t pixelSamples = 1;            // samples per pixel added by one render() call
     uint32_t seed = 0;                    // varies the random numbers; the same seed gives the same image
+    // Largest component any one contribution (emission or light sample times throughput) may have; larger
+    // ones are scaled down to it, trading bias for less noise from rare bright paths. 0: no clamp.
+    float maxRadiance = 0.0f;
+    // How area lights are found. Mis is the renderer; the others exist to test that each strategy alone
+    // converges to the same image.
+    enum class LightSampling : uint32_t { Mis = 0, LightsOnly = 1, BsdfOnly = 2 };
+    LightSampling lightSampling = LightSampling::Mis;
 };
 
 struct PathTracerOptions {
@@ -49,6 +63,12 @@ struct PathTracerOptions {
     // (about 220 bytes per path) does not grow with the image.
     uint32_t queueCapacity = 1u << 20;
     uint32_t workgroupSize = 64;
+    // Build the kernels for the FeatureSet of each frame (see FeatureSet.h). false: every kernel keeps
+    // every feature, the baseline the specialisation benchmark compares against.
+    bool specialize = true;
+    // The other ranks of a data-parallel render (not owned; must outlive the tracer). Null: this rank
+    // holds the whole scene. With N ranks, this rank generates and shades only its pixels (PixelTiles.h).
+    RayExchange* exchange = nullptr;
 };
 
 // Pixel formats the resolve stage writes. Row 0 of every channel is the bottom row of the image.
@@ -70,6 +90,7 @@ public:
 
     // Resizes the frame (and clears the accumulation). Only the channels asked for get buffers.
     void resize(glm::uvec2 size, bool wantDepth);
+    void resize(glm::uvec2 size, const FrameChannels& channels);
     // Starts accumulation over: call when scene, camera or settings changed.
     void resetAccumulation();
 
@@ -87,6 +108,15 @@ public:
     // readDepth throws std::logic_error when resize() did not ask for depth.
     void readColor(ColorFormat format, void* destination) const;
     void readDepth(float* destination) const;
+    // Albedo and normal: three floats per pixel; the ids: one uint32 per pixel (~0u where the camera ray
+    // missed). Of the latest sample's first hit. Throws std::logic_error when resize() did not ask for it.
+    void readChannel(SurfaceChannel channel, void* destination) const;
+
+    // What the latest render() was specialised for, and every pipeline variant built so far.
+    FeatureSet features() const;
+    std::vector<PipelineCache::Entry> pipelines() const;
+    // Bytes of the optional per-pixel channels (depth, albedo, normal, ids): 0 when none was asked for.
+    uint64_t channelBytes() const;
 
 private:
     struct Impl;

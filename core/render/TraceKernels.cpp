@@ -16,13 +16,21 @@ constexpr uint32_t kWorkgroupSizeConstant = 0;  // layout(local_size_x_id = 0) i
 }  // namespace
 
 TraceKernels::TraceKernels(const vk::Context& context, const TraceOptions& options)
-    : context_(context), options_(options) {
+    : context_(context), options_(options), pipelines_(context) {
     if (options_.stepBudget < kMinStepBudget || options_.stepBudget > kMaxStepBudget)
         throw std::invalid_argument("TraceOptions::stepBudget must be in [" + std::to_string(kMinStepBudget) + ", " +
                                     std::to_string(kMaxStepBudget) + "], not " + std::to_string(options_.stepBudget));
     const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options_.workgroupSize}};
     closest_ = vk::ComputePipeline(context, shaders::trace_closest, "trace_closest", sizeof(gpu::TraceParams), constants);
     any_ = vk::ComputePipeline(context, shaders::trace_any, "trace_any", sizeof(gpu::TraceParams), constants);
+}
+
+void TraceKernels::useFeatures(uint32_t features) {
+    const auto bytes = static_cast<uint32_t>(sizeof(gpu::TraceParams));
+    pipelines_.select({shaders::trace_closest, "trace_closest", bytes, options_.workgroupSize, gpu::FEATURE_GEOMETRY},
+                      features, closest_);
+    pipelines_.select({shaders::trace_any, "trace_any", bytes, options_.workgroupSize, gpu::FEATURE_GEOMETRY},
+                      features, any_);
 }
 
 void TraceKernels::ensureResumePools() {

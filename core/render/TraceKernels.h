@@ -4,6 +4,7 @@
 // HIT_FLAG_RAN_OUT, never silently wrong.
 #pragma once
 
+#include "core/render/FeatureSet.h"
 #include "core/scene/Scene.h"
 #include "core/vk/Buffer.h"
 #include "core/vk/ComputePipeline.h"
@@ -46,6 +47,12 @@ public:
 
     const TraceOptions& options() const { return options_; }
 
+    // Specialises the kernels for the geometry kinds in `features` (FEATURE_*; other bits are ignored):
+    // later traces run the variant without the tests of absent kinds. Every kind by default. A scene
+    // holding a kind the features leave out traces those primitives as misses.
+    void useFeatures(uint32_t features);
+    const PipelineCache& pipelines() const { return pipelines_; }
+
 private:
     void dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, const Scene& scene, const vk::Buffer& rays,
                   const vk::Buffer& results, uint32_t rayCount);
@@ -57,6 +64,7 @@ private:
     TraceOptions options_;
     vk::ComputePipeline closest_;
     vk::ComputePipeline any_;
+    PipelineCache pipelines_;
     vk::Buffer resumePools_[2];
 };
 

@@ -1,6 +1,7 @@
 // Validation of triangle meshes, sphere sets and cylinder sets, and the BLAS over what is kept.
 #include "core/scene/PreparedGeometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -36,11 +37,34 @@ bvh::Aabb cylinderBox(const glm::vec3& a, const glm::vec3& b, float r) {
 
 }  // namespace
 
+bvh::Aabb coneBox(const glm::vec3& a, float ra, const glm::vec3& b, float rb, bool round) {
+    if (round) {  // the tangent cone lies inside the hull of the two spheres
+        bvh::Aabb box;
+        box.extend(a - glm::vec3(ra));
+        box.extend(a + glm::vec3(ra));
+        box.extend(b - glm::vec3(rb));
+        box.extend(b + glm::vec3(rb));
+        const glm::vec3 pad = 1e-6f * glm::max(glm::abs(box.lo), glm::abs(box.hi)) + 1e-6f * std::max(ra, rb);
+        return {box.lo - pad, box.hi + pad};
+    }
+    // Each end disk reaches r * sqrt(1 - w_i^2) across axis i, as for cylinders.
+    bvh::Aabb box = cylinderBox(a, b, 0.0f);
+    const glm::dvec3 w = glm::normalize(glm::dvec3(b) - glm::dvec3(a));
+    const glm::dvec3 across = glm::sqrt(glm::max(glm::dvec3(0.0), 1.0 - w * w)) * (1.0 + 1e-6);
+    box.extend(glm::vec3(glm::dvec3(a) - double(ra) * across));
+    box.extend(glm::vec3(glm::dvec3(a) + double(ra) * across));
+    box.extend(glm::vec3(glm::dvec3(b) - double(rb) * across));
+    box.extend(glm::vec3(glm::dvec3(b) + double(rb) * across));
+    const glm::vec3 pad = 1e-6f * glm::max(glm::abs(box.lo), glm::abs(box.hi)) + 1e-6f * std::max(ra, rb);
+    return {box.lo - pad, box.hi + pad};
+}
+
 std::string geometryLabel(GeometryKind kind, uint32_t index) {
     switch (kind) {
     case GeometryKind::Triangles: return "mesh " + std::to_string(index);
     case GeometryKind::Spheres: return "sphere set " + std::to_string(index);
     case GeometryKind::Cylinders: return "cylinder set " + std::to_string(index);
+    case GeometryKind::Cones: return "cone set " + std::to_string(index);
     }
     return "geometry of kind " + std::to_string(static_cast<uint32_t>(kind)) + " " + std::to_string(index);
 }
@@ -51,6 +75,15 @@ uint64_t primitiveCount(const TriangleMesh& mesh) {
 uint64_t primitiveCount(const SphereSet& set) { return set.centers.size(); }
 uint64_t primitiveCount(const CylinderSet& set) {
     return set.indices.empty() ? set.positions.size() / 2 : set.indices.size();
+}
+
+uint64_t primitiveCount(const ConeSet& set) {
+    return set.indices.empty() ? set.positions.size() / 2 : set.indices.size();
+}
+
+glm::uvec2 coneIndices(const ConeSet& set, uint64_t i) {
+    if (!set.indices.empty()) return set.indices[i];
+    return glm::uvec2(uint32_t(2 * i), uint32_t(2 * i + 1));
 }
 
 glm::uvec2 cylinderIndices(const CylinderSet& set, uint64_t i) {
@@ -78,6 +111,16 @@ bool fits(const PreparedGeometry& prepared, const CylinderSet& set) {
     if (set.radii.size() != 1 && set.radii.size() != primitiveCount(set)) return false;
     for (uint32_t i : prepared.validPrims) {
         const glm::uvec2 idx = cylinderIndices(set, i);
+        if (idx.x >= set.positions.size() || idx.y >= set.positions.size()) return false;
+    }
+    return true;
+}
+
+bool fits(const PreparedGeometry& prepared, const ConeSet& set) {
+    if (prepared.inputPrimCount != primitiveCount(set) || prepared.positionCount != set.positions.size()) return false;
+    if (set.radii.size() != 1 && set.radii.size() != set.positions.size()) return false;
+    for (uint32_t i : prepared.validPrims) {
+        const glm::uvec2 idx = coneIndices(set, i);
         if (idx.x >= set.positions.size() || idx.y >= set.positions.size()) return false;
     }
     return true;
@@ -173,6 +216,44 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(const CylinderSet& set, 
     note(*g, nonFinite, "cylinder(s) with a NaN or Inf end");
     note(*g, badRadius, "cylinder(s) with a radius that is not finite and positive");
     note(*g, zeroLength, "cylinder(s) of zero length");
+    return finish(std::move(g), boxes);
+}
+
+}  // namespace ripple::core
+
+namespace ripple::core {
+
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const ConeSet& set, const bvh::BuildOptions& options) {
+    auto g = std::make_shared<PreparedGeometry>();
+    g->kind = GeometryKind::Cones;
+    g->identity = set.identity;
+    g->buildOptions = options;
+    g->inputPrimCount = primitiveCount(set);
+    g->positionCount = set.positions.size();
+    if (set.radii.size() != 1 && set.radii.size() != set.positions.size()) {
+        g->problems.push_back(std::to_string(set.radii.size()) + " radii for " + std::to_string(set.positions.size()) +
+                              " positions (need 1 or one each); set skipped");
+        g->skipped = g->inputPrimCount;
+        return g;
+    }
+    std::vector<bvh::Aabb> boxes;
+    uint64_t badIndex = 0, nonFinite = 0, badRadius = 0, zeroLength = 0;
+    for (uint64_t i = 0; i < g->inputPrimCount; ++i) {
+        const glm::uvec2 idx = coneIndices(set, i);
+        if (idx.x >= set.positions.size() || idx.y >= set.positions.size()) { ++badIndex; continue; }
+        const glm::vec3 &a = set.positions[idx.x], &b = set.positions[idx.y];
+        const float ra = radiusOf(set.radii, idx.x), rb = radiusOf(set.radii, idx.y);
+        if (!finite(a) || !finite(b)) { ++nonFinite; continue; }
+        if (!(std::isfinite(ra) && std::isfinite(rb) && ra >= 0.0f && rb >= 0.0f && ra + rb > 0.0f)) { ++badRadius; continue; }
+        const glm::vec3 axis = b - a;
+        if (!(glm::dot(axis, axis) >= std::numeric_limits<float>::min())) { ++zeroLength; continue; }
+        g->validPrims.push_back(static_cast<uint32_t>(i));
+        boxes.push_back(coneBox(a, ra, b, rb, set.round));
+    }
+    note(*g, badIndex, "segment(s) with an index out of range (" + std::to_string(set.positions.size()) + " positions)");
+    note(*g, nonFinite, "segment(s) with a NaN or Inf end");
+    note(*g, badRadius, "segment(s) with a radius that is negative or not finite, or 0 at both ends");
+    note(*g, zeroLength, "segment(s) of zero length");
     return finish(std::move(g), boxes);
 }
 

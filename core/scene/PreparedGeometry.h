@@ -32,12 +32,16 @@ std::string geometryLabel(GeometryKind kind, uint32_t index);
 uint64_t primitiveCount(const TriangleMesh& mesh);
 uint64_t primitiveCount(const SphereSet& set);
 uint64_t primitiveCount(const CylinderSet& set);
+uint64_t primitiveCount(const ConeSet& set);
 
 // The radius of sphere or cylinder i: one per primitive or a single one for all (the caller checked
 // that radii has one of these two lengths).
 inline float radiusOf(const std::vector<float>& radii, uint64_t i) { return radii.size() == 1 ? radii[0] : radii[i]; }
-// Endpoints of cylinder i (indices unchecked).
+// Endpoints of cylinder or cone i (indices unchecked).
 glm::uvec2 cylinderIndices(const CylinderSet& set, uint64_t i);
+glm::uvec2 coneIndices(const ConeSet& set, uint64_t i);
+// Bounds of a cone frustum (or of the two spheres of a round segment), never smaller than the shape.
+bvh::Aabb coneBox(const glm::vec3& a, float ra, const glm::vec3& b, float rb, bool round);
 
 // Whether `prepared` fits the geometry's current arrays well enough to be used without reading out of
 // range: same counts, and every kept primitive's indices within the positions. A reused geometry whose
@@ -45,6 +49,7 @@ glm::uvec2 cylinderIndices(const CylinderSet& set, uint64_t i);
 bool fits(const PreparedGeometry& prepared, const TriangleMesh& mesh);
 bool fits(const PreparedGeometry& prepared, const SphereSet& set);
 bool fits(const PreparedGeometry& prepared, const CylinderSet& set);
+bool fits(const PreparedGeometry& prepared, const ConeSet& set);
 
 // Validates the primitives of one geometry and builds its BLAS. Skips (and names in `problems`) NaN or
 // Inf positions, indices out of range, zero-area triangles, zero-length cylinders and radii that are not
@@ -52,5 +57,8 @@ bool fits(const PreparedGeometry& prepared, const CylinderSet& set);
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const TriangleMesh& mesh, const bvh::BuildOptions& options);
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const SphereSet& set, const bvh::BuildOptions& options);
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const CylinderSet& set, const bvh::BuildOptions& options);
+// Cones and curve segments: also skips radii that are negative or not finite, and cones whose both radii
+// are 0.
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const ConeSet& set, const bvh::BuildOptions& options);
 
 }  // namespace ripple::core

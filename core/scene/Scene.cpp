@@ -2,6 +2,7 @@
 // Scene), TLAS built, primitives, shading attributes, materials and lights flattened and uploaded.
 #include "core/scene/Scene.h"
 
+#include "core/render/FeatureSet.h"
 #include "core/scene/ShadingTables.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -69,6 +70,7 @@ struct FlatScene {
     std::vector<gpu::TrianglePrim> triangles;
     std::vector<gpu::SpherePrim> spheres;
     std::vector<gpu::CylinderPrim> cylinders;
+    std::vector<gpu::ConePrim> cones;
     std::vector<gpu::GeometryRecord> geometries;
     std::vector<uint32_t> primSlots;
     std::vector<uint32_t> vertexIndices;
@@ -137,7 +139,20 @@ void flattenCylinders(const CylinderSet& set, UsedGeometry& g, FlatScene& flat, 
         const uint32_t c = p.validPrims[slot];
         const glm::uvec2 idx = cylinderIndices(set, c);
         flat.cylinders.push_back({gpu::vec4(set.positions[idx.x], radiusOf(set.radii, c)),
-                                  gpu::vec4(set.positions[idx.y], 0.0f), c, set.caps ? 1u : 0u, 0, 0});
+                                  gpu::vec4(set.positions[idx.y], 0.0f), c, static_cast<uint32_t>(set.caps), 0, 0});
+    }
+    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
+}
+
+void flattenCones(const ConeSet& set, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
+                  SceneReport& report) {
+    const PreparedGeometry& p = *g.prepared;
+    const uint32_t flags = set.round ? gpu::CONE_ROUND : static_cast<uint32_t>(set.caps);
+    for (uint32_t slot : p.blas.primOrder) {
+        const uint32_t c = p.validPrims[slot];
+        const glm::uvec2 idx = coneIndices(set, c);
+        flat.cones.push_back({gpu::vec4(set.positions[idx.x], radiusOf(set.radii, idx.x)),
+                              gpu::vec4(set.positions[idx.y], radiusOf(set.radii, idx.y)), c, flags, 0, 0});
     }
     record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
 }
@@ -150,6 +165,7 @@ uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, F
     case GeometryKind::Triangles: g.primOffset = static_cast<uint32_t>(flat.triangles.size()); break;
     case GeometryKind::Spheres: g.primOffset = static_cast<uint32_t>(flat.spheres.size()); break;
     case GeometryKind::Cylinders: g.primOffset = static_cast<uint32_t>(flat.cylinders.size()); break;
+    case GeometryKind::Cones: g.primOffset = static_cast<uint32_t>(flat.cones.size()); break;
     }
     flat.nodes.insert(flat.nodes.end(), p.blas.nodes.begin(), p.blas.nodes.end());
     gpu::GeometryRecord record{};
@@ -165,6 +181,7 @@ uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, F
     case GeometryKind::Triangles: flattenTriangles(description.meshes[g.index], g, flat, record, report); break;
     case GeometryKind::Spheres: flattenSpheres(description.sphereSets[g.index], g, flat, record, report); break;
     case GeometryKind::Cylinders: flattenCylinders(description.cylinderSets[g.index], g, flat, record, report); break;
+    case GeometryKind::Cones: flattenCones(description.coneSets[g.index], g, flat, record, report); break;
     }
     flat.geometries.push_back(record);
     return static_cast<uint32_t>(flat.geometries.size() - 1);
@@ -175,6 +192,7 @@ size_t geometryCount(const SceneDescription& d, GeometryKind kind) {
     case GeometryKind::Triangles: return d.meshes.size();
     case GeometryKind::Spheres: return d.sphereSets.size();
     case GeometryKind::Cylinders: return d.cylinderSets.size();
+    case GeometryKind::Cones: return d.coneSets.size();
     }
     return 0;
 }
@@ -200,6 +218,7 @@ std::shared_ptr<const PreparedGeometry> prepareOrReuse(const SceneDescription& d
     case GeometryKind::Triangles: return lookup(d.meshes[index]);
     case GeometryKind::Spheres: return lookup(d.sphereSets[index]);
     case GeometryKind::Cylinders: return lookup(d.cylinderSets[index]);
+    case GeometryKind::Cones: return lookup(d.coneSets[index]);
     }
     return nullptr;
 }
@@ -211,9 +230,10 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     // 1. Validate every instance and every geometry it references (once per geometry); what cannot be
     //    traced is skipped and reported.
     std::vector<UsedGeometry> used;
-    std::vector<int64_t> slots[3] = {std::vector<int64_t>(description.meshes.size(), -1),
+    std::vector<int64_t> slots[4] = {std::vector<int64_t>(description.meshes.size(), -1),
                                      std::vector<int64_t>(description.sphereSets.size(), -1),
-                                     std::vector<int64_t>(description.cylinderSets.size(), -1)};
+                                     std::vector<int64_t>(description.cylinderSets.size(), -1),
+                                     std::vector<int64_t>(description.coneSets.size(), -1)};
     struct ValidInstance { uint32_t input; uint32_t geometry; };
     std::vector<ValidInstance> valid;
     auto skipInstance = [&](uint32_t i, const std::string& why) {
@@ -224,7 +244,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     for (uint32_t i = 0; i < description.instances.size(); ++i) {
         const InstanceDescription& inst = description.instances[i];
         const auto kindIndex = static_cast<uint32_t>(inst.geometry.kind);
-        if (kindIndex > static_cast<uint32_t>(GeometryKind::Cylinders)) {
+        if (kindIndex > static_cast<uint32_t>(GeometryKind::Cones)) {
             skipInstance(i, "unknown geometry kind " + std::to_string(kindIndex));
             continue;
         }
@@ -247,6 +267,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
             case GeometryKind::Triangles: report_.trianglesKept += kept; report_.trianglesSkipped += prepared->skipped; break;
             case GeometryKind::Spheres: report_.spheresKept += kept; report_.spheresSkipped += prepared->skipped; break;
             case GeometryKind::Cylinders: report_.cylindersKept += kept; report_.cylindersSkipped += prepared->skipped; break;
+            case GeometryKind::Cones: report_.conesKept += kept; report_.conesSkipped += prepared->skipped; break;
             }
             if (prepared->identity.key != 0) reusable_.push_back(prepared);
             slot = static_cast<int64_t>(used.size());
@@ -257,6 +278,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
             continue;
         }
         valid.push_back({i, static_cast<uint32_t>(slot)});
+        features_ |= 1u << kindIndex;  // FEATURE_TRIANGLES.. FEATURE_CONES
     }
     report_.instancesKept = valid.size();
     report_.blasBuildSeconds = secondsSince(start);
@@ -279,7 +301,9 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     for (size_t g = 0; g < used.size(); ++g)
         if (!used[g].prepared->validPrims.empty()) geometryRecord[g] = flattenGeometry(description, used[g], flat, report_);
 
-    ShadingTables shading = buildShadingTables(description);
+    const float sceneRadius = description.lightSceneRadius > 0.0f ? description.lightSceneRadius
+                              : bounds_.lo.x <= bounds_.hi.x ? 0.5f * glm::length(bounds_.hi - bounds_.lo) : 1.0f;
+    ShadingTables shading = buildShadingTables(description, std::isfinite(sceneRadius) && sceneRadius > 0.0f ? sceneRadius : 1.0f);
     report_.materialsRepaired = shading.materialsRepaired;
     report_.texturesSkipped = shading.texturesSkipped;
     report_.lightsKept = shading.lights.size();
@@ -321,6 +345,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         report_.messages.push_back(std::to_string(badMaterial) + " instance(s) name a material index beyond the " +
                                    std::to_string(description.materials.size()) + " material(s); the default matte is used");
     lightCount_ = static_cast<uint32_t>(shading.lights.size());
+    features_ |= shadingFeatures(description);  // materials and lights: see FeatureSet.h
 
     // 4. Upload. Empty arrays still get a (tiny) buffer so every address in SceneDesc is valid.
     auto upload = [&](vk::Buffer& buffer, const auto& items, const char* name) {
@@ -335,6 +360,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.triangles = upload(triangles_, flat.triangles, "scene triangles");
     desc.spheres = upload(spheres_, flat.spheres, "scene spheres");
     desc.cylinders = upload(cylinders_, flat.cylinders, "scene cylinders");
+    desc.cones = upload(cones_, flat.cones, "scene cones");
     desc.instances = upload(instances_, instances, "scene instances");
     desc.instanceShading = upload(instanceShading_, instanceShading, "scene instance shading");
     desc.geometries = upload(geometries_, flat.geometries, "scene geometry records");
@@ -349,6 +375,10 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.lightCount = lightCount_;
     desc.materialCount = static_cast<uint32_t>(shading.materials.size());
     desc.textureCount = static_cast<uint32_t>(shading.textures.size());
+    desc.lightPowerTotal = shading.lightPowerTotal;
+    desc.testedLightCount = shading.testedLightCount;
+    desc.bsdfTables = shading.bsdfTableOffset;
+    desc.environmentLight = shading.environmentLight;
     upload(desc_, std::vector<gpu::SceneDesc>{desc}, "scene descriptor");
 }
 

@@ -1,5 +1,5 @@
 // The flat GPU scene: validates a SceneDescription (skipping and counting bad primitives, attributes,
-// materials, textures and lights), builds a BLAS per mesh, sphere set or cylinder set and a TLAS over
+// materials, textures and lights), builds a BLAS per mesh, sphere, cylinder or cone set and a TLAS over
 // instances, and uploads everything the trace and shading kernels read (shaders/shared/scene.h).
 //
 // Rebuilding only what changed: pass the Scene built from the previous state of the world as `previous`.
@@ -29,6 +29,8 @@ struct SceneReport {
     uint64_t spheresSkipped = 0;       // NaN/Inf center, radius <= 0 or non-finite
     uint64_t cylindersKept = 0;
     uint64_t cylindersSkipped = 0;     // NaN/Inf end, index out of range, zero length, bad radius
+    uint64_t conesKept = 0;            // cone and curve segments
+    uint64_t conesSkipped = 0;         // as cylinders; radii may be 0 at one end
     uint64_t instancesKept = 0;
     uint64_t instancesSkipped = 0;     // empty geometry, bad reference, or non-finite/singular transform
     uint64_t attributesIgnored = 0;    // optional attributes with a wrong length or NaN/Inf values
@@ -53,6 +55,9 @@ public:
     VkDeviceAddress descAddress() const { return desc_.address(); }
     uint32_t instanceCount() const { return instanceCount_; }
     uint32_t lightCount() const { return lightCount_; }
+    // FEATURE_* bits (shaders/shared/features.h) of what this scene holds: geometry kinds of its kept
+    // instances, textures, emission, alpha and light kinds. The frame adds its own (core/render/FeatureSet.h).
+    uint32_t features() const { return features_; }
     const bvh::Aabb& bounds() const { return bounds_; }
 
 private:
@@ -60,9 +65,10 @@ private:
     bvh::Aabb bounds_;
     uint32_t instanceCount_ = 0;
     uint32_t lightCount_ = 0;
+    uint32_t features_ = 0;
     // The validated geometries with an identity, kept so a later Scene can reuse them.
     std::vector<std::shared_ptr<const PreparedGeometry>> reusable_;
-    vk::Buffer nodes_, triangles_, spheres_, cylinders_, instances_, instanceShading_, geometries_, primSlots_,
+    vk::Buffer nodes_, triangles_, spheres_, cylinders_, cones_, instances_, instanceShading_, geometries_, primSlots_,
         vertexIndices_, attributes_, materials_, textures_, texels_, lights_, desc_;
 };
 

@@ -1,4 +1,4 @@
-// What a scene is made of, as the host sees it: meshes, sphere sets and cylinder sets, instances of them
+// What a scene is made of, as the host sees it: meshes, sphere, cylinder and cone sets, instances of them
 // with a material each, materials, textures and lights. core::Scene validates this, builds the BVHs and
 // uploads the flat GPU scene of shaders/shared/scene.h. Everything is in world units; lights are in world
 // space (the ANARI layer applies instance transforms to lights before they get here).
@@ -41,21 +41,38 @@ struct SphereSet {
     GeometryIdentity identity;
 };
 
-// Round cylinders between two points; caps close both ends when set.
+// Which ends of a cylinder or cone a flat disk closes (the ANARI "caps" parameter).
+enum class CapEnds : uint32_t { None = 0, First = 1, Second = 2, Both = 3 };
+
+// Round cylinders between two points; caps close the ends named.
 struct CylinderSet {
     std::vector<glm::vec3> positions;
     std::vector<glm::uvec2> indices;      // empty: consecutive position pairs form the cylinders
     std::vector<float> radii;             // one per cylinder, or a single radius for all
     std::vector<glm::vec4> colors;        // empty, or one per cylinder
-    bool caps = false;
+    CapEnds caps = CapEnds::None;
     GeometryIdentity identity;
 };
 
-enum class GeometryKind : uint32_t { Triangles = 0, Spheres = 1, Cylinders = 2 };
+// Cone frusta between two points with a radius at each end (ANARI "cone"), or, when `round`, a curve of
+// round linear segments (ANARI "curve"): a sphere at each end of a segment, joined by the cone tangent to
+// both, so consecutive segments meet smoothly. Radii are per position (or a single one for all); a radius
+// may be 0 at one end of a cone (its apex), never at both.
+struct ConeSet {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::uvec2> indices;      // empty: consecutive position pairs form the segments
+    std::vector<float> radii;             // one per position, or a single radius for all
+    std::vector<glm::vec4> colors;        // empty, or one per segment
+    CapEnds caps = CapEnds::None;         // cones only: a round segment has no caps
+    bool round = false;
+    GeometryIdentity identity;
+};
+
+enum class GeometryKind : uint32_t { Triangles = 0, Spheres = 1, Cylinders = 2, Cones = 3 };
 
 struct GeometryRef {
     GeometryKind kind = GeometryKind::Triangles;
-    uint32_t index = 0;                   // into SceneDescription::meshes, ::sphereSets or ::cylinderSets
+    uint32_t index = 0;                   // into SceneDescription::meshes, ::sphereSets, ::cylinderSets or ::coneSets
 };
 
 // A linear-space RGBA texture. Texels are row-major with row 0 at texture coordinate v = 0.
@@ -77,15 +94,34 @@ inline constexpr int32_t kNoTexture = -1;
 
 struct Material {
     enum class Kind : uint32_t { Matte = 0, PhysicallyBased = 1 };
+    // Blend: opacity is the chance a ray stops (the default, so opacity works without naming a mode);
+    // Opaque: opacity ignored; Mask: opaque where opacity >= alphaCutoff, absent elsewhere.
+    enum class AlphaMode : uint32_t { Opaque = 0, Blend = 1, Mask = 2 };
     Kind kind = Kind::Matte;
     glm::vec3 baseColor{0.8f};
     bool baseColorFromVertexColor = false; // the ANARI "color" attribute replaces baseColor
-    int32_t baseColorTexture = kNoTexture; // index into SceneDescription::textures (multiplies baseColor)
+    int32_t baseColorTexture = kNoTexture; // index into SceneDescription::textures (multiplies baseColor
+                                           // and, by its alpha, opacity)
     float opacity = 1.0f;
+    AlphaMode alphaMode = AlphaMode::Blend;
+    float alphaCutoff = 0.5f;
     float metallic = 1.0f;                 // physicallyBased only (ANARI default 1)
     float roughness = 1.0f;                // physicallyBased only
     glm::vec3 emissive{0.0f};              // radiance emitted, linear RGB (already times any strength)
     float ior = 1.5f;
+    // physicallyBased extensions (glTF KHR_materials_*): 0 turns each off, except specular (1: the F0 of
+    // the ior as it is).
+    float specular = 1.0f;                 // scales the dielectric reflectance at normal incidence
+    float transmission = 0.0f;
+    float clearcoat = 0.0f;
+    float clearcoatRoughness = 0.0f;
+    // Textures (indices into SceneDescription::textures) for the other parameters; a float parameter takes
+    // the texture's first output component and is multiplied by it.
+    int32_t normalTexture = kNoTexture;    // tangent-space normal map (needs texcoords), rgb in [0,1]
+    int32_t metallicTexture = kNoTexture;
+    int32_t roughnessTexture = kNoTexture;
+    int32_t emissiveTexture = kNoTexture;  // rgb multiplies emissive; such surfaces are not lights
+    int32_t opacityTexture = kNoTexture;
 };
 
 struct InstanceDescription {
@@ -97,27 +133,41 @@ struct InstanceDescription {
 };
 
 struct Light {
-    enum class Kind : uint32_t { Directional = 0, Point = 1, Quad = 2 };
+    enum class Kind : uint32_t { Directional = 0, Point = 1, Quad = 2, Spot = 3, Ring = 4, Hdri = 6 };
     Kind kind = Kind::Directional;
     glm::vec3 color{1.0f};
-    // Directional: irradiance (W/m^2) on a surface facing the light. Point: intensity (W/sr).
-    // Quad: radiance (W/sr/m^2) of its emitting side(s).
+    // Directional: irradiance (W/m^2) on a surface facing the light. Point, spot: intensity (W/sr).
+    // Quad, ring: radiance (W/sr/m^2) of its emitting side(s). Hdri: scale of the image's radiance.
     float intensity = 1.0f;
-    glm::vec3 position{0.0f};             // point and quad (a corner of the quad)
-    glm::vec3 direction{0.0f, 0.0f, -1.0f}; // directional: the direction light travels
+    glm::vec3 position{0.0f};             // point, spot, ring (centre) and quad (a corner of the quad)
+    // Directional: the direction light travels. Spot, ring: the axis light leaves along. Hdri: the
+    // direction the centre of the image is seen in.
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
     glm::vec3 edge1{1.0f, 0.0f, 0.0f};    // quad: position + s*edge1 + t*edge2, s,t in [0,1]
     glm::vec3 edge2{0.0f, 1.0f, 0.0f};
     bool twoSided = false;                // quad: emits from both sides (else along cross(edge1, edge2))
+    // Spot, ring: full light within openingAngle / 2 - falloffAngle of the axis, none beyond
+    // openingAngle / 2, smooth between (ANARI's definition). Radians.
+    float openingAngle = 3.14159265f;
+    float falloffAngle = 0.1f;
+    float radius = 0.0f;                  // ring: outer radius (0: a spot light)
+    float innerRadius = 0.0f;             // ring
+    glm::vec3 up{0.0f, 0.0f, 1.0f};       // hdri: the direction of the image's top row
+    int32_t texture = kNoTexture;         // hdri: an equirectangular Rgba32Float texture (its radiance)
 };
 
 struct SceneDescription {
     std::vector<TriangleMesh> meshes;
     std::vector<SphereSet> sphereSets;
     std::vector<CylinderSet> cylinderSets;
+    std::vector<ConeSet> coneSets;
     std::vector<InstanceDescription> instances;
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<Light> lights;
+    // Radius of the sphere directional and hdri lights' power is measured through (their chance of being
+    // picked). 0: half the diagonal of this scene's bounds. A data-parallel rank sets the whole world's.
+    float lightSceneRadius = 0.0f;
 };
 
 }  // namespace ripple::core

@@ -1,6 +1,11 @@
-// Validation and conversion of materials, textures and lights into the GPU records the shading kernels read.
+// Validation and conversion of materials and textures into the GPU records the shading kernels read; the
+// BSDF energy tables and the lights (core/scene/LightTable.cpp) are appended.
 #include "core/scene/ShadingTables.h"
 
+#include "core/scene/BsdfTables.h"
+#include "core/scene/LightTable.h"
+
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -105,12 +110,29 @@ gpu::MaterialRecord convertMaterial(const Material& m, uint32_t index, const std
     r.baseColorOpacity = gpu::vec4(base, opacity);
     r.emissiveIor = gpu::vec4(emissive, ior);
     r.flags = m.baseColorFromVertexColor ? gpu::MATERIAL_FLAG_VERTEX_COLOR : 0u;
-    r.baseColorTexture = gpu::NO_TEXTURE;
-    if (m.baseColorTexture != kNoTexture) {
-        const bool inRange = m.baseColorTexture >= 0 && size_t(m.baseColorTexture) < textureUsable.size();
-        if (inRange && textureUsable[m.baseColorTexture]) r.baseColorTexture = m.baseColorTexture;
-        else if (!inRange) repaired.push_back("baseColorTexture " + std::to_string(m.baseColorTexture) + " (no such texture)");
-    }
+    r.alphaMode = static_cast<uint32_t>(m.alphaMode);
+    if (r.alphaMode > gpu::ALPHA_MASK) { repaired.push_back("alphaMode"); r.alphaMode = gpu::ALPHA_BLEND; }
+    r.alphaCutoff = scalar(m.alphaCutoff, defaults.alphaCutoff, 0.0f, 1.0f, "alphaCutoff");
+    r.specular = scalar(m.specular, defaults.specular, 0.0f, 1.0f, "specular");
+    r.transmission = scalar(m.transmission, 0.0f, 0.0f, 1.0f, "transmission");
+    r.clearcoat = scalar(m.clearcoat, 0.0f, 0.0f, 1.0f, "clearcoat");
+    r.clearcoatRoughness = scalar(m.clearcoatRoughness, 0.0f, 0.0f, 1.0f, "clearcoatRoughness");
+    auto texture = [&](int32_t textureIndex, const char* field) {
+        if (textureIndex == kNoTexture) return gpu::NO_TEXTURE;
+        const bool inRange = textureIndex >= 0 && size_t(textureIndex) < textureUsable.size();
+        if (inRange && textureUsable[textureIndex]) return textureIndex;
+        if (!inRange) repaired.push_back(std::string(field) + " " + std::to_string(textureIndex) + " (no such texture)");
+        return gpu::NO_TEXTURE;
+    };
+    r.baseColorTexture = texture(m.baseColorTexture, "baseColorTexture");
+    r.normalTexture = texture(m.normalTexture, "normalTexture");
+    r.metallicTexture = texture(m.metallicTexture, "metallicTexture");
+    r.roughnessTexture = texture(m.roughnessTexture, "roughnessTexture");
+    r.emissiveTexture = texture(m.emissiveTexture, "emissiveTexture");
+    r.opacityTexture = texture(m.opacityTexture, "opacityTexture");
+    // Its triangles become lights (LightTable) when the emission is the same everywhere on it.
+    if (glm::any(glm::greaterThan(emissive, glm::vec3(0.0f))) && r.emissiveTexture == gpu::NO_TEXTURE)
+        r.flags |= gpu::MATERIAL_FLAG_LIGHT;
     if (!repaired.empty()) {
         out.messages.push_back("material " + std::to_string(index) + ": invalid " + join(repaired) + "; replaced by the default or clamped");
         ++out.materialsRepaired;
@@ -118,50 +140,9 @@ gpu::MaterialRecord convertMaterial(const Material& m, uint32_t index, const std
     return r;
 }
 
-// False (with a message) when the light cannot be used.
-bool convertLight(const Light& light, uint32_t index, ShadingTables& out, gpu::LightRecord& r) {
-    const std::string name = "light " + std::to_string(index);
-    auto reject = [&](const std::string& why) {
-        out.messages.push_back(name + ": " + why + "; skipped");
-        ++out.lightsSkipped;
-        return false;
-    };
-    if (!nonNegative(light.color) || !finite(light.intensity) || light.intensity < 0.0f)
-        return reject("color or intensity is negative, NaN or Inf");
-    r = gpu::LightRecord{};
-    r.emission = gpu::vec4(light.color * light.intensity, 0.0f);
-    r.kind = static_cast<uint32_t>(light.kind);
-    switch (light.kind) {
-    case Light::Kind::Directional: {
-        const float length = finite(light.direction) ? glm::length(light.direction) : 0.0f;
-        if (!(length > 0.0f && finite(length))) return reject("direction is zero, NaN or Inf");
-        r.direction = gpu::vec4(light.direction / length, 0.0f);
-        return true;
-    }
-    case Light::Kind::Point:
-        if (!finite(light.position)) return reject("position is NaN or Inf");
-        r.position = gpu::vec4(light.position, 1.0f);
-        return true;
-    case Light::Kind::Quad: {
-        if (!finite(light.position) || !finite(light.edge1) || !finite(light.edge2))
-            return reject("position or edges are NaN or Inf");
-        const glm::vec3 n = glm::cross(light.edge1, light.edge2);
-        const float area = glm::length(n);
-        if (!(area > 0.0f && finite(area))) return reject("edges span no area");
-        r.position = gpu::vec4(light.position, 1.0f);
-        r.direction = gpu::vec4(n / area, 0.0f);
-        r.edge1 = gpu::vec4(light.edge1, area);
-        r.edge2 = gpu::vec4(light.edge2, 0.0f);
-        r.twoSided = light.twoSided ? 1u : 0u;
-        return true;
-    }
-    }
-    return reject("unknown kind " + std::to_string(static_cast<uint32_t>(light.kind)));
-}
-
 }  // namespace
 
-ShadingTables buildShadingTables(const SceneDescription& description) {
+ShadingTables buildShadingTables(const SceneDescription& description, float sceneRadius) {
     ShadingTables out;
     std::vector<bool> textureUsable(description.textures.size(), false);
     out.textures.resize(description.textures.size());
@@ -174,10 +155,9 @@ ShadingTables buildShadingTables(const SceneDescription& description) {
     for (uint32_t i = 0; i < description.materials.size(); ++i)
         out.materials.push_back(convertMaterial(description.materials[i], i, textureUsable, out));
     out.materials.push_back(convertMaterial(Material{}, defaultMaterialIndex(description), textureUsable, out));
-    for (uint32_t i = 0; i < description.lights.size(); ++i) {
-        gpu::LightRecord record;
-        if (convertLight(description.lights[i], i, out, record)) out.lights.push_back(record);
-    }
+    out.bsdfTableOffset = static_cast<uint32_t>(out.texels.size());
+    for (float v : bsdfEnergyTables()) out.texels.push_back(std::bit_cast<uint32_t>(v));
+    buildLightTable(description, sceneRadius, out);
     return out;
 }
 

@@ -10,20 +10,35 @@ RIPPLE_CONST uint MATERIAL_MATTE = 0u;
 RIPPLE_CONST uint MATERIAL_PHYSICALLY_BASED = 1u;
 
 RIPPLE_CONST uint MATERIAL_FLAG_VERTEX_COLOR = 1u;  // the geometry's color attribute replaces baseColor
+RIPPLE_CONST uint MATERIAL_FLAG_LIGHT = 2u;         // emissive with no emission texture: its triangles are lights
+
+RIPPLE_CONST uint ALPHA_OPAQUE = 0u;  // opacity ignored
+RIPPLE_CONST uint ALPHA_BLEND = 1u;   // opacity is the chance a ray stops here
+RIPPLE_CONST uint ALPHA_MASK = 2u;    // opaque where opacity >= alphaCutoff, absent elsewhere
 
 RIPPLE_CONST int NO_TEXTURE = -1;
 
+// A material as pt_surface reads it. Texture indices name SceneDesc.textures; a float parameter from a
+// texture takes the first component of the texture's output (ANARI's rule for samplers).
 struct MaterialRecord {
     vec4 baseColorOpacity;  // rgb: base color (linear), w: opacity
     vec4 emissiveIor;       // rgb: emitted radiance, w: index of refraction
     uint kind;              // MATERIAL_*
     uint flags;             // MATERIAL_FLAG_*
-    int baseColorTexture;   // index into SceneDesc.textures, or NO_TEXTURE
-    uint pad0;
+    int baseColorTexture;   // multiplies baseColor (rgb) and opacity (a)
+    uint alphaMode;         // ALPHA_*
     float metallic;
     float roughness;
-    float pad1;
-    float pad2;
+    float alphaCutoff;
+    float specular;         // KHR_materials_specular factor: scales the dielectric reflectance
+    float transmission;     // share of the dielectric base that refracts instead of scattering diffusely
+    float clearcoat;        // weight of the clear coat layer (ior 1.5)
+    float clearcoatRoughness;
+    int normalTexture;      // tangent-space normal map, rgb in [0,1] -> [-1,1]
+    int metallicTexture;    // multiplies metallic
+    int roughnessTexture;   // multiplies roughness
+    int emissiveTexture;    // multiplies emissive
+    int opacityTexture;     // multiplies opacity
 };
 
 RIPPLE_CONST uint TEXTURE_RGBA8_UNORM = 0u;
@@ -50,17 +65,25 @@ struct TextureRecord {
 RIPPLE_CONST uint LIGHT_DIRECTIONAL = 0u;
 RIPPLE_CONST uint LIGHT_POINT = 1u;
 RIPPLE_CONST uint LIGHT_QUAD = 2u;
+RIPPLE_CONST uint LIGHT_SPOT = 3u;
+RIPPLE_CONST uint LIGHT_RING = 4u;      // an annulus emitting with a spot profile
+RIPPLE_CONST uint LIGHT_TRIANGLE = 5u;  // one triangle of emissive geometry, world space
+RIPPLE_CONST uint LIGHT_HDRI = 6u;      // equirectangular environment, importance sampled
 
+// One light in world space. Lights are ordered: the area lights that rays must test themselves (quad,
+// ring, hdri; SceneDesc.testedLightCount of them) first, then the rest. selectionPdf and cdf give the
+// chance next-event estimation picks each light (proportional to its power).
 struct LightRecord {
-    vec4 emission;          // rgb: color * intensity (irradiance, intensity or radiance by kind)
-    vec4 position;          // point: position; quad: a corner
-    vec4 direction;         // directional: unit direction light travels; quad: unit normal of the front side
-    vec4 edge1;             // quad: first edge; w: area
-    vec4 edge2;             // quad: second edge
+    vec4 emission;          // rgb: color * intensity (irradiance, intensity or radiance by kind); w: selection pdf
+    vec4 position;          // point, spot: position; quad, triangle: a corner; ring: centre; w: cdf up to this light
+    vec4 direction;         // directional: unit direction light travels; quad, ring, triangle: unit normal of the
+                            // front side; spot, ring: unit axis; hdri: unit direction of the image centre
+    vec4 edge1;             // quad, triangle: first edge; w: area. spot, ring: x cos outer, y cos inner; ring: z radius
+    vec4 edge2;             // quad, triangle: second edge. ring: w inner radius. hdri: unit up
     uint kind;              // LIGHT_*
-    uint twoSided;          // quad: emits from both sides
-    uint pad0;
-    uint pad1;
+    uint twoSided;          // quad, triangle: emits from both sides
+    uint texture;           // hdri: the radiance image in SceneDesc.textures
+    uint distribution;      // hdri: first word of its sampling tables in SceneDesc.texels
 };
 
 RIPPLE_GPU_END

@@ -12,11 +12,11 @@ RIPPLE_CONST uint PATH_MAX_PASS_THROUGHS = 16u;   // more than this and the path
 
 // The home part of a path, parallel to its ray in the same queue slot (the ray is gpu::Ray).
 struct PathState {
-    vec4 throughput;  // rgb; w unused
+    vec4 throughput;  // rgb; w: distance from the last scattering point to this ray's origin (pass-throughs)
     uint pixel;       // y * width + x of the full image, row 0 at the bottom
     uint depth;       // surface interactions so far (scattering events; pass-throughs do not count)
     uint flags;       // PATH_FLAG_* | pass-throughs << PATH_PASS_THROUGH_SHIFT
-    uint pad0;
+    float bsdfPdf;    // solid-angle pdf of the BSDF sample that made this ray (for MIS at what it finds); 0: none
 };
 
 // What an unoccluded shadow ray adds to its pixel (the ray itself sits in a gpu::Ray queue beside it).
@@ -34,13 +34,21 @@ struct ShadowRequest {
 struct SurfaceRecord {
     vec4 position;         // xyz: hit point; w: hit t along the ray
     vec4 geometricNormal;  // xyz: unit, facing the incoming ray; w: opacity
-    vec4 shadingNormal;    // xyz: unit, on the side of geometricNormal
+    vec4 shadingNormal;    // xyz: unit, on the side of geometricNormal; w: this point's light density (see
+                           // surfaceLightPdf in lights.glsl), 0 when it is not part of a light
     vec4 baseColor;        // rgb: base color with vertex color and texture applied; w: metallic
     vec4 emission;         // rgb: emitted radiance; w: GGX alpha (roughness^2, floored)
+    vec4 layers;           // x: transmission, y: clearcoat, z: clearcoat GGX alpha, w: ior
     uint status;           // the hit's status (HIT_MISS, HIT_FOUND, HIT_FLAG_*): shade treats all but HIT_FOUND as a miss
     uint materialKind;     // MATERIAL_*
     float f0;              // dielectric reflectance at normal incidence, from the ior
     uint pad0;
+    // The id channels (pt_channels): the application's primitive index (quads count once), the surface's
+    // and the instance's "id" (~0u when unset). Written by pt_surface via writeSurfaceIds (ids.glsl).
+    uint primitiveId;
+    uint objectId;
+    uint instanceId;
+    uint pad1;
 };
 
 // Counters the kernels bump with atomics; the host reads the queue counts back after each bounce.
@@ -53,6 +61,11 @@ struct PathCounters {
 
 RIPPLE_CONST uint CAMERA_PERSPECTIVE = 0u;
 RIPPLE_CONST uint CAMERA_ORTHOGRAPHIC = 1u;
+RIPPLE_CONST uint CAMERA_OMNIDIRECTIONAL = 2u;  // equirectangular: the image spans 360 x 180 degrees
+
+RIPPLE_CONST uint LIGHT_SAMPLING_MIS = 0u;         // light and BSDF sampling, power-heuristic weights
+RIPPLE_CONST uint LIGHT_SAMPLING_LIGHTS_ONLY = 1u; // debug: area lights found by next-event estimation only
+RIPPLE_CONST uint LIGHT_SAMPLING_BSDF_ONLY = 2u;   // debug: area lights found by BSDF-sampled rays only
 
 RIPPLE_CONST uint OUTPUT_RGBA8_UNORM = 0u;
 RIPPLE_CONST uint OUTPUT_RGBA8_SRGB = 1u;
@@ -61,9 +74,10 @@ RIPPLE_CONST uint OUTPUT_RGBA32_FLOAT = 2u;
 // Constant for a render() call: camera, settings and the frame's buffers.
 struct FrameConstants {
     vec4 cameraPosition;   // w: CAMERA_* as float bits
-    vec4 cameraForward;    // unit; w: tan(fovy / 2) (perspective) or view height (orthographic)
-    vec4 cameraRight;      // unit; w: aspect (width / height)
-    vec4 cameraUp;         // unit
+    vec4 cameraForward;    // unit; w: aperture radius (perspective depth of field; 0: pinhole)
+    vec4 cameraRight;      // half the screen's width: at unit distance (perspective), in world units
+                           // (orthographic), unit (omnidirectional); w: focus distance
+    vec4 cameraUp;         // half the screen's height, as cameraRight
     vec4 imageRegion;      // (minX, minY, maxX, maxY) of the screen in [0,1]^2
     vec4 background;       // RGBA seen by camera rays that miss
     vec4 ambient;          // rgb: ambientColor * ambientRadiance, seen by secondary rays that miss
@@ -76,7 +90,8 @@ struct FrameConstants {
     uint64_t sampleCount;     // uint per pixel: accepted samples
     uint64_t depth;           // float per pixel, or 0 when no depth channel was asked for
     uint64_t counters;        // PathCounters
-    uint64_t pad0;
+    float maxRadiance;        // clamp of each contribution's largest component; 0: no clamp
+    uint lightSampling;       // LIGHT_SAMPLING_*
 };
 
 // Push constants of every pt_*.comp stage; each reads the fields it needs (0 where unused).

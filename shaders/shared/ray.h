@@ -20,8 +20,8 @@ RIPPLE_CONST uint HIT_FLAG_STACK_OVERFLOW = 0x200u; // deeper than the traversal
 
 struct Hit {
     float t;
-    float u;  // triangles: barycentrics of v1 and v2; spheres: 0; cylinders: axial fraction (0 at p0, 1 at p1)
-    float v;  // cylinders: 0 on the side, 1 on a cap
+    float u;  // triangles: barycentrics of v1 and v2; spheres: 0; cylinders, cones: axial fraction (0 at p0)
+    float v;  // cylinders: 0 on the side, 1 on a cap; cones: the same, and 2 on the sphere at a round end
     uint instanceId;
     uint primId;
     uint status;

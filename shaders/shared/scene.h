@@ -10,6 +10,13 @@ RIPPLE_GPU_BEGIN
 RIPPLE_CONST uint GEOMETRY_TRIANGLES = 0u;
 RIPPLE_CONST uint GEOMETRY_SPHERES = 1u;
 RIPPLE_CONST uint GEOMETRY_CYLINDERS = 2u;
+RIPPLE_CONST uint GEOMETRY_CONES = 3u;     // cones, and curves of round linear segments
+
+// Which ends of a cylinder or cone are closed by a flat disk (CylinderPrim.caps, ConePrim.flags).
+RIPPLE_CONST uint CAP_FIRST = 1u;
+RIPPLE_CONST uint CAP_SECOND = 2u;
+// ConePrim.flags: a curve segment, a sphere at each end joined by the cone tangent to both (no caps).
+RIPPLE_CONST uint CONE_ROUND = 4u;
 
 // "This attribute is absent" in the offsets of GeometryRecord.
 RIPPLE_CONST uint NO_ATTRIBUTE = 0xFFFFFFFFu;
@@ -36,7 +43,19 @@ struct CylinderPrim {
     vec4 p0Radius;   // xyz: first end, w: radius
     vec4 p1;         // xyz: second end
     uint primId;
-    uint caps;       // 1: flat caps close both ends
+    uint caps;       // CAP_FIRST | CAP_SECOND: which ends a flat disk closes
+    uint pad0;
+    uint pad1;
+};
+
+// One cone frustum (or curve segment) in leaf order, from p0 with radius r0 to p1 with radius r1; primId is
+// its index in its cone set. A hit reports u = the axial fraction (0 at p0, 1 at p1) and v = 0 on the side,
+// 1 on a flat cap, 2 on the sphere at an end of a round segment.
+struct ConePrim {
+    vec4 p0Radius;   // xyz: first end, w: its radius
+    vec4 p1Radius;   // xyz: second end, w: its radius
+    uint primId;
+    uint flags;      // CAP_FIRST | CAP_SECOND, or CONE_ROUND
     uint pad0;
     uint pad1;
 };
@@ -47,7 +66,7 @@ struct InstancePrim {
     vec4 worldToObject[3];  // rows of the affine 3x4 matrix
     vec4 objectToWorld[3];  // rows
     uint blasNodeOffset;    // first node of this instance's BLAS in SceneDesc.nodes
-    uint primOffset;        // first primitive of the BLAS in triangles[], spheres[] or cylinders[]
+    uint primOffset;        // first primitive of the BLAS in triangles[], spheres[], cylinders[] or cones[]
     uint geometryKind;      // GEOMETRY_*
     uint instanceId;        // the instance's index in SceneDescription::instances (what a Hit reports)
 };
@@ -99,6 +118,12 @@ struct SceneDesc {
     uint lightCount;
     uint materialCount;
     uint textureCount;
+    uint64_t cones;           // ConePrim[]
+    uint64_t pad0;
+    float lightPowerTotal;    // sum of the lights' selection powers: an emissive triangle's pdf needs it
+    uint testedLightCount;    // the first lights, which rays test themselves (quad, ring, hdri)
+    uint bsdfTables;          // first word of the BSDF energy tables in texels (core/scene/BsdfTables.h)
+    int environmentLight;     // index of the hdri light, or -1
 };
 
 RIPPLE_GPU_END

@@ -65,7 +65,7 @@ SurfacePoint surfacePoint(const core::SceneDescription& desc, uint32_t instanceI
         const double s = glm::dot(q, w);
         const glm::dvec3 radial = q - s * w;
         const double rho = glm::length(radial);
-        const bool onCap = set.caps && (s <= 0.0 || s >= length || std::abs(rho) < r * (1.0 - 1e-6));
+        const bool onCap = set.caps != core::CapEnds::None && (s <= 0.0 || s >= length || std::abs(rho) < r * (1.0 - 1e-6));
         const glm::dvec3 nObject = onCap ? (s < 0.5 * length ? -w : w) : radial / std::max(rho, 1e-300);
         const glm::dvec3 n = glm::normalize(glm::transpose(glm::dmat3(inv)) * nObject);
         sp.cosine = std::abs(glm::dot(n, glm::normalize(dir)));

@@ -2,6 +2,8 @@
 // triangle test with exact edge signs, stable sphere and cylinder tests, and oneTBB loops over rays.
 #include "tests/support/ReferenceTracer.h"
 
+#include "core/scene/PreparedGeometry.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -109,6 +111,9 @@ bool hasValidPrimitive(const core::SceneDescription& scene, const core::Geometry
             if (isSphereValid(set, s)) return true;
         return false;
     }
+    case core::GeometryKind::Cones:
+        return geometry.index < scene.coneSets.size() &&
+               !core::prepareGeometry(scene.coneSets[geometry.index], bvh::BuildOptions{})->validPrims.empty();
     case core::GeometryKind::Cylinders: {
         if (geometry.index >= scene.cylinderSets.size()) return false;
         const core::CylinderSet& set = scene.cylinderSets[geometry.index];
@@ -255,7 +260,7 @@ struct CylinderHit {
 // Nearest hit in (tmin, tmax) of the round cylinder from a to b: the side solved as a circle across the
 // unit axis w (the sphere quadratic on the components perpendicular to w) and kept between the ends, then
 // the two cap disks when present.
-bool intersectCylinder(const ObjectRay& ray, const dvec3& a, const dvec3& b, double radius, bool caps, CylinderHit& hit) {
+bool intersectCylinder(const ObjectRay& ray, const dvec3& a, const dvec3& b, double radius, uint32_t caps, CylinderHit& hit) {
     const double length = glm::length(b - a);
     const dvec3 w = (b - a) / length;
     const dvec3 f = ray.origin - a;
@@ -283,11 +288,75 @@ bool intersectCylinder(const ObjectRay& ray, const dvec3& a, const dvec3& b, dou
             }
         }
     }
-    if (caps && da != 0.0) {
+    if (caps != 0 && da != 0.0) {
         for (int end = 0; end < 2; ++end) {
+            if ((caps & (1u << end)) == 0) continue;  // CapEnds: bit 0 first, bit 1 second
             const double t = (end * length - fa) / da;
             const dvec3 across = fp + t * dp;
             if (t > ray.tmin && t < hit.t && glm::dot(across, across) <= radius * radius) {
+                hit = {t, double(end), 1.0};
+                found = true;
+            }
+        }
+    }
+    return found;
+}
+
+// Nearest hit of a cone frustum (a, ra) -> (b, rb) with the caps in `caps`, or with `round` of the two end
+// spheres and the cone tangent to both: in double, the plain quadratic |fp + t dp| = r0 + k (fa + t da)
+// without the GPU's re-centring (double has the digits to spare). Reports axial fraction and part as
+// gpu::Hit (0 side, 1 cap, 2 end sphere).
+bool intersectCone(const ObjectRay& ray, const dvec3& a, const dvec3& b, double ra, double rb, uint32_t caps, bool round,
+                   CylinderHit& hit) {
+    const double length = glm::length(b - a);
+    const dvec3 w = (b - a) / length;
+    bool found = false;
+    hit.t = ray.tmax;
+    if (round) {
+        for (int end = 0; end < 2; ++end) {
+            double t;
+            if (!intersectSphere(ray, end == 0 ? a : b, end == 0 ? ra : rb, t) || !(t < hit.t)) continue;
+            hit = {t, double(end), 2.0};
+            found = true;
+        }
+    }
+    double start = 0.0, stop = length, r0 = ra, r1 = rb;
+    if (round) {
+        const double sinAlpha = (rb - ra) / length;
+        if (std::abs(sinAlpha) >= 1.0) return found;
+        const double cosAlpha = std::sqrt(1.0 - sinAlpha * sinAlpha);
+        start = -ra * sinAlpha;
+        stop = length - rb * sinAlpha;
+        r0 = ra * cosAlpha;
+        r1 = rb * cosAlpha;
+    }
+    const double slope = (r1 - r0) / (stop - start);
+    const dvec3 f = ray.origin - a;
+    const double fa = glm::dot(f, w), da = glm::dot(ray.direction, w);
+    const dvec3 fp = f - fa * w, dp = ray.direction - da * w;
+    const double rf = r0 + slope * (fa - start);
+    const double qa = glm::dot(dp, dp) - slope * slope * da * da;
+    const double qb = glm::dot(fp, dp) - rf * slope * da;
+    const double qc = glm::dot(fp, fp) - rf * rf;
+    const double disc = qb * qb - qa * qc;
+    if (disc >= 0.0) {
+        const double q = -(qb + std::copysign(std::sqrt(disc), qb));
+        const double roots[2] = {q != 0.0 ? qc / q : -1.0, qa != 0.0 ? q / qa : -1.0};
+        for (double t : roots) {
+            const double s = fa + t * da;
+            if (t > ray.tmin && t < hit.t && s >= start && s <= stop && rf + slope * t * da >= 0.0) {
+                hit = {t, s / length, 0.0};
+                found = true;
+            }
+        }
+    }
+    if (!round && da != 0.0) {
+        for (int end = 0; end < 2; ++end) {
+            if ((caps & (1u << end)) == 0) continue;
+            const double t = (end * length - fa) / da;
+            const dvec3 across = fp + t * dp;
+            const double r = end == 0 ? r0 : r1;
+            if (t > ray.tmin && t < hit.t && glm::dot(across, across) <= r * r) {
                 hit = {t, double(end), 1.0};
                 found = true;
             }
@@ -334,9 +403,20 @@ ReferenceScene::ReferenceScene(const core::SceneDescription& scene) {
             if (!isCylinderValid(set, i)) continue;
             const glm::uvec2 idx = cylinderIndices(set, i);
             cylinderSets_[s].push_back({dvec3(set.positions[idx.x]), dvec3(set.positions[idx.y]),
-                                        double(cylinderRadius(set, i)), i, set.caps});
+                                        double(cylinderRadius(set, i)), i, static_cast<uint32_t>(set.caps)});
         }
         validCylinders_ += cylinderSets_[s].size();
+    }
+    coneSets_.resize(scene.coneSets.size());
+    for (size_t s = 0; s < scene.coneSets.size(); ++s) {
+        const core::ConeSet& set = scene.coneSets[s];
+        const auto prepared = core::prepareGeometry(set, bvh::BuildOptions{});  // the validity rules of core
+        for (uint32_t i : prepared->validPrims) {
+            const glm::uvec2 idx = core::coneIndices(set, i);
+            coneSets_[s].push_back({dvec3(set.positions[idx.x]), dvec3(set.positions[idx.y]),
+                                    double(core::radiusOf(set.radii, idx.x)), double(core::radiusOf(set.radii, idx.y)), i,
+                                    static_cast<uint32_t>(set.caps), set.round});
+        }
     }
     for (size_t i = 0; i < scene.instances.size(); ++i) {
         const core::InstanceDescription& inst = scene.instances[i];
@@ -346,7 +426,8 @@ ReferenceScene::ReferenceScene(const core::SceneDescription& scene) {
         const bool nonEmpty =
             (g.kind == core::GeometryKind::Triangles && g.index < meshes_.size() && !meshes_[g.index].empty()) ||
             (g.kind == core::GeometryKind::Spheres && g.index < sphereSets_.size() && !sphereSets_[g.index].empty()) ||
-            (g.kind == core::GeometryKind::Cylinders && g.index < cylinderSets_.size() && !cylinderSets_[g.index].empty());
+            (g.kind == core::GeometryKind::Cylinders && g.index < cylinderSets_.size() && !cylinderSets_[g.index].empty()) ||
+            (g.kind == core::GeometryKind::Cones && g.index < coneSets_.size() && !coneSets_[g.index].empty());
         if (!nonEmpty) continue;
         instances_.push_back({glm::inverse(glm::dmat3(inst.transform)), dvec3(inst.transform[3]), g.kind, g.index,
                               static_cast<uint32_t>(i)});
@@ -377,6 +458,12 @@ void ReferenceScene::forEachHit(const gpu::Ray& ray, Visit&& visit) const {
                 double t;
                 if (!intersectSphere(local, sphere.center, sphere.radius, t)) continue;
                 if (visit(t, 0.0, 0.0, inst.instanceId, sphere.primId)) return;
+            }
+        } else if (inst.kind == core::GeometryKind::Cones) {
+            for (const Cone& cone : coneSets_[inst.geometry]) {
+                CylinderHit h;
+                if (!intersectCone(local, cone.a, cone.b, cone.ra, cone.rb, cone.caps, cone.round, h)) continue;
+                if (visit(h.t, h.axial, h.cap, inst.instanceId, cone.primId)) return;
             }
         } else {
             for (const Cylinder& cylinder : cylinderSets_[inst.geometry]) {

@@ -107,7 +107,8 @@ public:
 private:
     struct Triangle { glm::dvec3 a, b, c; uint32_t primId; };
     struct Sphere { glm::dvec3 center; double radius; uint32_t primId; };
-    struct Cylinder { glm::dvec3 a, b; double radius; uint32_t primId; bool caps; };
+    struct Cylinder { glm::dvec3 a, b; double radius; uint32_t primId; uint32_t caps; };
+    struct Cone { glm::dvec3 a, b; double ra, rb; uint32_t primId; uint32_t caps; bool round; };
     struct Instance {
         glm::dmat3 worldToObject;   // inverse of the linear part
         glm::dvec3 translation;     // object-to-world translation
@@ -121,6 +122,7 @@ private:
     std::vector<std::vector<Triangle>> meshes_;     // valid triangles only, per input mesh
     std::vector<std::vector<Sphere>> sphereSets_;   // valid spheres only, per input sphere set
     std::vector<std::vector<Cylinder>> cylinderSets_; // valid cylinders only, per input cylinder set
+    std::vector<std::vector<Cone>> coneSets_;       // valid cones and curve segments, per input cone set
     std::vector<Instance> instances_;               // valid instances only, in input order
     uint64_t validTriangles_ = 0;
     uint64_t validSpheres_ = 0;

@@ -360,7 +360,7 @@ core::CylinderSet randomCylinders(uint32_t count, uint32_t seed, bool caps, floa
                                   float maxRadius, float minLength, float maxLength) {
     Rng rng(seed);
     core::CylinderSet set;
-    set.caps = caps;
+    set.caps = caps ? core::CapEnds::Both : core::CapEnds::None;
     for (uint32_t i = 0; i < count; ++i) {
         const dvec3 center = rng.inBox(dvec3(-extent), dvec3(extent));
         const dvec3 halfAxis = 0.5 * rng.uniform(minLength, maxLength) * rng.unitVector();
@@ -488,7 +488,7 @@ std::vector<gpu::Ray> raysTowardPoints(const core::SceneDescription& scene, uint
             dvec3 across = rng.unitVector();
             across = glm::normalize(across - glm::dot(across, w) * w);
             const double r = cylinderRadius(set, c);
-            if (set.caps && rng.uniform() < 0.25)
+            if (set.caps != core::CapEnds::None && rng.uniform() < 0.25)
                 local = (rng.uniform() < 0.5 ? a : b) + r * std::sqrt(rng.uniform(0.0, 0.98)) * across;
             else
                 local = a + rng.uniform(0.01, 0.99) * (b - a) + r * across;

@@ -22,7 +22,7 @@ core::CylinderSet unitCylinder(bool caps) {
     core::CylinderSet set;
     set.positions = {{0, 0, -1}, {0, 0, 1}};
     set.radii = {0.5f};
-    set.caps = caps;
+    set.caps = caps ? core::CapEnds::Both : core::CapEnds::None;
     return set;
 }
 

@@ -287,6 +287,13 @@ TEST_CASE("path tracer: non-finite samples are counted and dropped") {
     test::ValidationGuard guard;
     core::SceneDescription d = matteFloor(glm::vec3(1.0f));
     d.materials[0].emissive = glm::vec3(3e38f);
+    // Emission through a (white) texture: such a surface is not a light, so next-event estimation always
+    // picks the directional light and every sample overflows.
+    core::Texture white;
+    white.width = white.height = 1;
+    white.texels = {255, 255, 255, 255};
+    d.textures.push_back(white);
+    d.materials[0].emissiveTexture = 0;
     core::Light light;
     light.direction = {0.0f, 0.0f, -1.0f};
     light.intensity = 3e38f;

@@ -3,6 +3,7 @@
 // physicallyBased BSDF against an independent evaluation of the glTF model, and its sampling against
 // next-event estimation of the same light.
 #include "core/render/PathTracer.h"
+#include "core/scene/BsdfTables.h"
 #include "tests/support/RenderHelpers.h"
 #include "tests/support/SceneGenerators.h"
 #include "tests/support/TestContext.h"
@@ -209,8 +210,14 @@ glm::dvec3 gltfBrdfCos(glm::dvec3 base, double metallic, double roughness, doubl
     const glm::dvec3 F0 = glm::mix(glm::dvec3(f0), base, metallic);
     const glm::dvec3 F = F0 + (1.0 - F0) * w;
     const double Fd = f0 + (1.0 - f0) * w;
-    const glm::dvec3 specular = F * D * G / (4.0 * nv * nl);
-    const glm::dvec3 diffuse = (1.0 - metallic) * (1.0 - Fd) * base / kPi;
+    // Energy compensation (shaders/bsdf.glsl): the specular lobe scaled by 1 + F0 (1 - E) / E, the diffuse
+    // lobe weighted by what the dielectric specular leaves at v, from the GGX albedo tables.
+    const double E = core::bsdfEnergyLookup(0, float(nv), float(roughness * roughness));
+    const double W = core::bsdfEnergyLookup(1, float(nv), float(roughness * roughness));
+    const double dielectricAlbedo = (f0 * (E - W) + W) * (1.0 + f0 * (1.0 - E) / E);
+    (void)Fd;
+    const glm::dvec3 specular = F * D * G / (4.0 * nv * nl) * (1.0 + F0 * ((1.0 - E) / E));
+    const glm::dvec3 diffuse = (1.0 - metallic) * (1.0 - dielectricAlbedo) * base / kPi;
     return (specular + diffuse) * nl;
 }
 
@@ -316,10 +323,9 @@ TEST_CASE("shading: BSDF sampling and light sampling of the same emitter agree")
     }
 }
 
-// A white metal sphere under ambient light: the GGX weight F G2 / G1 never exceeds 1 for F = 1, so no
-// pixel may exceed the ambient radiance; single-scattering GGX loses a few percent at roughness 0.5, so
-// the sphere's mean stays above 85% of it.
-TEST_CASE("shading: a white rough metal sphere never reflects more than it receives") {
+// A white metal sphere under ambient light (4 samples per pixel): energy-compensated GGX reflects what it
+// receives, so the sphere's mean is the ambient radiance within 3%.
+TEST_CASE("shading: a white rough metal sphere reflects what it receives") {
     test::ValidationGuard guard;
     core::SphereSet sphere;
     sphere.centers = {{0.0f, 0.0f, 0.0f}};
@@ -337,15 +343,16 @@ TEST_CASE("shading: a white rough metal sphere never reflects more than it recei
     settings.pixelSamples = 4;
     const test::Rendered r = test::render(d, test::lookingDown(3.0f, 1.4f), settings);
     double sum = 0.0;
-    uint64_t hits = 0, brighter = 0;
+    uint64_t hits = 0;
     for (const glm::vec4& c : r.color) {
         if (c.a < 1.0f) continue;
         ++hits;
         sum += c.r;
-        brighter += c.r > 1.0f + 1e-5f;
     }
     REQUIRE(hits > 500);
-    CHECK(brighter == 0);
+    // With energy compensation a single sample may exceed 1 (the lobe is scaled by 1 / E), but the pixels'
+    // mean stays the ambient radiance (light_transport_test.cpp holds the 1% furnace per roughness).
     MESSAGE("white rough metal sphere: mean " << sum / double(hits) << " of the ambient radiance");
-    CHECK(sum / double(hits) > 0.85);
+    CHECK(sum / double(hits) > 0.97);
+    CHECK(sum / double(hits) < 1.03);
 }

@@ -1,4 +1,4 @@
-// ANARI camera: perspective and orthographic become a core::Camera. When the application sets no
+// ANARI camera: perspective, orthographic and omnidirectional become a core::Camera. When the application sets no
 // "aspect", the frame's width / height is used.
 #pragma once
 
@@ -27,5 +27,6 @@ protected:
 
 Camera* newPerspectiveCamera(DeviceState& state);
 Camera* newOrthographicCamera(DeviceState& state);
+Camera* newOmnidirectionalCamera(DeviceState& state);
 
 }  // namespace ripple::device

@@ -1,5 +1,6 @@
 // Camera subtype "perspective" (KHR_CAMERA_PERSPECTIVE): a pinhole with vertical field of view "fovy"
-// (radians, default pi/3). "near" and "far" clipping are not supported yet.
+// (radians, default pi/3), with depth of field (KHR_CAMERA_DEPTH_OF_FIELD) from "apertureRadius" (default
+// 0: a pinhole) and "focusDistance" (default 1). "near" and "far" clipping are not supported yet.
 #include "anari/device/camera/Camera.h"
 
 #include <cmath>
@@ -19,6 +20,16 @@ public:
         } else {
             reportWarning("parameter 'fovy' must be between 0 and pi radians; using pi/3");
             camera_.fovy = 1.0471975512f;
+        }
+        const float aperture = get<float>("apertureRadius", 0.0f);
+        const float focus = get<float>("focusDistance", 1.0f);
+        if (!(std::isfinite(aperture) && aperture >= 0.0f)) {
+            reportWarning("parameter 'apertureRadius' must be finite and not negative; using 0 (no depth of field)");
+        } else if (!(std::isfinite(focus) && focus > 0.0f)) {
+            reportWarning("parameter 'focusDistance' must be finite and positive; depth of field disabled");
+        } else {
+            camera_.apertureRadius = aperture;
+            camera_.focusDistance = focus;
         }
     }
 };

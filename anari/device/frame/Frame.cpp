@@ -1,7 +1,10 @@
 // Frame parameters, the asynchronous render on a worker thread, and channel mapping (see Frame.h).
 #include "anari/device/frame/Frame.h"
 
+#include "anari/device/frame/DataParallelFrame.h"
 #include "anari/device/object/DeviceState.h"
+#include "mpi/FrameGather.h"
+#include "mpi/LightGather.h"
 #include "core/vk/Context.h"
 
 #include <chrono>
@@ -35,7 +38,7 @@ bool channelIs(std::string_view channel, std::string_view name) {
 
 }  // namespace
 
-Frame::Frame(DeviceState& state) : Object(state, ANARI_FRAME, "") {}
+Frame::Frame(DeviceState& state) : Object(state, ANARI_FRAME, ""), globalIndex_(state.nextFrameIndex()) {}
 
 Frame::~Frame() {
     waitForWorker();
@@ -71,11 +74,42 @@ void Frame::commit() {
                     "; supported are UFIXED8_VEC4, UFIXED8_RGBA_SRGB and FLOAT32_VEC4. Channel disabled");
         colorType_ = ANARI_UNKNOWN;
     }
-    const ANARIDataType depthType = pullChannel("channel.depth");
-    depth_ = depthType == ANARI_FLOAT32;
-    if (depthType != ANARI_UNKNOWN && !depth_)
-        reportError(std::string("parameter 'channel.depth' is ") + ripple_anari::typeName(depthType) +
-                    "; supported is FLOAT32. Channel disabled");
+    // Each optional channel has one supported type; any other is reported and the channel disabled.
+    auto pullTypedChannel = [&](const char* name, ANARIDataType supported) {
+        const ANARIDataType type = pullChannel(name);
+        if (type != ANARI_UNKNOWN && type != supported)
+            reportError(std::string("parameter '") + name + "' is " + ripple_anari::typeName(type) + "; supported is " +
+                        ripple_anari::typeName(supported) + ". Channel disabled");
+        return type == supported;
+    };
+    depth_ = pullTypedChannel("channel.depth", ANARI_FLOAT32);
+    channels_ = core::FrameChannels{};
+    channels_.depth = depth_;
+    channels_.albedo = pullTypedChannel("channel.albedo", ANARI_FLOAT32_VEC3);
+    channels_.normal = pullTypedChannel("channel.normal", ANARI_FLOAT32_VEC3);
+    channels_.primitiveId = pullTypedChannel("channel.primitiveId", ANARI_UINT32);
+    channels_.objectId = pullTypedChannel("channel.objectId", ANARI_UINT32);
+    channels_.instanceId = pullTypedChannel("channel.instanceId", ANARI_UINT32);
+}
+
+// Collective: false (reported on every rank) unless all ranks can render the same frame together.
+bool Frame::prepareDistributed(bool renderable, bool& restart) {
+    FrameIdentity mine;
+    mine.frameIndex = globalIndex_;
+    mine.worldIndex = world_ ? world_->globalIndex() : ~0ull;
+    mine.size = size_;
+    mine.renderable = renderable;
+    if (renderable) {
+        mine.camera = camera_->camera(float(size_.x) / float(size_.y));
+        mine.pixelSamples = renderer_->settings().pixelSamples;
+        mine.maxPathLength = renderer_->settings().maxPathLength;
+    }
+    restart = false;
+    if (const std::string why = ranksDisagree(state().communicator(), mine); !why.empty()) {
+        reportError("cannot render (data-parallel): " + why);
+        return false;
+    }
+    return true;
 }
 
 std::string Frame::whyNotRenderable() const {
@@ -92,6 +126,9 @@ std::string Frame::whyNotRenderable() const {
 void Frame::renderFrame() {
     waitForWorker();
     discarded_ = false;
+    const bool distributed = state().communicator().distributed();
+    bool restart = false;
+    if (distributed && !prepareDistributed(whyNotRenderable().empty(), restart)) return;
     if (const std::string why = whyNotRenderable(); !why.empty()) {
         reportError("cannot render: " + why);
         return;
@@ -101,6 +138,7 @@ void Frame::renderFrame() {
     job.size = size_;
     job.colorType = colorType_;
     job.depth = depth_;
+    job.channels = channels_;
     job.camera = camera_->camera(float(size_.x) / float(size_.y));
     job.settings = renderer_->settings();
     // Scene sync runs here, on the application's thread: the objects are only ever read on it.
@@ -109,6 +147,15 @@ void Frame::renderFrame() {
     const bool rendererChanged =
         renderer_.get() != renderedRenderer_ || renderer_->lastCommitted() != renderedRendererStamp_;
     job.restartAccumulation = sceneChanged || cameraChanged || rendererChanged;
+    if (distributed) {  // lights of every rank, the world's radius, and a restart anywhere restarts all
+        const mpi::Communicator& ranks = state().communicator();
+        bvh::Aabb bounds = worldBounds(*world_);
+        ranks.min(std::span<float>(&bounds.lo.x, 3));
+        ranks.max(std::span<float>(&bounds.hi.x, 3));
+        const float radius = bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.hi - bounds.lo);
+        restart = sync_.setLights(mpi::gatherLights(ranks, sync_.localLights()), radius) || job.restartAccumulation;
+        job.restartAccumulation = ranks.max(restart ? 1 : 0) > 0;
+    }
     renderedCamera_ = camera_.get();
     renderedCameraStamp_ = camera_->lastCommitted();
     renderedRenderer_ = renderer_.get();
@@ -116,6 +163,7 @@ void Frame::renderFrame() {
 
     finished_ = false;
     state().beginWork();
+    if (distributed) return run(job);
     try {
         worker_ = std::thread([this, job] { run(job); });
     } catch (...) {
@@ -131,7 +179,14 @@ void Frame::run(const Job& job) {
         std::lock_guard gpu(gpuMutex());
         vk::Context& context = state().vulkan();
         const uint64_t validationBefore = context.validationMessageCount();
-        if (!tracer_) tracer_ = std::make_unique<core::PathTracer>(context);
+        if (!tracer_) {
+            core::PathTracerOptions options;
+            if (state().communicator().distributed()) {
+                ring_ = std::make_unique<mpi::RingExchange>(state().communicator());
+                options.exchange = ring_.get();
+            }
+            tracer_ = std::make_unique<core::PathTracer>(context, core::TraceOptions{}, options);
+        }
 
         bool rebuilt = false;
         const core::Scene& scene = sync_.scene(context, rebuilt);
@@ -139,13 +194,14 @@ void Frame::run(const Job& job) {
             for (const std::string& message : scene.report().messages) reportWarning("scene: " + message);
 
         // Resizing clears the accumulation as well.
-        if (tracer_->size() != job.size || tracerHasDepth_ != job.depth) {
-            tracer_->resize(job.size, job.depth);
-            tracerHasDepth_ = job.depth;
+        if (tracer_->size() != job.size || core::channelFeatures(tracerChannels_) != core::channelFeatures(job.channels)) {
+            tracer_->resize(job.size, job.channels);
+            tracerChannels_ = job.channels;
         } else if (job.restartAccumulation)
             tracer_->resetAccumulation();
 
         if (!discarded_) {
+            if (ring_) ring_->resetStats();
             const core::FrameStats stats = tracer_->render(scene, job.camera, job.settings);
             Results results;
             results.size = job.size;
@@ -159,12 +215,24 @@ void Frame::run(const Job& job) {
                 results.depth.resize(pixels);
                 tracer_->readDepth(results.depth.data());
             }
+            readSurfaceChannels(job, pixels, results);
+            if (ring_) {  // rank 0 assembles every rank's pixel bands; the others keep an undefined frame
+                const mpi::Communicator& ranks = ring_->communicator();
+                if (!results.color.empty())
+                    mpi::gatherFrame(ranks, job.size, results.color.size() / pixels, results.color.data());
+                if (!results.depth.empty()) mpi::gatherFrame(ranks, job.size, sizeof(float), results.depth.data());
+            }
             results.numSamples = tracer_->accumulatedSamples();
             const double rays = double(stats.raysTraced + stats.shadowRays);
             results.raysPerSecond = stats.seconds > 0.0 ? float(rays / stats.seconds) : 0.0f;
             results.sceneBuilds = sync_.builds();
             results.blasBuilt = scene.report().blasBuilt;
             results.blasReused = scene.report().blasReused;
+            results.sceneBytes = scene.report().gpuBytes;
+            if (ring_) {
+                results.raysSent = ring_->stats().raysSent;
+                results.bytesSent = ring_->stats().bytesSent;
+            }
             results.duration = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
             std::lock_guard lock(resultsMutex_);
             results_ = std::move(results);
@@ -175,11 +243,34 @@ void Frame::run(const Job& job) {
             reportError("Vulkan validation: " + context.lastValidationMessage());
     } catch (const std::exception& error) {
         reportError(std::string("rendering failed: ") + error.what());
+        // The other ranks wait in the exchange for this one: end them all, with the message, never hang.
+        if (ring_) ring_->communicator().abort(std::string("rendering failed: ") + error.what());
     } catch (...) {
         reportError("rendering failed: unknown exception");
+        if (ring_) ring_->communicator().abort("rendering failed: unknown exception");
     }
     finished_ = true;
     state().endWork();
+}
+
+void Frame::readSurfaceChannels(const Job& job, size_t pixels, Results& results) {
+    using core::SurfaceChannel;
+    if (job.channels.albedo) {
+        results.albedo.resize(3 * pixels);
+        tracer_->readChannel(SurfaceChannel::Albedo, results.albedo.data());
+    }
+    if (job.channels.normal) {
+        results.normal.resize(3 * pixels);
+        tracer_->readChannel(SurfaceChannel::Normal, results.normal.data());
+    }
+    const std::pair<bool, SurfaceChannel> ids[] = {{job.channels.primitiveId, SurfaceChannel::PrimitiveId},
+                                                   {job.channels.objectId, SurfaceChannel::ObjectId},
+                                                   {job.channels.instanceId, SurfaceChannel::InstanceId}};
+    for (int i = 0; i < 3; ++i) {
+        if (!ids[i].first) continue;
+        results.ids[i].resize(pixels);
+        tracer_->readChannel(ids[i].second, results.ids[i].data());
+    }
 }
 
 void Frame::waitForWorker() {
@@ -206,9 +297,25 @@ const void* Frame::map(std::string_view channel, uint32_t* width, uint32_t* heig
     } else if (channelIs(channel, "depth") && !results_.depth.empty()) {
         pixels = results_.depth.data();
         type = ANARI_FLOAT32;
+    } else if (channelIs(channel, "albedo") && !results_.albedo.empty()) {
+        pixels = results_.albedo.data();
+        type = ANARI_FLOAT32_VEC3;
+    } else if (channelIs(channel, "normal") && !results_.normal.empty()) {
+        pixels = results_.normal.data();
+        type = ANARI_FLOAT32_VEC3;
+    } else if (channelIs(channel, "primitiveId") && !results_.ids[0].empty()) {
+        pixels = results_.ids[0].data();
+        type = ANARI_UINT32;
+    } else if (channelIs(channel, "objectId") && !results_.ids[1].empty()) {
+        pixels = results_.ids[1].data();
+        type = ANARI_UINT32;
+    } else if (channelIs(channel, "instanceId") && !results_.ids[2].empty()) {
+        pixels = results_.ids[2].data();
+        type = ANARI_UINT32;
     } else {
         reportError("channel '" + std::string(channel) +
-                    "' cannot be mapped: it was not enabled (channel.color / channel.depth), or nothing was rendered");
+                    "' cannot be mapped: it was not enabled (channel.color, .depth, .albedo, .normal, .primitiveId, "
+                    ".objectId, .instanceId), or nothing was rendered");
     }
     if (width) *width = pixels ? results_.size.x : 0;
     if (height) *height = pixels ? results_.size.y : 0;
@@ -235,7 +342,10 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
     }
     const std::pair<std::string_view, const uint64_t*> counters[] = {{"ripple.sceneBuilds", &results_.sceneBuilds},
                                                                      {"ripple.blasBuilt", &results_.blasBuilt},
-                                                                     {"ripple.blasReused", &results_.blasReused}};
+                                                                     {"ripple.blasReused", &results_.blasReused},
+                                                                     {"ripple.raysSent", &results_.raysSent},
+                                                                     {"ripple.bytesSent", &results_.bytesSent},
+                                                                     {"ripple.sceneBytes", &results_.sceneBytes}};
     for (const auto& [counter, value] : counters) {
         if (name == counter && type == ANARI_UINT64 && size >= sizeof(uint64_t)) {
             std::memcpy(mem, value, sizeof(uint64_t));

@@ -8,6 +8,7 @@
 #include "anari/device/scene/SceneSync.h"
 #include "anari/device/world/World.h"
 #include "core/render/PathTracer.h"
+#include "mpi/RingExchange.h"
 
 #include <atomic>
 #include <memory>
@@ -26,7 +27,8 @@ public:
     // "duration" (FLOAT32 seconds of the last frame), "numSamples" (UINT32 accumulated samples per pixel),
     // "ripple.raysPerSecond" (FLOAT32, closest-hit and shadow rays of the last frame), and for tests of
     // what a change rebuilds: "ripple.sceneBuilds" (UINT64, scenes built so far) and "ripple.blasBuilt" /
-    // "ripple.blasReused" (UINT64, of the latest scene build).
+    // "ripple.blasReused" (UINT64, of the latest scene build); "ripple.raysSent", "ripple.bytesSent" (UINT64,
+    // rays and bytes this rank passed on in the last frame) and "ripple.sceneBytes" (UINT64, its scene's GPU memory).
     bool getProperty(std::string_view name, ANARIDataType type, void* mem, uint64_t size, bool wait) override;
 
     // The calls the Device forwards. map() waits for a frame in progress; rows start at the bottom.
@@ -43,6 +45,7 @@ private:
         glm::uvec2 size{0, 0};
         ANARIDataType colorType = ANARI_UNKNOWN;
         bool depth = false;
+        core::FrameChannels channels;  // depth and the surface channels asked for
         bool restartAccumulation = false;
         core::Camera camera;
         core::RenderSettings settings;
@@ -53,23 +56,32 @@ private:
         ANARIDataType colorType = ANARI_UNKNOWN;
         std::vector<uint8_t> color;
         std::vector<float> depth;
+        std::vector<float> albedo;             // three floats per pixel
+        std::vector<float> normal;             // three floats per pixel
+        std::vector<uint32_t> ids[3];          // primitiveId, objectId, instanceId
         float duration = 0.0f;
         uint32_t numSamples = 0;
         float raysPerSecond = 0.0f;
         uint64_t sceneBuilds = 0;
         uint64_t blasBuilt = 0;
         uint64_t blasReused = 0;
+        uint64_t raysSent = 0;                 // data-parallel traffic of this rank in the last frame
+        uint64_t bytesSent = 0;
+        uint64_t sceneBytes = 0;               // GPU memory of this rank's part of the scene
     };
 
     // Why this frame cannot render now, or empty when it can.
     std::string whyNotRenderable() const;
     void run(const Job& job);
+    // Worker: copies the albedo, normal and id channels the job asked for out of the tracer.
+    void readSurfaceChannels(const Job& job, size_t pixels, Results& results);
     void waitForWorker();
 
     // Committed parameters.
     glm::uvec2 size_{0, 0};
     ANARIDataType colorType_ = ANARI_UNKNOWN;
     bool depth_ = false;
+    core::FrameChannels channels_;              // channel.depth and the surface channels enabled
     ObjectRef<World> world_;
     ObjectRef<Camera> camera_;
     ObjectRef<Renderer> renderer_;
@@ -80,9 +92,14 @@ private:
     const Object* renderedRenderer_ = nullptr;
     uint64_t renderedRendererStamp_ = 0;
 
+    // Data-parallel ANARI: the N-th frame created on each rank is the same frame; with more than one rank
+    // the frame renders on the calling thread (MPI is called from one thread at a time).
+    uint64_t globalIndex_ = 0;
+    std::unique_ptr<mpi::RingExchange> ring_;
+    bool prepareDistributed(bool renderable, bool& restart);
     SceneSync sync_;                            // used by the API thread, then the worker, never both at once
     std::unique_ptr<core::PathTracer> tracer_;  // worker only
-    bool tracerHasDepth_ = false;               // worker only
+    core::FrameChannels tracerChannels_;        // worker only: what the tracer's buffers were sized for
     std::thread worker_;
     std::atomic<bool> finished_{true};
     std::atomic<bool> discarded_{false};

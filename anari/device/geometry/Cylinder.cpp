@@ -1,5 +1,5 @@
 // Geometry subtype "cylinder" (KHR_GEOMETRY_CYLINDER): cylinders between vertex pairs (consecutive, or
-// from "primitive.index"). Caps are both-or-nothing: "first" and "second" close both ends (reported).
+// from "primitive.index"), closed at the ends "caps" names (none, first, second, both).
 #include "anari/device/geometry/Geometry.h"
 
 #include <cmath>
@@ -44,12 +44,7 @@ private:
             }
         }
 
-        const std::string caps = getString("caps", "none");
-        if (caps == "first" || caps == "second")
-            reportWarning("caps '" + caps + "' is drawn as 'both': cylinders are capped at both ends or neither");
-        else if (caps != "none" && caps != "both")
-            reportWarning("parameter 'caps' has unknown value '" + caps + "'; using 'none'");
-        cylinders.caps = caps == "both" || caps == "first" || caps == "second";
+        cylinders.caps = pullCaps();
         if (has("vertex.cap")) {
             (void)getArray("vertex.cap");
             reportWarning("per-vertex caps ('vertex.cap') are not supported; 'caps' applies to all cylinders");

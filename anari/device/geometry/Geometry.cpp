@@ -43,6 +43,15 @@ struct BoundsOf {
         }
         return box;
     }
+    bvh::Aabb operator()(const core::ConeSet& cones) const {
+        bvh::Aabb box;
+        for (size_t i = 0; i < cones.positions.size(); ++i) {
+            const float r = cones.radii.size() == 1 ? cones.radii[0] : cones.radii[i];
+            box.extend(cones.positions[i] - glm::vec3(r));
+            box.extend(cones.positions[i] + glm::vec3(r));
+        }
+        return box;
+    }
 };
 
 }  // namespace
@@ -142,6 +151,15 @@ std::vector<glm::vec4> Geometry::pullVectors(std::string_view name, size_t count
 std::vector<glm::vec4> Geometry::pullUniformColor(size_t count) {
     const std::optional<glm::vec4> uniform = getOptional<glm::vec4>("color");
     return uniform ? std::vector<glm::vec4>(count, *uniform) : std::vector<glm::vec4>{};
+}
+
+core::CapEnds Geometry::pullCaps() {
+    const std::string caps = getString("caps", "none");
+    if (caps == "first") return core::CapEnds::First;
+    if (caps == "second") return core::CapEnds::Second;
+    if (caps == "both") return core::CapEnds::Both;
+    if (caps != "none") reportWarning("parameter 'caps' has unknown value '" + caps + "'; using 'none'");
+    return core::CapEnds::None;
 }
 
 Geometry::Shape Geometry::buildPolygonMesh(int corners) {

@@ -1,4 +1,4 @@
-// ANARI geometry: the subtypes (triangle, quad, sphere, cylinder) pull their arrays at commit, validate
+// ANARI geometry: the subtypes (triangle, quad, sphere, cylinder, cone, curve) pull their arrays at commit, validate
 // them and keep the core geometry they describe, ready to be copied into a core::SceneDescription.
 #pragma once
 
@@ -14,7 +14,7 @@ namespace ripple::device {
 class Geometry : public SceneObject {
 public:
     // monostate: nothing valid was committed.
-    using Shape = std::variant<std::monostate, core::TriangleMesh, core::SphereSet, core::CylinderSet>;
+    using Shape = std::variant<std::monostate, core::TriangleMesh, core::SphereSet, core::CylinderSet, core::ConeSet>;
 
     Geometry(DeviceState& state, std::string subtype);
 
@@ -40,6 +40,8 @@ protected:
     // The uniform "color" repeated `count` times; empty when unset. It applies when neither
     // "primitive.color" nor "vertex.color" is given.
     std::vector<glm::vec4> pullUniformColor(size_t count);
+    // "caps" of cylinders and cones: none, first, second or both (unknown values are reported: none).
+    core::CapEnds pullCaps();
     // Triangle and quad meshes: polygons of `corners` vertices (3 or 4), quads split into two triangles.
     Shape buildPolygonMesh(int corners);
 
@@ -52,5 +54,7 @@ Geometry* newTriangleGeometry(DeviceState& state);
 Geometry* newQuadGeometry(DeviceState& state);
 Geometry* newSphereGeometry(DeviceState& state);
 Geometry* newCylinderGeometry(DeviceState& state);
+Geometry* newConeGeometry(DeviceState& state);
+Geometry* newCurveGeometry(DeviceState& state);
 
 }  // namespace ripple::device

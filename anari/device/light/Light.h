@@ -1,4 +1,4 @@
-// ANARI light: directional, point and quad lights become a core::Light (in the space of the group or
+// ANARI light: directional, point, quad, spot and ring lights become a core::Light (in the space of the group or
 // world that holds them; SceneSync applies instance transforms).
 #pragma once
 
@@ -26,5 +26,7 @@ protected:
 Light* newDirectionalLight(DeviceState& state);
 Light* newPointLight(DeviceState& state);
 Light* newQuadLight(DeviceState& state);
+Light* newSpotLight(DeviceState& state);
+Light* newRingLight(DeviceState& state);
 
 }  // namespace ripple::device

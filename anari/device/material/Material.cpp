@@ -1,6 +1,8 @@
 // Parameter pulling shared by the material subtypes (see Material.h).
 #include "anari/device/material/Material.h"
 
+#include <algorithm>
+
 #include "anari/device/scene/ArrayConversion.h"
 
 #include <cmath>
@@ -78,9 +80,14 @@ float Material::pullFactor(std::string_view name, float fallback) {
 
 void Material::pullAlphaMode() {
     const std::string mode = getString("alphaMode", "opaque");
-    (void)get<float>("alphaCutoff", 0.5f);
-    if (mode != "opaque")
-        reportWarning("alphaMode '" + mode + "' is not supported yet; the surface is rendered with alphaMode 'opaque'");
+    material_.alphaCutoff = std::clamp(get<float>("alphaCutoff", 0.5f), 0.0f, 1.0f);
+    if (mode == "opaque") material_.alphaMode = core::Material::AlphaMode::Opaque;
+    else if (mode == "blend") material_.alphaMode = core::Material::AlphaMode::Blend;
+    else if (mode == "mask") material_.alphaMode = core::Material::AlphaMode::Mask;
+    else {
+        reportWarning("alphaMode '" + mode + "' is not one of opaque, blend, mask; 'opaque' used");
+        material_.alphaMode = core::Material::AlphaMode::Opaque;
+    }
 }
 
 }  // namespace ripple::device

@@ -25,7 +25,7 @@ protected:
     // A factor that ANARI allows to be a value, a sampler or an attribute; only values are supported
     // (the others are reported and the fallback used).
     float pullFactor(std::string_view name, float fallback);
-    // alphaMode and alphaCutoff are read (so they are not reported as unknown) but not used yet.
+    // alphaMode (opaque, blend, mask) and alphaCutoff.
     void pullAlphaMode();
 
     core::Material material_;

@@ -1,6 +1,7 @@
 // Material subtype "physicallyBased" (KHR_MATERIAL_PHYSICALLY_BASED): the glTF metallic-roughness model.
-// baseColor, opacity, metallic, roughness, emissive and ior are used; the layered extras (clearcoat,
-// sheen, transmission...) are not yet, and are reported as unused parameters when set.
+// baseColor, opacity (alphaMode, alphaCutoff), metallic, roughness, emissive, ior, specular, transmission,
+// clearcoat and clearcoatRoughness are used; sheen, iridescence, thickness and attenuation are not yet,
+// and are reported as unused parameters when set.
 #include "anari/device/material/Material.h"
 #include "anari/device/scene/ArrayConversion.h"
 
@@ -20,6 +21,12 @@ public:
         material_.metallic = std::clamp(pullFactor("metallic", 1.0f), 0.0f, 1.0f);
         material_.roughness = std::clamp(pullFactor("roughness", 1.0f), 0.0f, 1.0f);
         material_.ior = std::max(pullFactor("ior", 1.5f), 1.0f);
+        // Ripple follows glTF's KHR_materials_specular, where 1 keeps the ior's reflectance (ANARI's table
+        // lists 0, which would remove dielectric reflection from every default material).
+        material_.specular = std::clamp(pullFactor("specular", 1.0f), 0.0f, 1.0f);
+        material_.transmission = std::clamp(pullFactor("transmission", 0.0f), 0.0f, 1.0f);
+        material_.clearcoat = std::clamp(pullFactor("clearcoat", 0.0f), 0.0f, 1.0f);
+        material_.clearcoatRoughness = std::clamp(pullFactor("clearcoatRoughness", 0.0f), 0.0f, 1.0f);
         pullEmissive();
         pullAlphaMode();
     }

@@ -43,6 +43,21 @@ void DeviceState::waitForWork() {
     workDone_.wait(lock, [this] { return workInFlight_ == 0; });
 }
 
+void DeviceState::setCommunicatorHandle(const void* mpiComm) {
+    if (communicator_) {
+        report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_OPERATION,
+               "mpiCommunicator set after the first data-parallel call; the device keeps its communicator");
+        return;
+    }
+    communicatorHandle_ = mpiComm;
+}
+
+const mpi::Communicator& DeviceState::communicator() {
+    if (!communicator_)
+        communicator_ = std::make_unique<mpi::Communicator>(mpi::Communicator::fromHandle(communicatorHandle_));
+    return *communicator_;
+}
+
 vk::Context& DeviceState::vulkan() {
     std::lock_guard lock(vulkanMutex_);
     if (!vulkan_) {

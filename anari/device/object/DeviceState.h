@@ -3,6 +3,7 @@
 #pragma once
 
 #include "anari/anari.h"
+#include "mpi/Communicator.h"
 
 #include <atomic>
 #include <condition_variable>
@@ -43,6 +44,16 @@ public:
     void endWork();
     void waitForWork();
 
+    // Data-parallel rendering: the ranks this device renders with. The application may give its own
+    // communicator (device parameter mpiCommunicator / pointer_to_mpi_communicator, or a frame's
+    // mpiCommunicator) before the first collective call; otherwise MPI_COMM_WORLD when MPI is running.
+    // Created on first use, which is always inside a collective call.
+    void setCommunicatorHandle(const void* mpiComm);
+    const mpi::Communicator& communicator();
+    // Creation order of frames and worlds: data-parallel ANARI identifies them by it across ranks.
+    uint64_t nextFrameIndex() { return frames_++; }
+    uint64_t nextWorldIndex() { return worlds_++; }
+
     // Live objects (not counting the device), for the leak report at device release.
     std::atomic<int64_t> liveObjects{0};
 
@@ -58,6 +69,10 @@ private:
     int workInFlight_ = 0;
     std::mutex vulkanMutex_;
     std::unique_ptr<vk::Context> vulkan_;
+    const void* communicatorHandle_ = nullptr;
+    std::unique_ptr<mpi::Communicator> communicator_;
+    std::atomic<uint64_t> frames_{0};
+    std::atomic<uint64_t> worlds_{0};
 };
 
 }  // namespace ripple::device

@@ -4,13 +4,15 @@
 
 #include "anari/device/world/World.h"
 
+#include <cstring>
 #include <limits>
 #include <unordered_map>
 
 namespace ripple::device {
 namespace {
 
-// Instance id of surfaces and lights placed directly in the world, which no instance names.
+// The id of an object whose "id" is unset, and the instance id of surfaces and lights placed directly in
+// the world, which no instance names (KHR_FRAME_CHANNEL_OBJECT_ID / _INSTANCE_ID: 4294967295).
 constexpr uint32_t kNoInstance = std::numeric_limits<uint32_t>::max();
 
 struct Placement {
@@ -19,13 +21,13 @@ struct Placement {
 };
 
 // Calls onSurface(surface, placement, objectId) for every renderable surface and onLight(light, placement)
-// for every valid light, in the order the application gave them. Ids default to array positions.
+// for every valid light, in the order the application gave them. Unset ids are ~0u, as the spec says.
 template <class OnSurface, class OnLight>
 void forEachPlaced(const World& world, OnSurface&& onSurface, OnLight&& onLight) {
     auto placeGroup = [&](const std::vector<Surface*>& surfaces, const std::vector<Light*>& lights,
                           const Placement& placement) {
         for (size_t i = 0; i < surfaces.size(); ++i)
-            if (surfaces[i]->renderable()) onSurface(*surfaces[i], placement, surfaces[i]->id().value_or(uint32_t(i)));
+            if (surfaces[i]->renderable()) onSurface(*surfaces[i], placement, surfaces[i]->id().value_or(kNoInstance));
         for (Light* light : lights)
             if (light->isValid()) onLight(*light, placement);
     };
@@ -34,7 +36,7 @@ void forEachPlaced(const World& world, OnSurface&& onSurface, OnLight&& onLight)
         const Instance& instance = *world.instances()[i];
         if (!instance.isValid() || !instance.group() || !instance.group()->isValid()) continue;
         placeGroup(instance.group()->surfaces(), instance.group()->lights(),
-                   Placement{instance.transform(), instance.id().value_or(uint32_t(i))});
+                   Placement{instance.transform(), instance.id().value_or(kNoInstance)});
     }
 }
 
@@ -91,6 +93,10 @@ private:
             ref = {core::GeometryKind::Cylinders, uint32_t(description_.cylinderSets.size())};
             description_.cylinderSets.push_back(*cylinders);
             description_.cylinderSets.back().identity = identityOf(geometry);
+        } else if (const auto* cones = std::get_if<core::ConeSet>(&geometry.shape())) {
+            ref = {core::GeometryKind::Cones, uint32_t(description_.coneSets.size())};
+            description_.coneSets.push_back(*cones);
+            description_.coneSets.back().identity = identityOf(geometry);
         }
         return ref;
     }
@@ -128,6 +134,19 @@ bool SceneSync::update(World& world) {
     world_ = &world;
     newestStamp_ = newest;
     description_ = DescriptionBuilder().build(world);
+    localLights_ = description_.lights;
+    pending_ = true;
+    return true;
+}
+
+bool SceneSync::setLights(const std::vector<core::Light>& lights, float worldRadius) {
+    // Byte comparison: lights are plain data, and a rank whose lights did not change sends the same bytes.
+    const bool same = lights.size() == description_.lights.size() &&
+                      (lights.empty() || std::memcmp(static_cast<const void*>(lights.data()), description_.lights.data(),
+                                                     lights.size() * sizeof(core::Light)) == 0);
+    if (same && description_.lightSceneRadius == worldRadius) return false;
+    description_.lights = lights;
+    description_.lightSceneRadius = worldRadius;
     pending_ = true;
     return true;
 }

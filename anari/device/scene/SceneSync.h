@@ -31,6 +31,11 @@ public:
     // Worker thread, with the GPU to itself. The core scene of the latest description, built when update()
     // found a change; `rebuilt` tells the caller to pass the scene's report on.
     const core::Scene& scene(const vk::Context& context, bool& rebuilt);
+    // Data-parallel: this rank's own lights as of the latest update(), and the lights of all ranks that
+    // replace them in the scene (mpi/LightGather), with the whole world's radius for picking lights by
+    // power. Returns whether that changed the scene.
+    const std::vector<core::Light>& localLights() const { return localLights_; }
+    bool setLights(const std::vector<core::Light>& lights, float worldRadius);
     // Scenes built so far: a camera-only change builds none.
     uint64_t builds() const { return builds_; }
 
@@ -39,6 +44,7 @@ private:
     uint64_t newestStamp_ = 0;
     bool pending_ = false;  // the description changed after the scene was built
     core::SceneDescription description_;
+    std::vector<core::Light> localLights_;
     std::unique_ptr<core::Scene> scene_;
     uint64_t builds_ = 0;
 };

@@ -10,7 +10,7 @@ namespace ripple::device {
 
 class World final : public SceneObject {
 public:
-    explicit World(DeviceState& state) : SceneObject(state, ANARI_WORLD, "") {}
+    explicit World(DeviceState& state);
 
     void commit() override;
     bool getProperty(std::string_view name, ANARIDataType type, void* mem, uint64_t size, bool wait) override;
@@ -18,11 +18,14 @@ public:
     const std::vector<Instance*>& instances() const { return instances_; }
     const std::vector<Surface*>& surfaces() const { return surfaces_; }
     const std::vector<Light*>& lights() const { return lights_; }
+    // Data-parallel ANARI: the N-th world created on each rank is the same world.
+    uint64_t globalIndex() const { return globalIndex_; }
 
 private:
     std::vector<Instance*> instances_;  // kept alive by useChild()
     std::vector<Surface*> surfaces_;
     std::vector<Light*> lights_;
+    uint64_t globalIndex_ = 0;
 };
 
 }  // namespace ripple::device

@@ -1,0 +1,265 @@
+// ripple-boxes: the 4x4x4 boxes of the data-parallel ANARI paper, each rank holding its own share of them
+// (run it under mpirun); rank 0 writes the image. --bench times frames and reports what crossed ranks.
+#include "apps/common/AnariParams.h"
+#include "apps/common/ImageIO.h"
+#include "apps/ripple-boxes/BoxesScene.h"
+#include "mpi/Communicator.h"
+#include "mpi/Runtime.h"
+
+#include <CLI/CLI.hpp>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ripple::apps {
+namespace {
+
+struct Options {
+    std::string output = "boxes.png";
+    std::string size = "512x512";
+    uint32_t spp = 4;
+    uint32_t maxPathLength = 3;
+    uint32_t tessellation = 1;
+    std::string library = "ripple";
+    bool bench = false;
+    uint32_t frames = 5;
+    std::string json = "ripple-boxes-bench.json";
+};
+
+struct StatusLog {
+    int rank = 0;
+    int errors = 0;
+};
+
+void onStatus(const void* user, ANARIDevice, ANARIObject, ANARIDataType, ANARIStatusSeverity severity,
+              ANARIStatusCode, const char* message) {
+    auto* log = static_cast<StatusLog*>(const_cast<void*>(user));
+    if (severity > ANARI_SEVERITY_WARNING) return;
+    if (severity <= ANARI_SEVERITY_ERROR) ++log->errors;
+    std::fprintf(stderr, "[ripple-boxes] rank %d %s: %s\n", log->rank,
+                 severity <= ANARI_SEVERITY_ERROR ? "ERROR" : "WARNING", message ? message : "(no message)");
+}
+
+glm::uvec2 parseSize(const std::string& text) {
+    unsigned width = 0, height = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%ux%u%c", &width, &height, &tail) != 2 || width == 0 || height == 0 ||
+        width > 16384 || height > 16384)
+        throw std::runtime_error("--size '" + text + "' is not WIDTHxHEIGHT with sides of 1 to 16384 pixels");
+    return {width, height};
+}
+
+// What one rank measured in --bench mode; gathered on rank 0 as plain bytes.
+struct RankReport {
+    uint64_t boxes = 0;
+    uint64_t triangles = 0;
+    uint64_t sceneBytes = 0;
+    uint64_t peakRssKiB = 0;
+    uint64_t raysSent = 0;   // per frame, averaged over the timed frames
+    uint64_t bytesSent = 0;
+    double secondsPerFrame = 0.0;
+};
+
+// The library, device and objects of the run, released in reverse order; the device's last release is
+// collective, so every rank must get here.
+struct Session {
+    ANARILibrary library = nullptr;
+    ANARIDevice device = nullptr;
+    std::vector<ANARIObject> objects;
+    ~Session() {
+        for (auto it = objects.rbegin(); it != objects.rend(); ++it) anariRelease(device, *it);
+        if (device) anariRelease(device, device);
+        if (library) anariUnloadLibrary(library);
+    }
+};
+
+uint64_t frameCounter(ANARIDevice device, ANARIFrame frame, const char* name) {
+    uint64_t value = 0;
+    anariGetProperty(device, frame, name, ANARI_UINT64, &value, sizeof value, ANARI_WAIT);
+    return value;
+}
+
+void writeJson(const std::string& path, const Options& options, glm::uvec2 size, const std::vector<RankReport>& ranks) {
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error("cannot write " + path);
+    double slowest = 0.0;
+    for (const RankReport& r : ranks) slowest = std::max(slowest, r.secondsPerFrame);
+    out << "{\n  \"ranks\": " << ranks.size() << ",\n  \"width\": " << size.x << ",\n  \"height\": " << size.y
+        << ",\n  \"spp\": " << options.spp << ",\n  \"maxPathLength\": " << options.maxPathLength
+        << ",\n  \"tessellation\": " << options.tessellation << ",\n  \"frames\": " << options.frames
+        << ",\n  \"secondsPerFrame\": " << slowest << ",\n  \"perRank\": [\n";
+    for (size_t r = 0; r < ranks.size(); ++r) {
+        const RankReport& x = ranks[r];
+        out << "    {\"rank\": " << r << ", \"boxes\": " << x.boxes << ", \"triangles\": " << x.triangles
+            << ", \"sceneBytes\": " << x.sceneBytes << ", \"peakRssKiB\": " << x.peakRssKiB
+            << ", \"raysSentPerFrame\": " << x.raysSent << ", \"bytesSentPerFrame\": " << x.bytesSent
+            << ", \"secondsPerFrame\": " << x.secondsPerFrame << "}" << (r + 1 < ranks.size() ? "," : "") << "\n";
+    }
+    out << "  ]\n}\n";
+    if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+void printBench(glm::uvec2 size, const Options& options, const std::vector<RankReport>& ranks) {
+    std::printf("ripple-boxes bench: %zu rank(s), %ux%u, %u spp per frame, %u timed frames\n", ranks.size(), size.x,
+                size.y, options.spp, options.frames);
+    std::printf("%5s %6s %10s %12s %10s %14s %14s %10s\n", "rank", "boxes", "triangles", "scene MiB", "RSS MiB",
+                "rays sent/fr", "MiB sent/fr", "s/frame");
+    for (size_t r = 0; r < ranks.size(); ++r) {
+        const RankReport& x = ranks[r];
+        std::printf("%5zu %6llu %10llu %12.2f %10.1f %14llu %14.2f %10.3f\n", r, (unsigned long long)x.boxes,
+                    (unsigned long long)x.triangles, double(x.sceneBytes) / 1048576.0, double(x.peakRssKiB) / 1024.0,
+                    (unsigned long long)x.raysSent, double(x.bytesSent) / 1048576.0, x.secondsPerFrame);
+    }
+}
+
+int run(const Options& options, const mpi::Communicator& ranks) {
+    const glm::uvec2 size = parseSize(options.size);
+    const auto rank = uint32_t(ranks.rank()), rankCount = uint32_t(ranks.size());
+    const bool pfm = std::filesystem::path(options.output).extension() == ".pfm";
+
+    StatusLog log{ranks.rank(), 0};
+    Session s;
+    s.library = anariLoadLibrary(options.library.c_str(), onStatus, &log);
+    if (!s.library) throw std::runtime_error("cannot load the ANARI library '" + options.library + "'");
+    s.device = anariNewDevice(s.library, "default");
+    if (!s.device) throw std::runtime_error("the ANARI library '" + options.library + "' created no device");
+    ANARIDevice d = s.device;
+
+    const BoxesPart part = buildBoxesPart(d, rank, rankCount, options.tessellation);
+    s.objects.push_back(part.world);
+
+    const BoxesView view;
+    ANARICamera camera = anariNewCamera(d, "perspective");
+    s.objects.push_back(camera);
+    anari::set(d, camera, "position", view.position);
+    anari::set(d, camera, "direction", view.target - view.position);
+    anari::set(d, camera, "up", view.up);
+    anari::set(d, camera, "fovy", view.fovy);
+    anari::set(d, camera, "aspect", float(size.x) / float(size.y));
+    anariCommitParameters(d, camera);
+
+    ANARIRenderer renderer = anariNewRenderer(d, "default");
+    s.objects.push_back(renderer);
+    anari::set(d, renderer, "pixelSamples", int32_t(options.spp));
+    anari::set(d, renderer, "maxPathLength", int32_t(options.maxPathLength));
+    anari::set(d, renderer, "background", glm::vec4(0.1f, 0.1f, 0.15f, 1.0f));
+    anariCommitParameters(d, renderer);
+
+    ANARIFrame frame = anariNewFrame(d);
+    s.objects.push_back(frame);
+    const ANARIDataType colorType = pfm ? ANARI_FLOAT32_VEC4 : ANARI_UFIXED8_RGBA_SRGB;
+    anari::set(d, frame, "size", size);
+    anariSetParameter(d, frame, "channel.color", ANARI_DATA_TYPE, &colorType);
+    anari::setObject(d, frame, "world", ANARI_WORLD, part.world);
+    anari::setObject(d, frame, "renderer", ANARI_RENDERER, renderer);
+    anari::setObject(d, frame, "camera", ANARI_CAMERA, camera);
+    anariCommitParameters(d, frame);
+
+    // anariRenderFrame is collective: every rank renders every frame. The first frame builds the scene;
+    // --bench times the ones after it.
+    anariRenderFrame(d, frame);
+    anariFrameReady(d, frame, ANARI_WAIT);
+    if (log.errors > 0) throw std::runtime_error("the device reported errors (above)");
+
+    if (options.bench) {
+        RankReport mine;
+        mine.boxes = part.boxes;
+        mine.triangles = part.triangles;
+        const auto start = std::chrono::steady_clock::now();
+        for (uint32_t f = 0; f < options.frames; ++f) {
+            anariRenderFrame(d, frame);
+            anariFrameReady(d, frame, ANARI_WAIT);
+            mine.raysSent += frameCounter(d, frame, "ripple.raysSent");
+            mine.bytesSent += frameCounter(d, frame, "ripple.bytesSent");
+        }
+        mine.secondsPerFrame =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / options.frames;
+        mine.raysSent /= options.frames;
+        mine.bytesSent /= options.frames;
+        mine.sceneBytes = frameCounter(d, frame, "ripple.sceneBytes");
+        rusage usage{};
+        getrusage(RUSAGE_SELF, &usage);
+        mine.peakRssKiB = uint64_t(usage.ru_maxrss);
+        const auto bytes = std::span(reinterpret_cast<const uint8_t*>(&mine), sizeof mine);
+        const std::vector<std::vector<uint8_t>> all = ranks.gatherToRoot(bytes);
+        if (rank == 0) {
+            std::vector<RankReport> reports(all.size());
+            for (size_t r = 0; r < all.size(); ++r) std::memcpy(&reports[r], all[r].data(), sizeof(RankReport));
+            printBench(size, options, reports);
+            writeJson(options.json, options, size, reports);
+            std::printf("wrote %s\n", options.json.c_str());
+        }
+    }
+    if (log.errors > 0) throw std::runtime_error("the device reported errors (above)");
+
+    // Only rank 0 holds the final image (data-parallel ANARI); the other ranks' frames are undefined.
+    if (rank != 0) return 0;
+    uint32_t width = 0, height = 0;
+    ANARIDataType mappedType = ANARI_UNKNOWN;
+    const void* pixels = anariMapFrame(d, frame, "channel.color", &width, &height, &mappedType);
+    if (!pixels || width != size.x || height != size.y || mappedType != colorType) {
+        if (pixels) anariUnmapFrame(d, frame, "channel.color");
+        throw std::runtime_error("the device returned no color channel of the requested size and type");
+    }
+    try {
+        if (pfm) writePfmBottomUp(options.output, width, height, static_cast<const float*>(pixels));
+        else writePngBottomUp(options.output, width, height, static_cast<const uint8_t*>(pixels));
+    } catch (...) {
+        anariUnmapFrame(d, frame, "channel.color");
+        throw;
+    }
+    anariUnmapFrame(d, frame, "channel.color");
+    std::printf("rank 0 of %u wrote %s (%ux%u, %u spp, %u boxes on this rank)\n", rankCount, options.output.c_str(),
+                width, height, options.spp, part.boxes);
+    return 0;
+}
+
+}  // namespace
+}  // namespace ripple::apps
+
+int main(int argc, char** argv) {
+    ripple::mpi::Runtime runtime(&argc, &argv);
+    // Made before anything can fail: duplicating the communicator is collective, so no rank may do it
+    // alone on an error path.
+    const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();
+
+    ripple::apps::Options options;
+    CLI::App app{"ripple-boxes: the 4x4x4 boxes of the data-parallel ANARI paper, dealt to the MPI ranks "
+                 "(run under mpirun; rank 0 writes the image)"};
+    app.add_option("-o,--output", options.output, "output image on rank 0: .png (8-bit sRGB) or .pfm (linear float)")
+        ->capture_default_str();
+    app.add_option("--size", options.size, "image size WIDTHxHEIGHT")->capture_default_str();
+    app.add_option("--spp", options.spp, "samples per pixel (per frame in --bench)")
+        ->check(CLI::Range(1u, 4096u))->capture_default_str();
+    app.add_option("--max-path-length", options.maxPathLength, "surface interactions per path")
+        ->check(CLI::Range(1u, 64u))->capture_default_str();
+    app.add_option("--tessellation", options.tessellation, "each box side cut into NxN quads (more triangles)")
+        ->check(CLI::Range(1u, 512u))->capture_default_str();
+    app.add_option("--library", options.library, "ANARI library name")->capture_default_str();
+    app.add_flag("--bench", options.bench, "time frames; print per-rank rays and bytes sent, scene memory; write JSON");
+    app.add_option("--frames", options.frames, "timed frames in --bench")->check(CLI::Range(1u, 1000u))->capture_default_str();
+    app.add_option("--json", options.json, "where --bench writes its numbers (rank 0)")->capture_default_str();
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // Every rank parses the same arguments and so reaches the same verdict; one rank speaks.
+        return ranks.rank() == 0 ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 1);
+    }
+
+    try {
+        return ripple::apps::run(options, ranks);
+    } catch (const std::exception& e) {
+        // The other ranks may be waiting in a collective call for this one: end them all, never hang.
+        if (ranks.distributed()) ranks.abort(std::string("ripple-boxes: ") + e.what());
+        std::fprintf(stderr, "[ripple-boxes] ERROR: %s\n", e.what());
+        return 1;
+    }
+}

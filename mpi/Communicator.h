@@ -1,0 +1,60 @@
+// The ranks a data-parallel render runs on, behind plain C++ (this header does not include mpi.h): an MPI
+// communicator when Ripple is built with MPI and MPI is initialized, else a single process whose
+// collectives return at once. Failed MPI calls throw MpiError naming the call and MPI's message.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ripple::mpi {
+
+class MpiError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Built with MPI, and MPI_Init has run (and MPI_Finalize has not).
+bool mpiActive();
+
+class Communicator {
+public:
+    // One process, rank 0 of 1: no MPI call is ever made.
+    Communicator();
+    // MPI_COMM_WORLD where MPI is active, else a single process.
+    static Communicator world();
+    // The application's communicator: `handle` points to an MPI_Comm. Null, or MPI not active: world().
+    static Communicator fromHandle(const void* handle);
+
+    int rank() const { return rank_; }
+    int size() const { return size_; }
+    bool distributed() const { return size_ > 1; }
+
+    uint64_t sum(uint64_t value) const;
+    uint64_t max(uint64_t value) const;
+    // Element-wise minimum / maximum over ranks, in place.
+    void min(std::span<float> values) const;
+    void max(std::span<float> values) const;
+    // Every rank's bytes, indexed by rank (on every rank).
+    std::vector<std::vector<uint8_t>> allgather(std::span<const uint8_t> bytes) const;
+    // Every rank's bytes on rank 0 (indexed by rank); empty on the others.
+    std::vector<std::vector<uint8_t>> gatherToRoot(std::span<const uint8_t> bytes) const;
+    // Sends to rank + 1 and receives from rank - 1 (cyclically): one hop of a ring.
+    std::vector<uint8_t> ringShift(std::span<const uint8_t> bytes) const;
+    void barrier() const;
+    // Ends every rank of the communicator (MPI_Abort) after printing `message` to stderr; returns only
+    // with one rank, where it throws MpiError instead.
+    void abort(const std::string& message) const;
+
+private:
+    struct Handle;
+    explicit Communicator(std::shared_ptr<Handle> handle);
+    std::shared_ptr<Handle> handle_;
+    int rank_ = 0;
+    int size_ = 1;
+};
+
+}  // namespace ripple::mpi

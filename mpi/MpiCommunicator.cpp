@@ -1,0 +1,179 @@
+// Communicator on MPI (see Communicator.h). The application's communicator is duplicated, so Ripple's
+// messages never match the application's; the duplicate is freed with the last Communicator that uses
+// it, unless MPI has been finalized by then.
+#include "mpi/Communicator.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+
+namespace ripple::mpi {
+
+namespace {
+
+constexpr int kRingTag = 7301;
+
+// One check for every MPI call: names the call and MPI's own message for the code.
+void check(int code, const char* call) {
+    if (code == MPI_SUCCESS) return;
+    char text[MPI_MAX_ERROR_STRING] = {};
+    int length = 0;
+    MPI_Error_string(code, text, &length);
+    throw MpiError(std::string(call) + " failed: " + std::string(text, size_t(length)));
+}
+#define RIPPLE_MPI_CHECK(call) check((call), #call)
+
+int countOf(size_t bytes) {
+    if (bytes > size_t(std::numeric_limits<int>::max()))
+        throw MpiError("message of " + std::to_string(bytes) + " bytes exceeds MPI's int count");
+    return static_cast<int>(bytes);
+}
+
+}  // namespace
+
+struct Communicator::Handle {
+    MPI_Comm comm = MPI_COMM_NULL;
+    ~Handle() {
+        int finalized = 0;
+        MPI_Finalized(&finalized);
+        if (!finalized && comm != MPI_COMM_NULL) MPI_Comm_free(&comm);
+    }
+};
+
+bool mpiActive() {
+    int initialized = 0, finalized = 0;
+    MPI_Initialized(&initialized);
+    MPI_Finalized(&finalized);
+    return initialized && !finalized;
+}
+
+Communicator::Communicator() = default;
+
+Communicator::Communicator(std::shared_ptr<Handle> handle) : handle_(std::move(handle)) {
+    RIPPLE_MPI_CHECK(MPI_Comm_set_errhandler(handle_->comm, MPI_ERRORS_RETURN));
+    RIPPLE_MPI_CHECK(MPI_Comm_rank(handle_->comm, &rank_));
+    RIPPLE_MPI_CHECK(MPI_Comm_size(handle_->comm, &size_));
+}
+
+Communicator Communicator::world() { return fromHandle(nullptr); }
+
+Communicator Communicator::fromHandle(const void* handle) {
+    if (!mpiActive()) return Communicator();
+    const MPI_Comm source = handle ? *static_cast<const MPI_Comm*>(handle) : MPI_COMM_WORLD;
+    if (source == MPI_COMM_NULL) throw MpiError("the MPI communicator given is MPI_COMM_NULL");
+    auto duplicate = std::make_shared<Handle>();
+    RIPPLE_MPI_CHECK(MPI_Comm_dup(source, &duplicate->comm));
+    return Communicator(std::move(duplicate));
+}
+
+uint64_t Communicator::sum(uint64_t value) const {
+    if (!distributed()) return value;
+    uint64_t result = 0;
+    RIPPLE_MPI_CHECK(MPI_Allreduce(&value, &result, 1, MPI_UINT64_T, MPI_SUM, handle_->comm));
+    return result;
+}
+
+uint64_t Communicator::max(uint64_t value) const {
+    if (!distributed()) return value;
+    uint64_t result = 0;
+    RIPPLE_MPI_CHECK(MPI_Allreduce(&value, &result, 1, MPI_UINT64_T, MPI_MAX, handle_->comm));
+    return result;
+}
+
+void Communicator::min(std::span<float> values) const {
+    if (!distributed() || values.empty()) return;
+    RIPPLE_MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, values.data(), countOf(values.size()), MPI_FLOAT, MPI_MIN, handle_->comm));
+}
+
+void Communicator::max(std::span<float> values) const {
+    if (!distributed() || values.empty()) return;
+    RIPPLE_MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, values.data(), countOf(values.size()), MPI_FLOAT, MPI_MAX, handle_->comm));
+}
+
+std::vector<std::vector<uint8_t>> Communicator::allgather(std::span<const uint8_t> bytes) const {
+    if (!distributed()) return {std::vector<uint8_t>(bytes.begin(), bytes.end())};
+    const int mine = countOf(bytes.size());
+    std::vector<int> counts(static_cast<size_t>(size_)), offsets(static_cast<size_t>(size_));
+    RIPPLE_MPI_CHECK(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, handle_->comm));
+    size_t total = 0;
+    for (int r = 0; r < size_; ++r) {
+        offsets[size_t(r)] = countOf(total);
+        total += size_t(counts[size_t(r)]);
+    }
+    std::vector<uint8_t> all(std::max<size_t>(total, 1));
+    RIPPLE_MPI_CHECK(MPI_Allgatherv(bytes.data(), mine, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
+                                    handle_->comm));
+    std::vector<std::vector<uint8_t>> result(static_cast<size_t>(size_));
+    for (int r = 0; r < size_; ++r)
+        result[size_t(r)].assign(all.begin() + offsets[size_t(r)], all.begin() + offsets[size_t(r)] + counts[size_t(r)]);
+    return result;
+}
+
+std::vector<std::vector<uint8_t>> Communicator::gatherToRoot(std::span<const uint8_t> bytes) const {
+    if (!distributed()) return {std::vector<uint8_t>(bytes.begin(), bytes.end())};
+    const int mine = countOf(bytes.size());
+    std::vector<int> counts(static_cast<size_t>(size_)), offsets(static_cast<size_t>(size_));
+    RIPPLE_MPI_CHECK(MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, handle_->comm));
+    size_t total = 0;
+    for (int r = 0; r < size_ && rank_ == 0; ++r) {
+        offsets[size_t(r)] = countOf(total);
+        total += size_t(counts[size_t(r)]);
+    }
+    std::vector<uint8_t> all(std::max<size_t>(total, 1));
+    RIPPLE_MPI_CHECK(MPI_Gatherv(bytes.data(), mine, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, 0,
+                                 handle_->comm));
+    std::vector<std::vector<uint8_t>> result;
+    if (rank_ != 0) return result;
+    result.resize(static_cast<size_t>(size_));
+    for (int r = 0; r < size_; ++r)
+        result[size_t(r)].assign(all.begin() + offsets[size_t(r)], all.begin() + offsets[size_t(r)] + counts[size_t(r)]);
+    return result;
+}
+
+std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) const {
+    if (!distributed()) return std::vector<uint8_t>(bytes.begin(), bytes.end());
+    const int next = (rank_ + 1) % size_, previous = (rank_ + size_ - 1) % size_;
+    uint64_t outgoing = bytes.size(), incoming = 0;
+    RIPPLE_MPI_CHECK(MPI_Sendrecv(&outgoing, 1, MPI_UINT64_T, next, kRingTag, &incoming, 1, MPI_UINT64_T, previous,
+                                  kRingTag, handle_->comm, MPI_STATUS_IGNORE));
+    std::vector<uint8_t> received(incoming);
+    RIPPLE_MPI_CHECK(MPI_Sendrecv(bytes.data(), countOf(bytes.size()), MPI_BYTE, next, kRingTag + 1, received.data(),
+                                  countOf(received.size()), MPI_BYTE, previous, kRingTag + 1, handle_->comm,
+                                  MPI_STATUS_IGNORE));
+    return received;
+}
+
+void Communicator::barrier() const {
+    if (distributed() && mpiActive()) RIPPLE_MPI_CHECK(MPI_Barrier(handle_->comm));
+}
+
+void Communicator::abort(const std::string& message) const {
+    if (!distributed()) throw MpiError(message);
+    std::cerr << "ripple: rank " << rank_ << " of " << size_ << ": " << message << " (aborting all ranks)" << std::endl;
+    MPI_Abort(handle_->comm, 1);
+    std::abort();  // MPI_Abort should not return; never go on rendering if it did
+}
+
+}  // namespace ripple::mpi
+
+#include "mpi/Runtime.h"
+
+namespace ripple::mpi {
+
+// Serialized: Ripple calls MPI from one thread at a time (a data-parallel frame renders on the thread that
+// called anariRenderFrame), which is all the application is promised too.
+Runtime::Runtime(int* argc, char*** argv) {
+    if (mpiActive()) return;
+    int provided = 0;
+    RIPPLE_MPI_CHECK(MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided));
+    started_ = true;
+}
+
+Runtime::~Runtime() {
+    if (started_ && mpiActive()) MPI_Finalize();
+}
+
+}  // namespace ripple::mpi

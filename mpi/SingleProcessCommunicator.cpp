@@ -1,0 +1,41 @@
+// Communicator without MPI (Ripple built with RIPPLE_WITH_MPI off): one process, rank 0 of 1; every
+// collective returns its input.
+#include "mpi/Communicator.h"
+
+namespace ripple::mpi {
+
+struct Communicator::Handle {};
+
+bool mpiActive() { return false; }
+
+Communicator::Communicator() = default;
+Communicator::Communicator(std::shared_ptr<Handle> handle) : handle_(std::move(handle)) {}
+Communicator Communicator::world() { return Communicator(); }
+Communicator Communicator::fromHandle(const void*) { return Communicator(); }
+
+uint64_t Communicator::sum(uint64_t value) const { return value; }
+uint64_t Communicator::max(uint64_t value) const { return value; }
+void Communicator::min(std::span<float>) const {}
+void Communicator::max(std::span<float>) const {}
+std::vector<std::vector<uint8_t>> Communicator::allgather(std::span<const uint8_t> bytes) const {
+    return {std::vector<uint8_t>(bytes.begin(), bytes.end())};
+}
+std::vector<std::vector<uint8_t>> Communicator::gatherToRoot(std::span<const uint8_t> bytes) const {
+    return {std::vector<uint8_t>(bytes.begin(), bytes.end())};
+}
+std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) const {
+    return std::vector<uint8_t>(bytes.begin(), bytes.end());
+}
+void Communicator::barrier() const {}
+void Communicator::abort(const std::string& message) const { throw MpiError(message); }
+
+}  // namespace ripple::mpi
+
+#include "mpi/Runtime.h"
+
+namespace ripple::mpi {
+
+Runtime::Runtime(int*, char***) {}
+Runtime::~Runtime() { (void)started_; }
+
+}  // namespace ripple::mpi

@@ -1,0 +1,35 @@
+// The bits of a FeatureSet (core/render/FeatureSet.h): what a committed world and frame use. Kernels see
+// the mask as specialization constant 1 (shaders/features.glsl), so code for a feature that is absent is
+// removed when the pipeline is built, not skipped at run time.
+#ifndef RIPPLE_SHARED_FEATURES_H
+#define RIPPLE_SHARED_FEATURES_H
+#include "common.h"
+
+RIPPLE_GPU_BEGIN
+
+// Geometry kinds: bit GEOMETRY_* (shared/scene.h).
+RIPPLE_CONST uint FEATURE_TRIANGLES = 1u << 0;
+RIPPLE_CONST uint FEATURE_SPHERES = 1u << 1;
+RIPPLE_CONST uint FEATURE_CYLINDERS = 1u << 2;
+RIPPLE_CONST uint FEATURE_CONES = 1u << 3;     // cones and curves
+RIPPLE_CONST uint FEATURE_GEOMETRY = 0xFu;
+RIPPLE_CONST uint FEATURE_VOLUMES = 1u << 4;   // no volume stage exists yet: never set by a scene
+RIPPLE_CONST uint FEATURE_TEXTURES = 1u << 5;  // a material reads a texture
+RIPPLE_CONST uint FEATURE_EMISSIVE = 1u << 6;  // a material emits
+RIPPLE_CONST uint FEATURE_ALPHA = 1u << 7;     // a material has opacity below 1
+// Light kinds: bit 8 + core::Light::Kind; any of them means shadow rays.
+RIPPLE_CONST uint FEATURE_LIGHT_SHIFT = 8u;
+RIPPLE_CONST uint FEATURE_LIGHTS = 0xFFu << 8;
+// Frame channels besides color.
+RIPPLE_CONST uint FEATURE_CHANNEL_DEPTH = 1u << 16;
+RIPPLE_CONST uint FEATURE_CHANNEL_ALBEDO = 1u << 17;
+RIPPLE_CONST uint FEATURE_CHANNEL_NORMAL = 1u << 18;
+RIPPLE_CONST uint FEATURE_CHANNEL_PRIMITIVE_ID = 1u << 19;
+RIPPLE_CONST uint FEATURE_CHANNEL_OBJECT_ID = 1u << 20;
+RIPPLE_CONST uint FEATURE_CHANNEL_INSTANCE_ID = 1u << 21;
+RIPPLE_CONST uint FEATURE_SURFACE_CHANNELS = 0x1Fu << 17;  // written by pt_channels from the first hit
+RIPPLE_CONST uint FEATURE_MULTI_RANK = 1u << 22;           // rays cross ranks: exchange stages run
+RIPPLE_CONST uint FEATURE_ALL = 0x7FFFFFu;
+
+RIPPLE_GPU_END
+#endif

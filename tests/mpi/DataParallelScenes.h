@@ -1,0 +1,24 @@
+// Scenes for the data-parallel tests, each split over ranks as an application would: part(rank, ranks)
+// holds only what that rank owns, and part(0, 1) is the whole scene. Lights sit on rank 0 alone (the
+// device gathers them), so every other rank's shading depends on the gather.
+#pragma once
+
+#include "core/render/PathTracer.h"
+#include "core/scene/SceneDescription.h"
+
+#include <cstdint>
+
+namespace ripple::test {
+
+// The paper's 4x4x4 boxes over a floor, under a point and a directional light; boxes are dealt to the
+// ranks by a fixed pseudo-random permutation, so most shadows and bounces cross rank boundaries. The
+// floor belongs to the last rank.
+core::SceneDescription boxesPart(uint32_t rank, uint32_t ranks);
+core::Camera boxesCamera();
+
+// Mixed geometry (a sphere mesh, spheres, cylinders, a metal and a transparent material) under a quad
+// light, instances dealt round robin.
+core::SceneDescription mixedPart(uint32_t rank, uint32_t ranks);
+core::Camera mixedCamera();
+
+}  // namespace ripple::test

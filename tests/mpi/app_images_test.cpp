@@ -1,0 +1,104 @@
+// Checks on what the data-parallel apps wrote under mpirun (the ctest runs before this one, see
+// CMakeLists.txt): ripple-boxes with 2 and 3 ranks equals the one-rank image holding every box, and the
+// tutorial's image on rank 0 shows every rank's quad. The folder comes from RIPPLE_MPI_IMAGES.
+#include <doctest/doctest.h>
+#include <stb_image.h>
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+std::filesystem::path imageFolder() {
+    const char* folder = std::getenv("RIPPLE_MPI_IMAGES");
+    if (!folder) throw std::runtime_error("RIPPLE_MPI_IMAGES is not set (run through ctest)");
+    return folder;
+}
+
+struct FloatImage {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> pixels;
+};
+
+// Little-endian colour PFM, as apps/common/ImageIO writes it.
+FloatImage readPfm(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read " + file.string() + " (did its mpirun test fail?)");
+    std::string magic;
+    FloatImage image;
+    float scale = 0.0f;
+    in >> magic >> image.width >> image.height >> scale;
+    in.get();
+    if (magic != "PF" || image.width <= 0 || image.height <= 0 || scale >= 0.0f)
+        throw std::runtime_error(file.string() + " is not a little-endian colour PFM");
+    image.pixels.resize(size_t(image.width) * size_t(image.height));
+    in.read(reinterpret_cast<char*>(image.pixels.data()), std::streamsize(image.pixels.size() * sizeof(glm::vec3)));
+    if (!in) throw std::runtime_error(file.string() + " is truncated");
+    return image;
+}
+
+// Pixels equal to `tolerance` relative (absolute below 1) on every channel. The ranks run the same
+// kernels on the same rays; only floating-point ties between two ranks' surfaces at the same distance may
+// resolve differently, so anything but near-exact agreement is an error.
+size_t equalPixels(const FloatImage& a, const FloatImage& b, float tolerance) {
+    size_t equal = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        bool same = true;
+        for (int k = 0; k < 3; ++k)
+            same = same && std::abs(a.pixels[i][k] - b.pixels[i][k]) <= tolerance * std::max(1.0f, std::abs(b.pixels[i][k]));
+        equal += same;
+    }
+    return equal;
+}
+
+}  // namespace
+
+TEST_CASE("ripple-boxes: 2 and 3 ranks through the ANARI device equal one rank holding all 64 boxes") {
+    const FloatImage whole = readPfm(imageFolder() / "boxes_1.pfm");
+    for (const std::string split : {"boxes_2.pfm", "boxes_3.pfm"}) {
+        CAPTURE(split);
+        const FloatImage image = readPfm(imageFolder() / split);
+        REQUIRE(image.width == whole.width);
+        REQUIRE(image.height == whole.height);
+        const size_t equal = equalPixels(image, whole, 1e-5f);
+        MESSAGE(split << ": " << equal << " of " << whole.pixels.size() << " pixels equal the one-rank image");
+        CHECK(equal * 1000 >= whole.pixels.size() * 999);  // >= 99.9% of pixels within 1e-5 relative
+    }
+}
+
+TEST_CASE("ripple-dp-tutorial: rank 0's image shows the quad of each of 3 ranks, in rank order") {
+    const std::filesystem::path file = imageFolder() / "tutorial_3.png";
+    int width = 0, height = 0, channels = 0;
+    uint8_t* pixels = stbi_load(file.string().c_str(), &width, &height, &channels, 4);
+    REQUIRE_MESSAGE(pixels, "cannot read " << file.string() << " (did its mpirun test fail?)");
+    // Each rank's matte colour is dominated by one channel (red, green, blue for ranks 0, 1, 2); find the
+    // pixels where that channel leads the others by 50 of 255 (the dark background's lead is 16).
+    size_t count[3] = {};
+    double meanX[3] = {};
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const uint8_t* p = pixels + 4 * (size_t(y) * size_t(width) + size_t(x));
+            for (int c = 0; c < 3; ++c)
+                if (p[c] >= p[(c + 1) % 3] + 50 && p[c] >= p[(c + 2) % 3] + 50) {
+                    ++count[c];
+                    meanX[c] += x;
+                }
+        }
+    stbi_image_free(pixels);
+    for (int c = 0; c < 3; ++c) {
+        CAPTURE(c);
+        CHECK(count[c] > size_t(width * height) / 100);  // each quad covers several percent of the image
+        if (count[c] > 0) meanX[c] /= double(count[c]);
+    }
+    CHECK(meanX[0] < meanX[1]);  // rank r's quad sits at x = 1.5 r
+    CHECK(meanX[1] < meanX[2]);
+}

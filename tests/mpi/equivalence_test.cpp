@@ -1,0 +1,122 @@
+// N ranks, each holding only its part of a scene, render what one rank holding everything renders: the
+// ring exchange brings every ray the globally closest hit and occlusion, lights are gathered, pixels are
+// shaded at home and gathered on rank 0. Run under mpirun with 1 to 4 ranks (tests/mpi/CMakeLists.txt).
+#include "mpi/Communicator.h"
+#include "mpi/FrameGather.h"
+#include "mpi/LightGather.h"
+#include "mpi/RingExchange.h"
+#include "tests/mpi/DataParallelScenes.h"
+#include "tests/support/RenderHelpers.h"
+#include "tests/support/SceneGenerators.h"
+#include "tests/support/TestContext.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+using namespace ripple;
+
+namespace {
+
+constexpr glm::uvec2 kSize{64, 64};
+
+struct Comparison {
+    uint64_t pixels = 0;
+    uint64_t equal = 0;  // within kTolerance on every channel
+};
+
+// Floating point ties (two ranks' surfaces at exactly the same t) may resolve differently; anything else
+// must agree to rounding: 1e-5 relative (or absolute below 1).
+constexpr float kTolerance = 1e-5f;
+
+Comparison compare(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+    Comparison c;
+    c.pixels = a.size();
+    for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+        bool same = true;
+        for (int k = 0; k < 4; ++k)
+            same = same && std::abs(a[i][k] - b[i][k]) <= kTolerance * std::max(1.0f, std::abs(b[i][k]));
+        c.equal += same;
+    }
+    return c;
+}
+
+using ScenePart = std::function<core::SceneDescription(uint32_t rank, uint32_t ranks)>;
+
+// Renders the scene split over all ranks and, on rank 0, compares it with the whole scene rendered by
+// rank 0 alone. Collective.
+void checkEquivalence(const ScenePart& part, const core::Camera& camera) {
+    test::ValidationGuard guard;
+    const mpi::Communicator world = mpi::Communicator::world();
+    const auto rank = uint32_t(world.rank()), ranks = uint32_t(world.size());
+    core::RenderSettings settings;
+    settings.maxPathLength = 3;  // direct light, one indirect bounce and a second one
+    settings.pixelSamples = 2;
+    settings.background = {0.1f, 0.1f, 0.15f, 1.0f};
+
+    core::SceneDescription mine = part(rank, ranks);
+    mine.lights = mpi::gatherLights(world, mine.lights);
+    // Lights are picked by power, and a directional light's counts through the whole world's bounds.
+    bvh::Aabb bounds = test::worldBounds(mine);
+    world.min(std::span<float>(&bounds.lo.x, 3));
+    world.max(std::span<float>(&bounds.hi.x, 3));
+    mine.lightSceneRadius = 0.5f * glm::length(bounds.hi - bounds.lo);
+    mpi::RingExchange ring(world);
+    core::PathTracerOptions options;
+    options.exchange = &ring;
+    test::Rendered split = test::render(mine, camera, settings, kSize, true, options);
+    mpi::gatherFrame(world, kSize, sizeof(glm::vec4), split.color.data());
+    mpi::gatherFrame(world, kSize, sizeof(float), split.depth.data());
+    const uint64_t raysSent = world.sum(ring.stats().raysSent);
+    if (ranks > 1) CHECK(raysSent > 0);
+    CHECK(split.stats.flaggedRays == 0);
+    if (rank != 0) return;
+
+    core::SceneDescription all = part(0, 1);
+    const bvh::Aabb allBounds = test::worldBounds(all);
+    all.lightSceneRadius = 0.5f * glm::length(allBounds.hi - allBounds.lo);
+    CHECK(all.lightSceneRadius == mine.lightSceneRadius);
+    const test::Rendered whole = test::render(all, camera, settings, kSize, true);
+    const Comparison c = compare(split.color, whole.color);
+    MESSAGE(ranks << " ranks: " << c.equal << " of " << c.pixels << " pixels equal the one-rank render; rays sent "
+                  << raysSent);
+    CHECK(c.equal * 1000 >= c.pixels * 999);  // >= 99.9% of pixels
+    uint64_t depthEqual = 0;
+    for (size_t i = 0; i < whole.depth.size(); ++i) depthEqual += split.depth[i] == whole.depth[i];
+    CHECK(depthEqual * 1000 >= whole.depth.size() * 999);
+
+    // The split matters: rank 0's part alone (its own lights, no exchange) renders a clearly different
+    // image, so agreement above is the exchange's doing.
+    if (ranks > 1) {
+        const test::Rendered alone = test::render(part(0, ranks), camera, settings, kSize, true);
+        CHECK(compare(alone.color, whole.color).equal * 10 < c.pixels * 9);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("data parallel: 4x4x4 boxes split over the ranks render as one rank holding all of them") {
+    checkEquivalence(test::boxesPart, test::boxesCamera());
+}
+
+TEST_CASE("data parallel: mixed meshes, spheres, cylinders, metal and transparency split over the ranks") {
+    checkEquivalence(test::mixedPart, test::mixedCamera());
+}
+
+TEST_CASE("data parallel: world bounds are reduced, lights gathered in rank order") {
+    const mpi::Communicator world = mpi::Communicator::world();
+    std::vector<core::Light> mine(size_t(world.rank()) + 1);
+    for (core::Light& light : mine) light.intensity = float(world.rank());
+    const std::vector<core::Light> all = mpi::gatherLights(world, mine);
+    const int n = world.size();
+    CHECK(all.size() == size_t(n * (n + 1) / 2));
+    if (!all.empty()) CHECK(all.back().intensity == float(n - 1));
+    float lo[3] = {float(world.rank()), 0.0f, -1.0f};
+    world.min(lo);
+    CHECK(lo[0] == 0.0f);
+    float hi[1] = {float(world.rank())};
+    world.max(hi);
+    CHECK(hi[0] == float(n - 1));
+}

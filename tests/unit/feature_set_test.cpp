@@ -1,0 +1,103 @@
+// The FeatureSet of a frame and the pipelines it selects: a triangle-only scene traces and shades with
+// kernels specialised for triangles only (no sphere, cylinder, cone or volume variant in use), a scene
+// without lights issues no shadow rays, unrequested channels get no buffers, and the specialised image
+// equals the all-features one bit for bit.
+#include "core/render/PathTracer.h"
+#include "shaders/shared/channels.h"
+#include "tests/support/RenderHelpers.h"
+#include "tests/support/SceneGenerators.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstring>
+
+using namespace ripple;
+using ripple::test::testContext;
+
+namespace {
+
+core::SceneDescription litSquare(bool withLight) {
+    core::SceneDescription scene = test::sceneOf(test::squareMesh(2.0f));
+    scene.materials.push_back(core::Material{});
+    if (withLight) scene.lights.push_back(core::Light{});  // directional, straight down
+    return scene;
+}
+
+}  // namespace
+
+TEST_CASE("feature set: what a scene holds") {
+    core::Scene triangles(testContext(), litSquare(false));
+    CHECK(triangles.features() == gpu::FEATURE_TRIANGLES);
+    core::SceneDescription mixed = litSquare(true);
+    mixed.sphereSets.push_back(core::SphereSet{{{0, 0, 1}}, {0.5f}, {}, {}});
+    mixed.instances.push_back(core::InstanceDescription{{core::GeometryKind::Spheres, 0}});
+    mixed.materials[0].emissive = glm::vec3(1.0f);
+    mixed.materials[0].opacity = 0.5f;
+    core::Scene all(testContext(), mixed);
+    CHECK(all.features() == (gpu::FEATURE_TRIANGLES | gpu::FEATURE_SPHERES | gpu::FEATURE_EMISSIVE |
+                             gpu::FEATURE_ALPHA | (1u << gpu::FEATURE_LIGHT_SHIFT)));
+    CHECK(core::FeatureSet{all.features()}.describe() == "triangles spheres emissive alpha light:0");
+}
+
+// Exact: the pipelines in use after rendering a triangle-only scene carry no sphere/cylinder/cone/volume
+// bit, no trace_any variant for triangles was ever needed (no lights: zero shadow rays), and the image
+// equals the unspecialised render's bit for bit (specialisation removes code, never changes results).
+TEST_CASE("feature set: a triangle-only scene runs triangle-only kernels") {
+    test::ValidationGuard guard;
+    const core::SceneDescription description = litSquare(false);
+    core::Scene scene(testContext(), description);
+    core::RenderSettings settings;
+    settings.ambientRadiance = 1.0f;
+    settings.pixelSamples = 2;
+    core::PathTracer specialised(testContext());
+    specialised.resize({16, 16}, false);
+    const core::FrameStats stats = specialised.render(scene, test::lookingDown(2.0f, 3.0f), settings);
+    CHECK(specialised.features().bits == gpu::FEATURE_TRIANGLES);
+    CHECK(stats.shadowRays == 0);
+    const uint32_t unwanted = gpu::FEATURE_SPHERES | gpu::FEATURE_CYLINDERS | gpu::FEATURE_CONES | gpu::FEATURE_VOLUMES |
+                              gpu::FEATURE_TEXTURES;
+    int inUse = 0;
+    for (const core::PipelineCache::Entry& e : specialised.pipelines()) {
+        if (!e.inUse) continue;
+        ++inUse;
+        CAPTURE(e.kernel);
+        CHECK((e.features & unwanted) == 0);
+        if (e.kernel == "trace_any") CHECK(e.features == gpu::FEATURE_TRIANGLES);  // selected, never dispatched
+    }
+    CHECK(inUse == 3);  // trace_closest, trace_any, pt_surface
+
+    core::PathTracerOptions unspecialisedOptions;
+    unspecialisedOptions.specialize = false;
+    core::PathTracer unspecialised(testContext(), {}, unspecialisedOptions);
+    unspecialised.resize({16, 16}, false);
+    unspecialised.render(scene, test::lookingDown(2.0f, 3.0f), settings);
+    CHECK(unspecialised.features().bits == gpu::FEATURE_ALL);
+    std::vector<glm::vec4> a(256), b(256);
+    specialised.readColor(core::ColorFormat::Rgba32Float, a.data());
+    unspecialised.readColor(core::ColorFormat::Rgba32Float, b.data());
+    CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0);
+
+    // A second scene with spheres selects another variant; the triangle one stays cached.
+    core::SceneDescription spheres = litSquare(false);
+    spheres.sphereSets.push_back(core::SphereSet{{{0, 0, 1}}, {0.5f}, {}, {}});
+    spheres.instances[0] = core::InstanceDescription{{core::GeometryKind::Spheres, 0}};
+    core::Scene sphereScene(testContext(), spheres);
+    specialised.render(sphereScene, test::lookingDown(2.0f, 3.0f), settings);
+    int cachedTriangleVariants = 0;
+    for (const core::PipelineCache::Entry& e : specialised.pipelines())
+        if (!e.inUse && e.kernel == "trace_closest" && e.features == gpu::FEATURE_TRIANGLES) ++cachedTriangleVariants;
+    CHECK(cachedTriangleVariants == 1);
+}
+
+// Exact byte counts: no optional channel, no bytes; each one asked for adds exactly its buffer.
+TEST_CASE("feature set: unrequested channels allocate nothing") {
+    core::PathTracer tracer(testContext());
+    tracer.resize({8, 4}, core::FrameChannels{});
+    CHECK(tracer.channelBytes() == 0);
+    CHECK_THROWS_AS(tracer.readChannel(core::SurfaceChannel::Albedo, nullptr), std::logic_error);
+    tracer.resize({8, 4}, core::FrameChannels{.objectId = true});
+    CHECK(tracer.channelBytes() == 32 * 4 + sizeof(gpu::ChannelBuffers));
+    tracer.resize({8, 4}, core::FrameChannels{.depth = true, .albedo = true});
+    CHECK(tracer.channelBytes() == 32 * 4 + 32 * 16 + sizeof(gpu::ChannelBuffers));
+}
