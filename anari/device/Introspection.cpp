@@ -27,6 +27,7 @@ constexpr float kOrigin[3] = {0.0f, 0.0f, 0.0f};
 constexpr float kMinusZ[3] = {0.0f, 0.0f, -1.0f};
 constexpr float kPlusY[3] = {0.0f, 1.0f, 0.0f};
 constexpr float kPlusX[3] = {1.0f, 0.0f, 0.0f};
+constexpr float kPlusZ[3] = {0.0f, 0.0f, 1.0f};
 constexpr float kUnitRegion[4] = {0.0f, 0.0f, 1.0f, 1.0f};
 constexpr float kIdentity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 constexpr float kNoOffset[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -129,20 +130,38 @@ const std::vector<Entry>& table() {
         {ANARI_MATERIAL, "matte", "Lambertian diffuse",
          joined({kName, kAlpha, {
              {"color", ANARI_FLOAT32_VEC3, "diffuse colour", kGrey},
-             {"color", ANARI_SAMPLER, "diffuse colour from an image2D sampler"},
+             {"color", ANARI_SAMPLER, "diffuse colour from an image1D/image2D sampler"},
              {"color", ANARI_STRING, "diffuse colour from the geometry's colour attribute", "color", kColorAttribute},
              {"opacity", ANARI_FLOAT32, "opacity", &kOne},
+             {"opacity", ANARI_SAMPLER, "opacity from a sampler's first component"},
          }})},
         {ANARI_MATERIAL, "physicallyBased", "glTF metallic-roughness",
          joined({kName, kAlpha, {
              {"baseColor", ANARI_FLOAT32_VEC3, "base colour", kWhite},
-             {"baseColor", ANARI_SAMPLER, "base colour from an image2D sampler"},
+             {"baseColor", ANARI_SAMPLER, "base colour from an image1D/image2D sampler"},
              {"baseColor", ANARI_STRING, "base colour from the geometry's colour attribute", "color", kColorAttribute},
              {"opacity", ANARI_FLOAT32, "opacity", &kOne},
+             {"opacity", ANARI_SAMPLER, "opacity from a sampler's first component"},
              {"metallic", ANARI_FLOAT32, "metalness", &kOne},
+             {"metallic", ANARI_SAMPLER, "metalness from a sampler's first component"},
              {"roughness", ANARI_FLOAT32, "roughness", &kOne},
+             {"roughness", ANARI_SAMPLER, "roughness from a sampler's first component"},
              {"emissive", ANARI_FLOAT32_VEC3, "emitted radiance", kBlack},
+             {"emissive", ANARI_SAMPLER, "emitted radiance from a sampler's rgb"},
+             {"normal", ANARI_SAMPLER, "tangent-space normal map (rgb in [0,1]; needs texture coordinates)"},
              {"ior", ANARI_FLOAT32, "index of refraction", &kIor},
+         }})},
+        {ANARI_SAMPLER, "image1D", "1D image texture (a colour map)",
+         joined({kName, {
+             {"image", ANARI_ARRAY1D, "texels (UFIXED8_VEC4, UFIXED8_RGBA_SRGB, FLOAT32_VEC4...)", nullptr, nullptr,
+              true},
+             {"inAttribute", ANARI_STRING, "texture coordinate attribute (first component used)", "attribute0",
+              kAttributes},
+             {"filter", ANARI_STRING, "texel filter", "linear", kFilters},
+             {"wrapMode1", ANARI_STRING, "wrap mode", "clampToEdge", kWrapModes},
+             {"inTransform", ANARI_FLOAT32_MAT4, "applied to (u, v, 0, 1) before lookup", kIdentity},
+             {"inOffset", ANARI_FLOAT32_VEC4, "added after inTransform", kNoOffset},
+             {"outTransform", ANARI_FLOAT32_MAT4, "applied to the texel", kIdentity},
          }})},
         {ANARI_SAMPLER, "image2D", "2D image texture",
          joined({kName, {
@@ -199,6 +218,14 @@ const std::vector<Entry>& table() {
              {"radiance", ANARI_FLOAT32, "W/sr/m^2, takes precedence"},
              {"c0", ANARI_FLOAT32_VEC3, "photometric C0 direction (unused: no intensityDistribution)"},
          }})},
+        {ANARI_LIGHT, "hdri", "equirectangular environment, importance-sampled",
+         joined({kLightCommon, {
+             {"radiance", ANARI_ARRAY2D, "W/sr/m^2 per texel (FLOAT32_VEC3 or VEC4)", nullptr, nullptr, true},
+             {"direction", ANARI_FLOAT32_VEC3, "direction the image centre is seen in", kPlusX},
+             {"up", ANARI_FLOAT32_VEC3, "direction of the image's top row", kPlusZ},
+             {"scale", ANARI_FLOAT32, "factor on the radiance", &kOne},
+             {"layout", ANARI_STRING, "pixel layout (only equirectangular)", "equirectangular", kLayouts},
+         }})},
         {ANARI_CAMERA, "perspective", "pinhole camera",
          joined({kViewCommon, {
              {"fovy", ANARI_FLOAT32, "vertical field of view in radians", &kFovy},
@@ -222,6 +249,8 @@ const std::vector<Entry>& table() {
              {"ambientRadiance", ANARI_FLOAT32, "radiance of the uniform environment light", &kZero},
              {"pixelSamples", ANARI_INT32, "samples per pixel added by each anariRenderFrame", &kOneSample},
              {"maxPathLength", ANARI_INT32, "surface interactions per path", &kPathLength},
+             {"maxRadiance", ANARI_FLOAT32, "largest component of one contribution (biased, less noise); 0: off",
+              &kZero},
          }})},
         {ANARI_SURFACE, "", "a geometry with its material",
          joined({kName, {
@@ -281,7 +310,7 @@ const char** deviceExtensions() {
         "ANARI_KHR_GEOMETRY_TRIANGLE",    "ANARI_KHR_GEOMETRY_QUAD",          "ANARI_KHR_GEOMETRY_SPHERE",
         "ANARI_KHR_GEOMETRY_CYLINDER",    "ANARI_KHR_MATERIAL_MATTE",         "ANARI_KHR_MATERIAL_PHYSICALLY_BASED",
         "ANARI_KHR_SAMPLER_IMAGE2D",      "ANARI_KHR_LIGHT_DIRECTIONAL",      "ANARI_KHR_LIGHT_POINT",
-        "ANARI_KHR_LIGHT_QUAD",           "ANARI_KHR_LIGHT_SPOT",             "ANARI_KHR_LIGHT_RING",           "ANARI_KHR_CAMERA_PERSPECTIVE",     "ANARI_KHR_CAMERA_ORTHOGRAPHIC",
+        "ANARI_KHR_LIGHT_QUAD",           "ANARI_KHR_LIGHT_SPOT",             "ANARI_KHR_LIGHT_RING",           "ANARI_KHR_LIGHT_HDRI",           "ANARI_KHR_SAMPLER_IMAGE1D",           "ANARI_KHR_CAMERA_PERSPECTIVE",     "ANARI_KHR_CAMERA_ORTHOGRAPHIC",
         "ANARI_KHR_INSTANCE_TRANSFORM",   "ANARI_KHR_RENDERER_BACKGROUND_COLOR", "ANARI_KHR_RENDERER_AMBIENT_LIGHT",
         "ANARI_KHR_GEOMETRY_CONE",        "ANARI_KHR_GEOMETRY_CURVE",         "ANARI_KHR_CAMERA_OMNIDIRECTIONAL",
         "ANARI_KHR_CAMERA_DEPTH_OF_FIELD", "ANARI_KHR_FRAME_CHANNEL_ALBEDO",  "ANARI_KHR_FRAME_CHANNEL_NORMAL",

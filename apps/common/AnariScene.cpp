@@ -29,7 +29,8 @@ const char* wrapName(GltfWrap wrap) {
 
 class WorldBuilder {
 public:
-    WorldBuilder(ANARIDevice d, const GltfScene& scene) : d_(d), scene_(scene), handles_(d) {}
+    WorldBuilder(ANARIDevice d, const GltfScene& scene, bool withLights)
+        : d_(d), scene_(scene), withLights_(withLights), handles_(d) {}
 
     AnariWorld build() {
         std::vector<ANARIGroup> groups(scene_.meshes.size(), nullptr);
@@ -71,7 +72,7 @@ public:
             ANARIArray1D array = handles_.keep(anari::newArray1D(d_, instances, ANARI_INSTANCE), "array");
             setObject(d_, out.world, "instance", ANARI_ARRAY1D, array);
         }
-        if (!lights.empty()) {
+        if (!lights.empty() && withLights_) {
             ANARIArray1D array = handles_.keep(anari::newArray1D(d_, lights, ANARI_LIGHT), "array");
             setObject(d_, out.world, "light", ANARI_ARRAY1D, array);
         }
@@ -178,6 +179,7 @@ private:
         m.baseColorTexture = usable(m.baseColorTexture);
         m.metallicRoughnessTexture = usable(m.metallicRoughnessTexture);
         m.emissiveTexture = usable(m.emissiveTexture);
+        m.normalTexture = usable(m.normalTexture);
         ANARIMaterial mat = handles_.keep(anariNewMaterial(d_, "physicallyBased"), "physicallyBased material");
         const glm::vec4 factor = m.baseColorFactor;
         if (m.baseColorTexture >= 0) {
@@ -209,6 +211,8 @@ private:
         } else if (m.emissive != glm::vec3(0.0f)) {
             set(d_, mat, "emissive", m.emissive);
         }
+        if (m.normalTexture >= 0)  // tangent-space, linear rgb in [0, 1] as glTF stores it
+            setObject(d_, mat, "normal", ANARI_SAMPLER, sampler(m.normalTexture, false, glm::mat4(1.0f)));
         set(d_, mat, "alphaMode", m.alphaMode == GltfAlphaMode::Mask    ? "mask"
                                   : m.alphaMode == GltfAlphaMode::Blend ? "blend"
                                                                         : "opaque");
@@ -240,6 +244,7 @@ private:
 
     ANARIDevice d_;
     const GltfScene& scene_;
+    bool withLights_ = true;
     anari::HandleList handles_;
     std::map<uint32_t, ANARIGeometry> geometries_;
     std::map<std::pair<uint32_t, bool>, ANARIArray2D> images_;
@@ -249,8 +254,8 @@ private:
 
 }  // namespace
 
-AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene) {
-    return WorldBuilder(device, scene).build();
+AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene, bool withLights) {
+    return WorldBuilder(device, scene, withLights).build();
 }
 
 CameraView cameraView(const GltfCamera& camera) {

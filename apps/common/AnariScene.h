@@ -41,8 +41,9 @@ struct AnariWorld {
 // vertex.attribute0, which the image2D samplers read. glTF light intensities are passed on unchanged (lux
 // as W/m^2, candela as W/sr). A scene with neither lights nor untextured emissive materials gets a key
 // directional light and an ambient fill, so that it is not black. Throws std::runtime_error when the
-// device returns no object.
-AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene);
+// device returns no object. withLights false: the world gets no lights, while the ambient fill and the
+// background are chosen as with them (a data-parallel rank whose lights another rank holds).
+AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene, bool withLights = true);
 
 // The glTF camera as a CameraView (node transform applied; orthographic height is twice ymag).
 CameraView cameraView(const GltfCamera& camera);

@@ -5,7 +5,11 @@
 #include "apps/common/DemoScene.h"
 #include "apps/common/GltfScene.h"
 #include "apps/common/ImageIO.h"
+#include "apps/common/ScenePartition.h"
 #include "apps/ripple-render/Progress.h"
+#include "apps/ripple-render/RankStats.h"
+#include "mpi/Communicator.h"
+#include "mpi/Runtime.h"
 
 #include <CLI/CLI.hpp>
 
@@ -30,6 +34,8 @@ struct Options {
     std::optional<int> camera;
     std::optional<float> ambient;
     bool quiet = false;
+    std::string partition = "round-robin";  // under mpirun: which share of the file each rank imports
+    bool stats = false;
 };
 
 // The device's messages: errors always, warnings unless --quiet, chatter never.
@@ -89,7 +95,9 @@ struct Session {
     }
 };
 
-int render(const Options& options) {
+int render(const Options& options, const mpi::Communicator& ranks) {
+    const PartitionKind partition = parsePartitionKind(options.partition);
+    const bool root = ranks.rank() == 0;
     const glm::uvec2 size = parseSize(options.size);
     const bool pfm = std::filesystem::path(options.output).extension() == ".pfm";
     if (!options.scene.empty() && !options.demo.empty())
@@ -101,7 +109,7 @@ int render(const Options& options) {
     std::optional<GltfScene> gltf;
     if (!options.scene.empty()) {
         gltf = loadGltf(options.scene);
-        if (!options.quiet)
+        if (!options.quiet && root)
             for (const std::string& warning : gltf->warnings) std::fprintf(stderr, "[ripple-render] WARNING: %s\n", warning.c_str());
     }
 
@@ -114,7 +122,14 @@ int render(const Options& options) {
     s.device = anariNewDevice(s.library, "default");
     if (!s.device) throw std::runtime_error("the ANARI library '" + options.library + "' created no device");
 
-    AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf) : buildDemoScene(s.device, demo);
+    // Under mpirun each rank imports only its share of the file, so that no rank holds the whole scene;
+    // the lights become ANARI lights on rank 0 alone (the device gathers every rank's lights).
+    if (ranks.distributed() && !gltf)
+        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
+    if (gltf) gltf = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()), partition);
+    RankStats stats;
+    stats.triangles = gltf ? gltf->trianglesDrawn() : 0;
+    AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf, root) : buildDemoScene(s.device, demo);
     s.objects.push_back(scene.world);
 
     // Bounds as the device computed them; the scene's own where the device does not answer.
@@ -161,7 +176,7 @@ int render(const Options& options) {
     anariCommitParameters(s.device, frame);
 
     const uint32_t frames = options.spp / batch;
-    Progress progress(options.spp, !options.quiet);
+    Progress progress(options.spp, !options.quiet && root);
     bool reportsRays = true;  // until the device says it has no such property (only Ripple has it)
     for (uint32_t f = 0; f < frames; ++f) {
         anariRenderFrame(s.device, frame);
@@ -171,9 +186,24 @@ int render(const Options& options) {
             reportsRays = anariGetProperty(s.device, frame, "ripple.raysPerSecond", ANARI_FLOAT32, &raysPerSecond,
                                            sizeof raysPerSecond, ANARI_WAIT);
         progress.update((f + 1) * batch, reportsRays ? raysPerSecond : 0.0f);
+        if (options.stats) {  // this rank's traffic in the frame just rendered
+            uint64_t rays = 0, bytes = 0;
+            anariGetProperty(s.device, frame, "ripple.raysSent", ANARI_UINT64, &rays, sizeof rays, ANARI_WAIT);
+            anariGetProperty(s.device, frame, "ripple.bytesSent", ANARI_UINT64, &bytes, sizeof bytes, ANARI_WAIT);
+            stats.raysSent += rays;
+            stats.bytesSent += bytes;
+            ++stats.frames;
+        }
     }
     progress.finish();
     const double seconds = progress.elapsedSeconds();
+    if (options.stats) {
+        anariGetProperty(s.device, frame, "ripple.sceneBytes", ANARI_UINT64, &stats.sceneBytes, sizeof stats.sceneBytes,
+                         ANARI_WAIT);
+        printRankStats(ranks, stats);
+    }
+    // Only rank 0 holds the final image (data-parallel ANARI); the other ranks are done.
+    if (!root) return log.errors > 0 ? 1 : 0;
 
     uint32_t width = 0, height = 0;
     ANARIDataType mappedType = ANARI_UNKNOWN;
@@ -205,6 +235,10 @@ int render(const Options& options) {
 }  // namespace ripple::apps
 
 int main(int argc, char** argv) {
+    // Under mpirun every rank runs this program on its share of the scene (data-parallel ANARI).
+    ripple::mpi::Runtime runtime(&argc, &argv);
+    // Made before anything can fail: duplicating the communicator is collective.
+    const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();
     using ripple::apps::Options;
     Options options;
     CLI::App app{"ripple-render: render a glTF 2.0 file or a built-in demo scene through an ANARI library"};
@@ -223,11 +257,23 @@ int main(int argc, char** argv) {
     app.add_option("--ambient", options.ambient, "ambient radiance (default: what the scene suggests)")
         ->check(CLI::NonNegativeNumber);
     app.add_flag("-q,--quiet", options.quiet, "no progress line and no warnings");
-    CLI11_PARSE(app, argc, argv);
+    app.add_option("--partition", options.partition,
+                   "under mpirun, each rank imports: round-robin (whole mesh instances dealt in turn) or spatial "
+                   "(the triangles of one k-d region per rank)")
+        ->capture_default_str();
+    app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // Every rank parses the same arguments and reaches the same verdict; one rank speaks.
+        return ranks.rank() == 0 ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 1);
+    }
 
     try {
-        return ripple::apps::render(options);
+        return ripple::apps::render(options, ranks);
     } catch (const std::exception& e) {
+        // Other ranks may wait for this one in a collective call: end them all, never hang.
+        if (ranks.distributed()) ranks.abort(std::string("ripple-render: ") + e.what());
         std::fprintf(stderr, "[ripple-render] ERROR: %s\n", e.what());
         return 1;
     }

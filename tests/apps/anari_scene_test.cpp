@@ -54,6 +54,7 @@ const std::map<std::string, ParameterTable>& specification() {
           {"metallic", {kFloatParam}},
           {"roughness", {kFloatParam}},
           {"emissive", {kColorParam}},
+          {"normal", {{ANARI_SAMPLER}}},
           {"alphaMode", {{ANARI_STRING}, {}, {"opaque", "blend", "mask"}}},
           {"alphaCutoff", kFloat}}},
         {"sampler/image2D",
@@ -192,11 +193,11 @@ TEST_CASE("glTF sample files become spec-conforming ANARI objects, shared as the
         ANARIDevice d = newFakeDevice();
         const AnariWorld world = buildAnariWorld(d, scene);
         CHECK(violations(fakeDevice(), world.world) == "");
-        // baseColor, metallic, roughness, emissive
-        CHECK(count(ANARI_SAMPLER, "image2D") == 4);
-        // baseColor and emissive images as sRGB, the metallic-roughness image as linear data: three arrays
+        // baseColor, metallic, roughness, emissive, normal
+        CHECK(count(ANARI_SAMPLER, "image2D") == 5);
+        // baseColor and emissive images as sRGB, the metallic-roughness and normal images as linear data
         const auto images = fakeDevice().ofType(ANARI_ARRAY2D);
-        REQUIRE(images.size() == 3);
+        REQUIRE(images.size() == 4);
         int srgb = 0;
         for (const FakeObject* a : images) {
             CHECK(a->count1 == 2048);

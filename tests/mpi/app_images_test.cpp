@@ -1,6 +1,7 @@
 // Checks on what the data-parallel apps wrote under mpirun (the ctest runs before this one, see
 // CMakeLists.txt): ripple-boxes with 2 and 3 ranks equals the one-rank image holding every box, and the
-// tutorial's image on rank 0 shows every rank's quad. The folder comes from RIPPLE_MPI_IMAGES.
+// tutorial's image on rank 0 shows every rank's quad, and ripple-render splitting a glTF file over 2 ranks
+// equals 1 rank. The folder comes from RIPPLE_MPI_IMAGES.
 #include <doctest/doctest.h>
 #include <stb_image.h>
 
@@ -72,6 +73,23 @@ TEST_CASE("ripple-boxes: 2 and 3 ranks through the ANARI device equal one rank h
         const size_t equal = equalPixels(image, whole, 1e-5f);
         MESSAGE(split << ": " << equal << " of " << whole.pixels.size() << " pixels equal the one-rank image");
         CHECK(equal * 1000 >= whole.pixels.size() * 999);  // >= 99.9% of pixels within 1e-5 relative
+    }
+}
+
+TEST_CASE("ripple-render: 2 ranks importing their share of a glTF file equal 1 rank holding all of it") {
+    const std::filesystem::path whole = imageFolder() / "render_1_round-robin.pfm";
+    if (!std::filesystem::exists(whole)) {
+        MESSAGE("skipped: the glTF test file was not found at configure time (RIPPLE_DATA_DIR)");
+        return;
+    }
+    const FloatImage reference = readPfm(whole);
+    for (const std::string split : {"render_2_round-robin.pfm", "render_2_spatial.pfm"}) {
+        CAPTURE(split);
+        const FloatImage image = readPfm(imageFolder() / split);
+        REQUIRE(image.pixels.size() == reference.pixels.size());
+        const size_t equal = equalPixels(image, reference, 1e-5f);
+        MESSAGE(split << ": " << equal << " of " << reference.pixels.size() << " pixels equal the one-rank image");
+        CHECK(equal * 1000 >= reference.pixels.size() * 999);  // >= 99.9% of pixels within 1e-5 relative
     }
 }
 

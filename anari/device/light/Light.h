@@ -1,4 +1,4 @@
-// ANARI light: directional, point, quad, spot and ring lights become a core::Light (in the space of the group or
+// ANARI light: directional, point, quad, spot, ring and hdri lights become a core::Light (in the space of the group or
 // world that holds them; SceneSync applies instance transforms).
 #pragma once
 
@@ -13,6 +13,8 @@ class Light : public SceneObject {
 public:
     Light(DeviceState& state, std::string subtype) : SceneObject(state, ANARI_LIGHT, std::move(subtype)) {}
     const core::Light& light() const { return light_; }
+    // The image an hdri light emits (its texture index is set by SceneSync); nullptr for other lights.
+    virtual const core::Texture* image() const { return nullptr; }
 
 protected:
     // For commit(): "color" (default white), with non-finite or negative values reported.
@@ -28,5 +30,6 @@ Light* newPointLight(DeviceState& state);
 Light* newQuadLight(DeviceState& state);
 Light* newSpotLight(DeviceState& state);
 Light* newRingLight(DeviceState& state);
+Light* newHdriLight(DeviceState& state);
 
 }  // namespace ripple::device

@@ -15,7 +15,29 @@ void Material::reset(core::Material::Kind kind, glm::vec3 baseColor) {
     material_ = core::Material{};
     material_.kind = kind;
     material_.baseColor = baseColor;
-    baseColorSampler_ = nullptr;
+    samplers_.fill(nullptr);
+}
+
+int32_t& textureIndexOf(core::Material& material, TextureSlot slot) {
+    switch (slot) {
+        case TextureSlot::Opacity: return material.opacityTexture;
+        case TextureSlot::Metallic: return material.metallicTexture;
+        case TextureSlot::Roughness: return material.roughnessTexture;
+        case TextureSlot::Emissive: return material.emissiveTexture;
+        case TextureSlot::Normal: return material.normalTexture;
+        default: return material.baseColorTexture;
+    }
+}
+
+bool Material::pullSampler(std::string_view name, TextureSlot slot) {
+    auto* sampler = dynamic_cast<Sampler*>(getObject(name, ANARI_SAMPLER));
+    if (!sampler) {
+        reportWarning("parameter '" + std::string(name) + "' is not a sampler Ripple knows; ignored");
+        return false;
+    }
+    useChild(sampler);
+    samplers_[size_t(slot)] = sampler;
+    return true;
 }
 
 void Material::pullBaseColor(std::string_view name) {
@@ -27,20 +49,11 @@ void Material::pullBaseColor(std::string_view name) {
         case ANARI_FLOAT32_VEC4:
             material_.baseColor = glm::vec3(get<glm::vec4>(name, glm::vec4(material_.baseColor, 1)));
             break;
-        case ANARI_SAMPLER: {
-            Object* object = getObject(name, ANARI_SAMPLER);
-            auto* sampler = dynamic_cast<Sampler*>(object);
-            if (!sampler) {
-                reportWarning("parameter " + quotedName +
-                              " is a sampler of an unknown subtype; using the default colour");
-                return;
-            }
-            useChild(sampler);
-            baseColorSampler_ = sampler;
+        case ANARI_SAMPLER:
+            if (!pullSampler(name, TextureSlot::BaseColor)) return;
             // The texture multiplies baseColor, so a textured colour starts from white.
             material_.baseColor = glm::vec3(1.0f);
             break;
-        }
         case ANARI_STRING: {
             const std::string attribute = getString(name, "");
             if (attribute == "color") {
@@ -62,7 +75,12 @@ void Material::pullBaseColor(std::string_view name) {
     }
 }
 
-float Material::pullFactor(std::string_view name, float fallback) {
+float Material::pullFactor(std::string_view name, float fallback, TextureSlot slot) {
+    if (parameterType(name) == ANARI_SAMPLER) return pullSampler(name, slot) ? 1.0f : fallback;
+    return pullValue(name, fallback);
+}
+
+float Material::pullValue(std::string_view name, float fallback) {
     const ANARIDataType type = parameterType(name);
     if (type == ANARI_SAMPLER || type == ANARI_STRING) {
         (void)findParameter(name);

@@ -13,7 +13,7 @@ public:
     void commit() override {
         reset(core::Material::Kind::Matte, glm::vec3(0.8f));
         pullBaseColor("color");
-        material_.opacity = std::clamp(pullFactor("opacity", 1.0f), 0.0f, 1.0f);
+        material_.opacity = std::clamp(pullFactor("opacity", 1.0f, TextureSlot::Opacity), 0.0f, 1.0f);
         pullAlphaMode();
     }
 };

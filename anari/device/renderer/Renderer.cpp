@@ -1,9 +1,10 @@
 // Renderer parameters: "background" (KHR_RENDERER_BACKGROUND_COLOR), "ambientColor" and
-// "ambientRadiance" (KHR_RENDERER_AMBIENT_LIGHT), "pixelSamples" and "maxPathLength".
+// "ambientRadiance" (KHR_RENDERER_AMBIENT_LIGHT), "pixelSamples", "maxPathLength" and "maxRadiance".
 #include "anari/device/renderer/Renderer.h"
 
 #include "anari/device/scene/ArrayConversion.h"
 
+#include <cmath>
 #include <string>
 
 namespace ripple::device {
@@ -27,6 +28,12 @@ void Renderer::commit() {
     // Bounds keep one renderFrame call and one path of a bounded length (lavapipe runs everything on the CPU).
     settings_.pixelSamples = pullCount("pixelSamples", settings_.pixelSamples, 1024);
     settings_.maxPathLength = pullCount("maxPathLength", settings_.maxPathLength, 64);
+    // A clamp on single contributions (biased, less noise); 0, the default, turns it off.
+    settings_.maxRadiance = get<float>("maxRadiance", 0.0f);
+    if (!std::isfinite(settings_.maxRadiance) || settings_.maxRadiance < 0.0f) {
+        reportWarning("parameter 'maxRadiance' must be finite and not negative; no clamp");
+        settings_.maxRadiance = 0.0f;
+    }
 }
 
 uint32_t Renderer::pullCount(std::string_view name, uint32_t fallback, uint32_t most) {

@@ -1,5 +1,5 @@
-// ANARI sampler: turns a surface attribute into a colour. Ripple's one subtype, image2D, becomes a
-// core::Texture that materials reference.
+// ANARI sampler: turns a surface attribute into a colour. Each subtype becomes a core::Texture that
+// materials reference. image3D is not supported (core has no 3D textures): the factory reports it unknown.
 #pragma once
 
 #include "anari/device/scene/SceneObject.h"
@@ -14,6 +14,7 @@ public:
     virtual const core::Texture* texture() const = 0;
 };
 
-Sampler* newImage2DSampler(DeviceState& state);
+// image1D (dimensions 1) or image2D (2).
+Sampler* newImageSampler(DeviceState& state, int dimensions);
 
 }  // namespace ripple::device

@@ -47,6 +47,7 @@ core::Light placedLight(core::Light light, const glm::mat4& transform) {
     light.direction = glm::normalize(linear * light.direction);
     light.edge1 = linear * light.edge1;
     light.edge2 = linear * light.edge2;
+    light.up = linear * light.up;
     return light;
 }
 
@@ -72,6 +73,7 @@ public:
             },
             [&](const Light& light, const Placement& placement) {
                 description_.lights.push_back(placedLight(light.light(), placement.transform));
+                if (const core::Texture* image = light.image()) description_.lights.back().texture = lightImageIndex(light, *image);
             });
         return std::move(description_);
     }
@@ -105,9 +107,16 @@ private:
         auto [it, added] = materials_.try_emplace(&material, uint32_t(description_.materials.size()));
         if (!added) return it->second;
         core::Material described = material.material();
-        if (const Sampler* sampler = material.baseColorSampler(); sampler && sampler->isValid() && sampler->texture())
-            described.baseColorTexture = textureIndex(*sampler);
+        for (size_t slot = 0; slot < kTextureSlotCount; ++slot)
+            if (const Sampler* sampler = material.sampler(TextureSlot(slot)); sampler && sampler->isValid() && sampler->texture())
+                textureIndexOf(described, TextureSlot(slot)) = textureIndex(*sampler);
         description_.materials.push_back(described);
+        return it->second;
+    }
+
+    int32_t lightImageIndex(const Light& light, const core::Texture& image) {
+        auto [it, added] = lightImages_.try_emplace(&light, int32_t(description_.textures.size()));
+        if (added) description_.textures.push_back(image);
         return it->second;
     }
 
@@ -121,6 +130,7 @@ private:
     std::unordered_map<const Geometry*, core::GeometryRef> geometries_;
     std::unordered_map<const Material*, uint32_t> materials_;
     std::unordered_map<const Sampler*, int32_t> textures_;
+    std::unordered_map<const Light*, int32_t> lightImages_;
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
-// Sampler subtype "image2D" (KHR_SAMPLER_IMAGE2D): a 2D image read at the texture coordinate
-// (attribute0), with filter, per-axis wrap modes and input/output transforms.
+// Sampler subtypes "image1D" and "image2D" (KHR_SAMPLER_IMAGE1D/2D): an image read at the texture
+// coordinate (attribute0), with filter, per-axis wrap modes and input/output transforms. A 1D image is a
+// core texture one row high, so only the coordinate's first component (after inTransform) matters.
 #include "anari/device/sampler/Sampler.h"
 
 #include "anari/device/scene/ArrayConversion.h"
@@ -18,24 +19,27 @@ core::Texture::Wrap wrapMode(const std::string& name) {
     return core::Texture::Wrap::ClampToEdge;
 }
 
-class Image2DSampler final : public Sampler {
+class ImageSampler final : public Sampler {
 public:
-    explicit Image2DSampler(DeviceState& state) : Sampler(state, "image2D") {}
+    ImageSampler(DeviceState& state, int dimensions)
+        : Sampler(state, dimensions == 1 ? "image1D" : "image2D"), dimensions_(dimensions) {}
 
     const core::Texture* texture() const override { return texture_ ? &*texture_ : nullptr; }
 
     void commit() override {
         forgetDependencies();
         texture_.reset();
-        Array* image = getArray("image", ANARI_ARRAY2D);
+        const ANARIDataType arrayType = dimensions_ == 1 ? ANARI_ARRAY1D : ANARI_ARRAY2D;
+        Array* image = getArray("image", arrayType);
         if (!image) {
-            invalidate(has("image") ? "parameter 'image' must be an ARRAY2D" : "missing required parameter 'image'");
+            invalidate(has("image") ? "parameter 'image' must be an " + std::string(ripple_anari::typeName(arrayType))
+                                    : "missing required parameter 'image'");
             return;
         }
         useArray(image);
         core::Texture texture;
         texture.width = uint32_t(image->dim(0));
-        texture.height = uint32_t(image->dim(1));
+        texture.height = dimensions_ == 1 ? 1u : uint32_t(image->dim(1));
         if (texture.width == 0 || texture.height == 0) {
             invalidate("parameter 'image' is empty");
             return;
@@ -51,7 +55,7 @@ public:
             reportWarning("parameter 'filter' has unknown value '" + filter + "'; using 'linear'");
         texture.linearFilter = filter != "nearest";
         texture.wrapS = wrapMode(checkedWrapMode("wrapMode1"));
-        texture.wrapT = wrapMode(checkedWrapMode("wrapMode2"));
+        texture.wrapT = dimensions_ == 1 ? core::Texture::Wrap::ClampToEdge : wrapMode(checkedWrapMode("wrapMode2"));
 
         // The input is (u, v, 0, 1), so an offset folds into the translation column exactly.
         texture.inTransform = get<glm::mat4>("inTransform", glm::mat4(1.0f));
@@ -108,13 +112,14 @@ private:
         return true;
     }
 
+    int dimensions_;
     std::optional<core::Texture> texture_;
 };
 
 }  // namespace
 
-Sampler* newImage2DSampler(DeviceState& state) {
-    return new Image2DSampler(state);
+Sampler* newImageSampler(DeviceState& state, int dimensions) {
+    return new ImageSampler(state, dimensions);
 }
 
 }  // namespace ripple::device

@@ -1,0 +1,390 @@
+// Render tests of the ANARI features beyond the basic subtypes: samplers (image1D, image2D driving every
+// physicallyBased parameter), hdri/spot/ring lights, cameras, cone/curve/capped cylinder geometry, the id,
+// albedo and normal channels, and the renderer's maxRadiance. Exact values where the scene allows them
+// (emission seen directly, ids), references (tests/anari/references, RIPPLE_UPDATE_REFERENCES=1) elsewhere.
+#include "tests/anari/RenderSession.h"
+
+#include <doctest/doctest.h>
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+using ripple::test::Image;
+using ripple::test::RenderSession;
+
+namespace {
+
+constexpr glm::uvec2 kSize{48, 48};
+constexpr int32_t kSamples = 64;
+// Reference metric: RMSE over linear RGB of all pixels between 8-bit sRGB images (48x48, paths of 3;
+// 64 samples per pixel, 128 for the sampler scene, 256 for spot and ring). The same build repeats a
+// reference exactly. The threshold allows for a change of sampling: two independent renders differ by
+// RMSE 0.010 (omnidirectional) to 0.020 (spot and ring), measured with lavapipe; a missing sampler, a
+// flipped texture or a light aimed elsewhere moves these scenes by far more.
+constexpr double kReferenceRmse = 0.03;
+constexpr uint32_t kNoId = std::numeric_limits<uint32_t>::max();
+
+void checkReference(RenderSession& s, const char* name, const Image& image) {
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    CHECK(ripple::test::compareWithReference(name, image, kReferenceRmse) <= kReferenceRmse);
+}
+
+// An upright quad in the z = 0 plane from (x0, y0) to (x1, y1), attribute0 = (u, v) over it.
+ANARIGeometry uvQuad(RenderSession& s, glm::vec2 lower, glm::vec2 upper) {
+    ANARIGeometry quad = s.keep(anariNewGeometry(s.device, "quad"));
+    s.setObject(quad, "vertex.position", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{lower.x, lower.y, 0}, {upper.x, lower.y, 0},
+                                                                    {upper.x, upper.y, 0}, {lower.x, upper.y, 0}}));
+    s.setObject(quad, "vertex.attribute0", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32_VEC2, std::vector<glm::vec2>{{0, 0}, {1, 0}, {1, 1}, {0, 1}}));
+    s.commit(quad);
+    return quad;
+}
+
+template <class T>
+ANARIArray2D image2D(RenderSession& s, ANARIDataType type, uint32_t width, uint32_t height, const std::vector<T>& texels) {
+    ANARIArray2D image = s.keep(anariNewArray2D(s.device, nullptr, nullptr, nullptr, type, width, height));
+    std::memcpy(anariMapArray(s.device, image), texels.data(), texels.size() * sizeof(T));
+    anariUnmapArray(s.device, image);
+    return image;
+}
+
+ANARISampler imageSampler(RenderSession& s, const char* subtype, ANARIObject image, const char* filter,
+                          const glm::mat4& outTransform = glm::mat4(1.0f)) {
+    ANARISampler sampler = s.keep(anariNewSampler(s.device, subtype));
+    s.setObject(sampler, "image", std::string(subtype) == "image1D" ? ANARI_ARRAY1D : ANARI_ARRAY2D, image);
+    s.set(sampler, "filter", filter);
+    s.setRaw(sampler, "outTransform", ANARI_FLOAT32_MAT4, &outTransform);
+    s.commit(sampler);
+    return sampler;
+}
+
+// Emission seen directly: no lights, black background and base colour, one bounce, so each pixel that
+// sees the surface is exactly its emission (float channel).
+ANARIRenderer emissionOnlyRenderer(RenderSession& s) {
+    return s.renderer(1, 1, glm::vec4(0, 0, 0, 1));
+}
+
+// Orthographic, looking down -z at the origin; the frame's aspect sets the width of the view.
+ANARICamera frontCamera(RenderSession& s, float height = 2.0f) {
+    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+    s.set(camera, "position", glm::vec3(0, 0, 3));
+    s.set(camera, "direction", glm::vec3(0, 0, -1));
+    s.set(camera, "up", glm::vec3(0, 1, 0));
+    s.set(camera, "height", height);
+    s.commit(camera);
+    return camera;
+}
+
+ANARIMaterial physicallyBased(RenderSession& s) {
+    ANARIMaterial material = s.keep(anariNewMaterial(s.device, "physicallyBased"));
+    return material;
+}
+
+// A stage like render_test's: grey floor, a directional light unless given lights, perspective camera.
+Image renderStage(RenderSession& s, std::vector<ANARISurface> surfaces, std::vector<ANARILight> lights = {},
+                  ANARICamera camera = nullptr, ANARIRenderer renderer = nullptr) {
+    surfaces.push_back(s.surface(s.floor(), s.matte(glm::vec3(0.7f))));
+    if (lights.empty()) lights.push_back(s.directional(glm::normalize(glm::vec3(-0.5f, -1.0f, -0.4f)), 3.0f));
+    if (!camera) camera = s.perspective({0.0f, 1.6f, 4.0f}, {0.0f, 0.5f, 0.0f});
+    if (!renderer) renderer = s.renderer(kSamples, 3);
+    return s.render(s.frame(s.world(surfaces, lights), camera, renderer, kSize, ANARI_UFIXED8_RGBA_SRGB));
+}
+
+template <class T>
+std::vector<T> mapChannel(RenderSession& s, ANARIFrame frame, const char* name, ANARIDataType expected) {
+    uint32_t width = 0, height = 0;
+    ANARIDataType type = ANARI_UNKNOWN;
+    const void* data = anariMapFrame(s.device, frame, name, &width, &height, &type);
+    REQUIRE_MESSAGE(data, s.log.dump());
+    CHECK(type == expected);
+    const auto* values = static_cast<const T*>(data);
+    std::vector<T> out(values, values + size_t(width) * height);
+    anariUnmapFrame(s.device, frame, name);
+    return out;
+}
+
+void setChannel(RenderSession& s, ANARIFrame frame, const char* name, ANARIDataType type) {
+    s.setRaw(frame, name, ANARI_DATA_TYPE, &type);
+}
+
+}  // namespace
+
+TEST_CASE("emissive from an image2D sampler (nearest) is seen exactly, texel by texel, the right way up") {
+    RenderSession s;
+    // 2x2 texels; row 0 is v = 0, at the bottom of the quad (frames also start at the bottom).
+    const std::vector<glm::vec4> texels{{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+    ANARISampler emissive = imageSampler(s, "image2D", image2D(s, ANARI_FLOAT32_VEC4, 2, 2, texels), "nearest",
+                                         glm::mat4(2.0f));  // scales rgb (and alpha) by 2
+    ANARIMaterial material = physicallyBased(s);
+    s.set(material, "baseColor", glm::vec3(0.0f));
+    s.setObject(material, "emissive", ANARI_SAMPLER, emissive);
+    s.commit(material);
+    ANARISurface surface = s.surface(uvQuad(s, {-1, -1}, {1, 1}), material);
+    ANARIFrame frame = s.frame(s.world({surface}, {}), frontCamera(s), emissionOnlyRenderer(s), {8, 8},
+                               ANARI_FLOAT32_VEC4);
+    const Image image = s.render(frame);
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    // Pixel centres of an 8x8 orthographic view of the quad: each 4x4 block sees one texel.
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x) {
+            const glm::vec3 expected = 2.0f * glm::vec3(texels[(y / 4) * 2 + x / 4]);
+            const glm::vec3 got(image.at(x, y));
+            INFO("pixel " << x << "," << y);
+            CHECK(glm::all(glm::lessThan(glm::abs(got - expected), glm::vec3(1e-4f))));
+        }
+}
+
+TEST_CASE("image1D sampler: a colour map along u, linear filter between texel centres") {
+    RenderSession s;
+    // Two texels: black at u = 0.25, white at u = 0.75; clamped beyond, linear between.
+    ANARIArray1D map = s.array(ANARI_FLOAT32_VEC4, std::vector<glm::vec4>{{0, 0, 0, 1}, {1, 1, 1, 1}});
+    ANARISampler sampler = imageSampler(s, "image1D", map, "linear");
+    ANARIMaterial material = physicallyBased(s);
+    s.set(material, "baseColor", glm::vec3(0.0f));
+    s.setObject(material, "emissive", ANARI_SAMPLER, sampler);
+    s.commit(material);
+    // A 64x2 frame 1/16 high sees 2 units across: pixel x covers u in [x, x + 1] / 64. Camera rays are
+    // jittered within their pixel and the map's slope is 2, so a pixel may differ from the value at its
+    // centre by up to 1/64 (one sample each): the threshold.
+    ANARIFrame frame = s.frame(s.world({s.surface(uvQuad(s, {-1, -1}, {1, 1}), material)}, {}),
+                               frontCamera(s, 1.0f / 16.0f), emissionOnlyRenderer(s), {64, 2}, ANARI_FLOAT32_VEC4);
+    const Image image = s.render(frame);
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    for (uint32_t x = 0; x < 64; ++x) {
+        const float u = (float(x) + 0.5f) / 64.0f;
+        const float expected = std::clamp((u - 0.25f) / 0.5f, 0.0f, 1.0f);
+        INFO("pixel " << x << " u " << u);
+        CHECK(std::abs(image.at(x, 0).r - expected) <= 1.0f / 64.0f + 1e-4f);
+        CHECK(std::abs(image.at(x, 1).g - expected) <= 1.0f / 64.0f + 1e-4f);
+    }
+}
+
+TEST_CASE("physicallyBased from samplers: glTF metallic-roughness channels, normal map, opacity mask") {
+    RenderSession s;
+    // metallicRoughness texture: G = roughness, B = metallic; left half rough dielectric, right half
+    // polished metal. Picked by outTransform rows, as the glTF importer does.
+    const std::vector<uint8_t> mr{0, 230, 0, 255, 0, 20, 255, 255};
+    ANARIArray2D mrImage = image2D(s, ANARI_UFIXED8_VEC4, 2, 1, mr);
+    glm::mat4 pickG(0.0f), pickB(0.0f);
+    pickG[1][0] = 1.0f;
+    pickB[2][0] = 1.0f;
+    // A normal map tilting normals alternately left and right in 4 stripes.
+    const std::vector<uint8_t> normals{56, 128, 220, 255, 200, 128, 220, 255, 56, 128, 220, 255, 200, 128, 220, 255};
+    // Opacity: a hole in the middle texel (mask mode, cutoff 0.5).
+    const std::vector<float> opacity{1, 0, 1};
+    ANARIMaterial material = physicallyBased(s);
+    s.set(material, "baseColor", glm::vec3(0.9f, 0.6f, 0.3f));
+    s.setObject(material, "metallic", ANARI_SAMPLER, imageSampler(s, "image2D", mrImage, "nearest", pickB));
+    s.setObject(material, "roughness", ANARI_SAMPLER, imageSampler(s, "image2D", mrImage, "nearest", pickG));
+    s.setObject(material, "normal", ANARI_SAMPLER,
+                imageSampler(s, "image2D", image2D(s, ANARI_UFIXED8_VEC4, 4, 1, normals), "nearest"));
+    s.setObject(material, "opacity", ANARI_SAMPLER,
+                imageSampler(s, "image1D", s.array(ANARI_FLOAT32, opacity), "nearest"));
+    s.set(material, "alphaMode", "mask");
+    s.commit(material);
+    ANARIRenderer renderer = s.renderer(2 * kSamples, 3);
+    s.set(renderer, "ambientRadiance", 0.6f);
+    s.commit(renderer);
+    checkReference(s, "sampler_physically_based",
+                   renderStage(s, {s.surface(uvQuad(s, {-1.2f, 0.05f}, {1.2f, 1.5f}), material)}, {}, nullptr, renderer));
+}
+
+TEST_CASE("hdri light: a uniform environment lights a convex matte sphere to albedo times radiance") {
+    RenderSession s;
+    const std::vector<glm::vec3> radiance(8 * 4, glm::vec3(0.5f));
+    ANARILight hdri = s.keep(anariNewLight(s.device, "hdri"));
+    s.setObject(hdri, "radiance", ANARI_ARRAY2D, image2D(s, ANARI_FLOAT32_VEC3, 8, 4, radiance));
+    s.set(hdri, "scale", 2.0f);
+    s.commit(hdri);
+    ANARIGeometry sphere = s.keep(anariNewGeometry(s.device, "sphere"));
+    s.setObject(sphere, "vertex.position", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{0, 0, 0}}));
+    s.set(sphere, "radius", 0.9f);
+    s.commit(sphere);
+    // One bounce: a convex surface sees only the environment, so the expected pixel is albedo * L = 0.8.
+    ANARIRenderer renderer = s.renderer(256, 1, glm::vec4(0, 0, 0, 1));
+    ANARIFrame frame = s.frame(s.world({s.surface(sphere, s.matte(glm::vec3(0.8f)))}, {hdri}), frontCamera(s),
+                               renderer, {16, 16}, ANARI_FLOAT32_VEC4);
+    const Image image = s.render(frame);
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    // Metric: mean over the 4x4 pixels at the centre (all on the sphere) within 2% of 0.8; the standard
+    // error of that mean at 256 samples is under 0.5%.
+    double sum = 0.0;
+    for (uint32_t y = 6; y < 10; ++y)
+        for (uint32_t x = 6; x < 10; ++x) sum += image.at(x, y).g;
+    CHECK(sum / 16.0 == doctest::Approx(0.8).epsilon(0.02));
+}
+
+TEST_CASE("hdri light: sky above, dark ground, seen from a sphere and a floor") {
+    RenderSession s;
+    // Equirectangular, top row towards +y: a bright blue-white sky band and a dim brown ground.
+    std::vector<glm::vec4> texels;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 16; ++x)
+            texels.push_back(y >= 4 ? glm::vec4(0.6f + 0.1f * float(y - 4), 0.8f, 1.5f, 1) : glm::vec4(0.15f, 0.1f, 0.05f, 1));
+    // One hot sun texel.
+    texels[7 * 16 + 3] = glm::vec4(40, 38, 30, 1);
+    ANARILight hdri = s.keep(anariNewLight(s.device, "hdri"));
+    s.setObject(hdri, "radiance", ANARI_ARRAY2D, image2D(s, ANARI_FLOAT32_VEC4, 16, 8, texels));
+    s.set(hdri, "up", glm::vec3(0, 1, 0));
+    s.set(hdri, "direction", glm::vec3(0, 0, -1));
+    s.commit(hdri);
+    ANARIGeometry sphere = s.keep(anariNewGeometry(s.device, "sphere"));
+    s.setObject(sphere, "vertex.position", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{0, 0.6f, 0}}));
+    s.set(sphere, "radius", 0.6f);
+    s.commit(sphere);
+    ANARIRenderer renderer = s.renderer(kSamples, 3);
+    s.set(renderer, "maxRadiance", 20.0f);
+    s.commit(renderer);
+    checkReference(s, "light_hdri", renderStage(s, {s.surface(sphere, s.matte({0.8f, 0.8f, 0.8f}))}, {hdri}, nullptr, renderer));
+}
+
+TEST_CASE("renderer maxRadiance clamps each contribution; 0 (the default) leaves it alone") {
+    RenderSession s;
+    ANARIMaterial material = physicallyBased(s);
+    s.set(material, "baseColor", glm::vec3(0.0f));
+    s.set(material, "emissive", glm::vec3(5.0f, 2.0f, 0.5f));
+    s.commit(material);
+    ANARIRenderer renderer = emissionOnlyRenderer(s);
+    ANARIFrame frame = s.frame(s.world({s.surface(uvQuad(s, {-1, -1}, {1, 1}), material)}, {}), frontCamera(s),
+                               renderer, {4, 4}, ANARI_FLOAT32_VEC4);
+    Image image = s.render(frame);
+    CHECK(image.at(2, 2).r == doctest::Approx(5.0f));
+    // Clamped by scaling the contribution so its largest component is the limit: (1, 0.4, 0.1).
+    s.set(renderer, "maxRadiance", 1.0f);
+    s.commit(renderer);
+    image = s.render(frame);
+    CHECK(image.at(2, 2).r == doctest::Approx(1.0f));
+    CHECK(image.at(2, 2).g == doctest::Approx(0.4f));
+    CHECK(image.at(2, 2).b == doctest::Approx(0.1f));
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+}
+
+TEST_CASE("light spot and ring: cones of light on the floor") {
+    RenderSession s;
+    ANARILight spot = s.keep(anariNewLight(s.device, "spot"));
+    s.set(spot, "position", glm::vec3(-0.8f, 2.0f, 0.0f));
+    s.set(spot, "direction", glm::vec3(0.0f, -1.0f, 0.0f));
+    s.set(spot, "openingAngle", 0.6f);
+    s.set(spot, "falloffAngle", 0.1f);
+    s.set(spot, "intensity", 12.0f);
+    s.set(spot, "color", glm::vec3(1.0f, 0.8f, 0.5f));
+    s.commit(spot);
+    ANARILight ring = s.keep(anariNewLight(s.device, "ring"));
+    s.set(ring, "position", glm::vec3(0.9f, 1.5f, 0.0f));
+    s.set(ring, "direction", glm::vec3(0.0f, -1.0f, 0.0f));
+    s.set(ring, "openingAngle", 1.2f);
+    s.set(ring, "radius", 0.3f);
+    s.set(ring, "innerRadius", 0.15f);
+    s.set(ring, "intensity", 6.0f);
+    s.set(ring, "color", glm::vec3(0.5f, 0.7f, 1.0f));
+    s.commit(ring);
+    checkReference(s, "light_spot_ring", renderStage(s, {}, {spot, ring}, nullptr, s.renderer(4 * kSamples, 3)));
+}
+
+TEST_CASE("geometry cone, curve and capped cylinders") {
+    RenderSession s;
+    ANARIGeometry cone = s.keep(anariNewGeometry(s.device, "cone"));
+    s.setObject(cone, "vertex.position", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-1.1f, 0.0f, 0.0f}, {-1.1f, 1.2f, 0.0f}}));
+    s.setObject(cone, "vertex.radius", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, std::vector<float>{0.45f, 0.0f}));
+    s.set(cone, "caps", "first");
+    s.commit(cone);
+    ANARIGeometry curve = s.keep(anariNewGeometry(s.device, "curve"));
+    s.setObject(curve, "vertex.position", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-0.3f, 0.2f, 0.3f}, {0.0f, 1.0f, 0.0f},
+                                                                    {0.4f, 0.5f, -0.2f}, {0.5f, 1.4f, 0.0f}}));
+    s.setObject(curve, "vertex.radius", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32, std::vector<float>{0.08f, 0.15f, 0.1f, 0.05f}));
+    s.commit(curve);
+    ANARIGeometry cylinder = s.keep(anariNewGeometry(s.device, "cylinder"));
+    s.setObject(cylinder, "vertex.position", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{1.0f, 0.3f, 0.4f}, {1.2f, 1.2f, -0.3f}}));
+    s.set(cylinder, "radius", 0.25f);
+    s.set(cylinder, "caps", "both");
+    s.commit(cylinder);
+    checkReference(s, "geometry_cone_curve_caps",
+                   renderStage(s, {s.surface(cone, s.matte({0.9f, 0.5f, 0.2f})), s.surface(curve, s.matte({0.3f, 0.8f, 0.4f})),
+                                   s.surface(cylinder, s.matte({0.4f, 0.5f, 0.9f}))}));
+}
+
+TEST_CASE("cameras: perspective with depth of field, and omnidirectional") {
+    RenderSession s;
+    ANARIGeometry balls = s.keep(anariNewGeometry(s.device, "sphere"));
+    s.setObject(balls, "vertex.position", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-0.8f, 0.3f, 1.5f}, {0.0f, 0.3f, 0.0f}, {0.8f, 0.3f, -1.5f}}));
+    s.set(balls, "radius", 0.3f);
+    s.commit(balls);
+    ANARISurface surface = s.surface(balls, s.matte({0.8f, 0.3f, 0.3f}));
+    SUBCASE("depth of field: in focus at the middle sphere") {
+        ANARICamera camera = s.perspective({0.0f, 1.2f, 4.0f}, {0.0f, 0.3f, 0.0f});
+        s.set(camera, "apertureRadius", 0.15f);
+        s.set(camera, "focusDistance", glm::length(glm::vec3(0.0f, 0.9f, 4.0f)));
+        s.commit(camera);
+        checkReference(s, "camera_depth_of_field", renderStage(s, {surface}, {}, camera));
+    }
+    SUBCASE("omnidirectional: the whole sphere of directions around a point above the floor") {
+        ANARICamera camera = s.keep(anariNewCamera(s.device, "omnidirectional"));
+        s.set(camera, "position", glm::vec3(0.0f, 1.0f, 1.0f));
+        s.set(camera, "direction", glm::vec3(0.0f, 0.0f, -1.0f));
+        s.set(camera, "up", glm::vec3(0.0f, 1.0f, 0.0f));
+        s.commit(camera);
+        checkReference(s, "camera_omnidirectional", renderStage(s, {surface}, {}, camera));
+    }
+}
+
+TEST_CASE("channels: primitiveId, objectId, instanceId exact; albedo and normal of a flat matte quad") {
+    RenderSession s;
+    // Two quads side by side in one geometry (primitive ids 0 and 1), in a surface with id 7, placed by an
+    // instance with id 42; the right half of the frame sees nothing.
+    ANARIGeometry quads = s.keep(anariNewGeometry(s.device, "quad"));
+    s.setObject(quads, "vertex.position", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-1, -1, 0}, {-0.5f, -1, 0}, {-0.5f, 1, 0}, {-1, 1, 0},
+                                                                    {-0.5f, -1, 0}, {0, -1, 0}, {0, 1, 0}, {-0.5f, 1, 0}}));
+    s.commit(quads);
+    ANARISurface surface = s.surface(quads, s.matte({0.25f, 0.5f, 0.75f}));
+    const uint32_t surfaceId = 7, instanceId = 42;
+    s.setRaw(surface, "id", ANARI_UINT32, &surfaceId);
+    s.commit(surface);
+    ANARIGroup group = s.keep(anariNewGroup(s.device));
+    s.setObject(group, "surface", ANARI_ARRAY1D, s.objects(ANARI_SURFACE, {surface}));
+    s.commit(group);
+    ANARIInstance instance = s.keep(anariNewInstance(s.device, "transform"));
+    s.setObject(instance, "group", ANARI_GROUP, group);
+    s.setRaw(instance, "id", ANARI_UINT32, &instanceId);
+    s.commit(instance);
+    ANARIWorld world = s.keep(anariNewWorld(s.device));
+    s.setObject(world, "instance", ANARI_ARRAY1D, s.objects(ANARI_INSTANCE, {instance}));
+    s.commit(world);
+    ANARIFrame frame = s.frame(world, frontCamera(s), s.renderer(1, 2), {8, 8}, ANARI_FLOAT32_VEC4);
+    setChannel(s, frame, "channel.primitiveId", ANARI_UINT32);
+    setChannel(s, frame, "channel.objectId", ANARI_UINT32);
+    setChannel(s, frame, "channel.instanceId", ANARI_UINT32);
+    setChannel(s, frame, "channel.albedo", ANARI_FLOAT32_VEC3);
+    setChannel(s, frame, "channel.normal", ANARI_FLOAT32_VEC3);
+    s.commit(frame);
+    s.render(frame);
+    const auto primitive = mapChannel<uint32_t>(s, frame, "channel.primitiveId", ANARI_UINT32);
+    const auto object = mapChannel<uint32_t>(s, frame, "channel.objectId", ANARI_UINT32);
+    const auto inst = mapChannel<uint32_t>(s, frame, "channel.instanceId", ANARI_UINT32);
+    const auto albedo = mapChannel<glm::vec3>(s, frame, "channel.albedo", ANARI_FLOAT32_VEC3);
+    const auto normal = mapChannel<glm::vec3>(s, frame, "channel.normal", ANARI_FLOAT32_VEC3);
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    // Pixel columns 0-1 see quad 0, 2-3 quad 1, 4-7 nothing.
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x) {
+            const size_t i = size_t(y) * 8 + x;
+            INFO("pixel " << x << "," << y);
+            const bool hit = x < 4;
+            CHECK(primitive[i] == (hit ? x / 2 : kNoId));
+            CHECK(object[i] == (hit ? surfaceId : kNoId));
+            CHECK(inst[i] == (hit ? instanceId : kNoId));
+            if (hit) {
+                CHECK(glm::all(glm::lessThan(glm::abs(albedo[i] - glm::vec3(0.25f, 0.5f, 0.75f)), glm::vec3(1e-5f))));
+                CHECK(glm::all(glm::lessThan(glm::abs(normal[i] - glm::vec3(0, 0, 1)), glm::vec3(1e-5f))));
+            }
+        }
+}
