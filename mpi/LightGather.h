@@ -12,4 +12,9 @@ namespace ripple::mpi {
 // Collective. With one rank, returns `local`.
 std::vector<core::Light> gatherLights(const Communicator& communicator, const std::vector<core::Light>& local);
 
+// Collective. Every other rank's light records (emissive triangles, world space), in rank order; this
+// rank's own are left out, since its scene makes them itself.
+std::vector<gpu::LightRecord> gatherForeignLightRecords(const Communicator& communicator,
+                                                        const std::vector<gpu::LightRecord>& local);
+
 }  // namespace ripple::mpi

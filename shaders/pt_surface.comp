@@ -8,13 +8,14 @@
 #include "bsdf.glsl"
 #include "surface.glsl"
 #include "texture.glsl"
+#include "sampler.glsl"
 #include "ids.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaterialsRef { MaterialRecord materials[]; };
 
 // The texture's first output component as a factor (ANARI's rule for float parameters from samplers).
-float textureFactor(SceneDesc scene, int texture, vec2 uv) {
-    return texture == NO_TEXTURE ? 1.0 : sampleTexture(scene, texture, uv).x;
+float textureFactor(SceneDesc scene, int texture, SurfacePoint s) {
+    return texture == NO_TEXTURE ? 1.0 : sampleTexture(scene, texture, s).x;
 }
 
 // The shading normal bent by a tangent-space normal map (rgb in [0,1] -> [-1,1]) around ns.
@@ -23,7 +24,7 @@ vec3 normalMapped(SceneDesc scene, int texture, SurfacePoint s) {
     if (texture == NO_TEXTURE || !(dot(t, t) > 0.0)) return s.shadingNormal;
     t = normalize(t);
     vec3 b = cross(s.shadingNormal, t);
-    vec3 m = sampleTexture(scene, texture, s.texcoord).xyz * 2.0 - 1.0;
+    vec3 m = sampleTexture(scene, texture, s).xyz * 2.0 - 1.0;
     // A back-face hit sees the surface flipped: keep the map's bump on the viewer's side.
     if (!s.frontFace) b = -b;
     vec3 n = safeNormalize(m.x * t + m.y * b + m.z * s.shadingNormal, s.shadingNormal);
@@ -57,17 +58,17 @@ void main() {
             opacity *= s.color.a;
         }
         if (rec.baseColorTexture != NO_TEXTURE) {
-            vec4 texel = sampleTexture(scene, rec.baseColorTexture, s.texcoord);
+            vec4 texel = sampleTexture(scene, rec.baseColorTexture, s);
             baseColor *= texel.rgb;
             opacity *= texel.a;
         }
-        opacity *= textureFactor(scene, rec.opacityTexture, s.texcoord);
+        opacity *= textureFactor(scene, rec.opacityTexture, s);
         if (rec.alphaMode == ALPHA_OPAQUE) opacity = 1.0;
         else if (rec.alphaMode == ALPHA_MASK) opacity = opacity >= rec.alphaCutoff ? 1.0 : 0.0;
         vec3 emission = rec.emissiveIor.rgb;
-        if (rec.emissiveTexture != NO_TEXTURE) emission *= sampleTexture(scene, rec.emissiveTexture, s.texcoord).rgb;
-        float metallic = clamp(rec.metallic * textureFactor(scene, rec.metallicTexture, s.texcoord), 0.0, 1.0);
-        float roughness = clamp(rec.roughness * textureFactor(scene, rec.roughnessTexture, s.texcoord), 0.0, 1.0);
+        if (rec.emissiveTexture != NO_TEXTURE) emission *= sampleTexture(scene, rec.emissiveTexture, s).rgb;
+        float metallic = clamp(rec.metallic * textureFactor(scene, rec.metallicTexture, s), 0.0, 1.0);
+        float roughness = clamp(rec.roughness * textureFactor(scene, rec.roughnessTexture, s), 0.0, 1.0);
         float ior = rec.emissiveIor.w;
         float f = (ior - 1.0) / (ior + 1.0);
         r.position.xyz = s.position;

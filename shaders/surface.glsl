@@ -22,6 +22,11 @@ struct SurfacePoint {
     uint material;
     bool frontFace;        // the ray arrived on the side the object-space normal points to
     vec3 tangent;          // world space, along increasing texcoord u (normal maps); (0,0,0) where unknown
+    // Where samplers find the other attributes (texture.glsl reads them only when a sampler asks).
+    uint geometry;         // index into SceneDesc.geometries
+    uvec3 vertices;        // a triangle's vertex indices; unused for other shapes
+    vec3 bary;             // a triangle's barycentrics; (0,0,0) for other shapes
+    uint primitiveId;      // as the application numbered its primitives (quads, not their triangles)
 };
 
 vec3 transformPoint(vec4 rows[3], vec3 p) {
@@ -86,6 +91,10 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
     uint slot = UintsRef(scene.primSlots).values[geom.slotOffset + hit.primId];
     SurfacePoint s;
     s.material = inst.material;
+    s.geometry = inst.geometry;
+    s.vertices = uvec3(0u);
+    s.bary = vec3(0.0);
+    s.primitiveId = hit.primId / max(geom.trianglesPerPrimitive, 1u);
     s.hasColor = false;
     s.color = vec4(1.0);
     s.texcoord = vec2(0.0);
@@ -105,6 +114,8 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
             uint first = geom.indexOffset + 3u * hit.primId;
             idx = uvec3(indices.values[first], indices.values[first + 1u], indices.values[first + 2u]);
         }
+        s.vertices = idx;
+        s.bary = bary;
         if (geom.normalOffset != NO_ATTRIBUTE) objectShadingNormal = interpolate(scene, geom.normalOffset, idx, bary).xyz;
         if (geom.texcoordOffset != NO_ATTRIBUTE) {
             s.texcoord = interpolate(scene, geom.texcoordOffset, idx, bary).xy;

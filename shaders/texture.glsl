@@ -1,6 +1,6 @@
-// Texture lookup from the scene's one texel buffer: the input transform, wrap modes (repeat, clamp to
-// edge, mirrored repeat), nearest or bilinear filtering, sRGB decoding of Rgba8Srgb texels, and the
-// output transform. Texel row 0 is at v = 0. Needs SceneDesc and the buffer views of pt_common.glsl.
+// Image lookup from the scene's one texel buffer: wrap modes (repeat, clamp to edge, mirrored repeat),
+// nearest or linear filtering of 1D/2D/3D images, sRGB decoding of Rgba8Srgb texels. Texel row 0 is at
+// v = 0. Samplers (inputs, transforms) are in sampler.glsl. Needs the buffer views of pt_common.glsl.
 #ifndef RIPPLE_TEXTURE_GLSL
 #define RIPPLE_TEXTURE_GLSL
 
@@ -38,27 +38,33 @@ vec4 fetchTexel(TextureRecord tex, uint64_t texels, int x, int y) {
     return c;
 }
 
-vec4 sampleTexture(SceneDesc scene, int textureIndex, vec2 uv) {
-    TextureRecord tex = TexturesRef(scene.textures).textures[textureIndex];
-    mat4 inTransform = mat4(tex.inTransform[0], tex.inTransform[1], tex.inTransform[2], tex.inTransform[3]);
-    mat4 outTransform = mat4(tex.outTransform[0], tex.outTransform[1], tex.outTransform[2], tex.outTransform[3]);
-    vec2 st = (inTransform * vec4(uv, 0.0, 1.0)).xy;
-    vec2 size = vec2(tex.width, tex.height);
-    vec4 value;
+// An image at texture coordinate st (z used by 3D images only): wrap modes per axis, nearest, or linear
+// between the texel centres (bilinear, trilinear when the image has slices). Slices follow each other in
+// the texel buffer, so slice z row y is row z * height + y.
+vec4 sampleImage(TextureRecord tex, uint64_t texels, vec3 st) {
+    vec3 size = vec3(tex.width, tex.height, tex.depth);
     if (tex.linearFilter == 0u) {
-        vec2 i = floor(st * size);
-        value = fetchTexel(tex, scene.texels, wrapTexel(i.x, size.x, tex.wrapS), wrapTexel(i.y, size.y, tex.wrapT));
-    } else {
-        // Texel centres sit at half-integers: blend the four around st.
-        vec2 x = st * size - 0.5;
-        vec2 i = floor(x);
-        vec2 f = x - i;
-        int x0 = wrapTexel(i.x, size.x, tex.wrapS), x1 = wrapTexel(i.x + 1.0, size.x, tex.wrapS);
-        int y0 = wrapTexel(i.y, size.y, tex.wrapT), y1 = wrapTexel(i.y + 1.0, size.y, tex.wrapT);
-        value = mix(mix(fetchTexel(tex, scene.texels, x0, y0), fetchTexel(tex, scene.texels, x1, y0), f.x),
-                    mix(fetchTexel(tex, scene.texels, x0, y1), fetchTexel(tex, scene.texels, x1, y1), f.x), f.y);
+        vec3 i = floor(st * size);
+        int z = wrapTexel(i.z, size.z, tex.wrapR);
+        return fetchTexel(tex, texels, wrapTexel(i.x, size.x, tex.wrapS), z * int(tex.height) + wrapTexel(i.y, size.y, tex.wrapT));
     }
-    return outTransform * value;
+    // Texel centres sit at half-integers: blend the texels around st.
+    vec3 x = st * size - 0.5;
+    vec3 i = floor(x);
+    vec3 f = x - i;
+    int x0 = wrapTexel(i.x, size.x, tex.wrapS), x1 = wrapTexel(i.x + 1.0, size.x, tex.wrapS);
+    int y0 = wrapTexel(i.y, size.y, tex.wrapT), y1 = wrapTexel(i.y + 1.0, size.y, tex.wrapT);
+    int h = int(tex.height);
+    int z0 = tex.depth > 1u ? wrapTexel(i.z, size.z, tex.wrapR) * h : 0;
+    vec4 value = mix(mix(fetchTexel(tex, texels, x0, z0 + y0), fetchTexel(tex, texels, x1, z0 + y0), f.x),
+                     mix(fetchTexel(tex, texels, x0, z0 + y1), fetchTexel(tex, texels, x1, z0 + y1), f.x), f.y);
+    if (tex.depth > 1u) {
+        int z1 = wrapTexel(i.z + 1.0, size.z, tex.wrapR) * h;
+        vec4 upper = mix(mix(fetchTexel(tex, texels, x0, z1 + y0), fetchTexel(tex, texels, x1, z1 + y0), f.x),
+                         mix(fetchTexel(tex, texels, x0, z1 + y1), fetchTexel(tex, texels, x1, z1 + y1), f.x), f.y);
+        value = mix(value, upper, f.z);
+    }
+    return value;
 }
 
 #endif

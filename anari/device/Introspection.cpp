@@ -42,7 +42,8 @@ constexpr const char* kAlphaModes[] = {"opaque", "blend", "mask", nullptr};
 constexpr const char* kFilters[] = {"nearest", "linear", nullptr};
 constexpr const char* kWrapModes[] = {"clampToEdge", "repeat", "mirrorRepeat", nullptr};
 constexpr const char* kSides[] = {"front", "back", "both", nullptr};
-constexpr const char* kAttributes[] = {"attribute0", nullptr};
+constexpr const char* kAttributes[] = {"attribute0", "attribute1", "attribute2", "attribute3", "color",
+                                       "primitiveId", "worldPosition", "worldNormal", nullptr};
 constexpr const char* kColorAttribute[] = {"color", nullptr};
 
 struct Param {
@@ -78,7 +79,10 @@ const std::vector<Param> kGeometryCommon = joined({kName, {
 
 const std::vector<Param> kMeshExtras = {
     {"vertex.normal", ANARI_ARRAY1D, "shading normals (FLOAT32_VEC3)"},
-    {"vertex.attribute0", ANARI_ARRAY1D, "texture coordinates read by image2D samplers (FLOAT32_VEC2)"},
+    {"vertex.attribute0", ANARI_ARRAY1D, "texture coordinates: samplers' default input, normal maps' frame"},
+    {"vertex.attribute1", ANARI_ARRAY1D, "per-vertex values samplers can read (up to 4 components)"},
+    {"vertex.attribute2", ANARI_ARRAY1D, "per-vertex values samplers can read (up to 4 components)"},
+    {"vertex.attribute3", ANARI_ARRAY1D, "per-vertex values samplers can read (up to 4 components)"},
 };
 
 const std::vector<Param> kViewCommon = joined({kName, {
@@ -159,9 +163,10 @@ const std::vector<Entry>& table() {
               kAttributes},
              {"filter", ANARI_STRING, "texel filter", "linear", kFilters},
              {"wrapMode1", ANARI_STRING, "wrap mode", "clampToEdge", kWrapModes},
-             {"inTransform", ANARI_FLOAT32_MAT4, "applied to (u, v, 0, 1) before lookup", kIdentity},
+             {"inTransform", ANARI_FLOAT32_MAT4, "applied to the attribute before lookup", kIdentity},
              {"inOffset", ANARI_FLOAT32_VEC4, "added after inTransform", kNoOffset},
              {"outTransform", ANARI_FLOAT32_MAT4, "applied to the texel", kIdentity},
+             {"outOffset", ANARI_FLOAT32_VEC4, "added after outTransform", kNoOffset},
          }})},
         {ANARI_SAMPLER, "image2D", "2D image texture",
          joined({kName, {
@@ -171,9 +176,34 @@ const std::vector<Entry>& table() {
              {"filter", ANARI_STRING, "texel filter", "linear", kFilters},
              {"wrapMode1", ANARI_STRING, "wrap mode along u", "clampToEdge", kWrapModes},
              {"wrapMode2", ANARI_STRING, "wrap mode along v", "clampToEdge", kWrapModes},
-             {"inTransform", ANARI_FLOAT32_MAT4, "applied to (u, v, 0, 1) before lookup", kIdentity},
+             {"inTransform", ANARI_FLOAT32_MAT4, "applied to the attribute before lookup", kIdentity},
              {"inOffset", ANARI_FLOAT32_VEC4, "added after inTransform", kNoOffset},
              {"outTransform", ANARI_FLOAT32_MAT4, "applied to the texel", kIdentity},
+             {"outOffset", ANARI_FLOAT32_VEC4, "added after outTransform", kNoOffset},
+         }})},
+        {ANARI_SAMPLER, "image3D", "3D image texture (trilinear or nearest)",
+         joined({kName, {
+             {"image", ANARI_ARRAY3D, "texels (UFIXED8_VEC4, FLOAT32_VEC4...)", nullptr, nullptr, true},
+             {"inAttribute", ANARI_STRING, "texture coordinate attribute", "attribute0", kAttributes},
+             {"filter", ANARI_STRING, "texel filter", "linear", kFilters},
+             {"wrapMode1", ANARI_STRING, "wrap mode along u", "clampToEdge", kWrapModes},
+             {"wrapMode2", ANARI_STRING, "wrap mode along v", "clampToEdge", kWrapModes},
+             {"wrapMode3", ANARI_STRING, "wrap mode along w", "clampToEdge", kWrapModes},
+             {"inTransform", ANARI_FLOAT32_MAT4, "applied to the attribute before lookup", kIdentity},
+             {"inOffset", ANARI_FLOAT32_VEC4, "added after inTransform", kNoOffset},
+             {"outTransform", ANARI_FLOAT32_MAT4, "applied to the texel", kIdentity},
+             {"outOffset", ANARI_FLOAT32_VEC4, "added after outTransform", kNoOffset},
+         }})},
+        {ANARI_SAMPLER, "transform", "an attribute, transformed (no image)",
+         joined({kName, {
+             {"inAttribute", ANARI_STRING, "attribute read", "attribute0", kAttributes},
+             {"outTransform", ANARI_FLOAT32_MAT4, "applied to the attribute", kIdentity},
+             {"outOffset", ANARI_FLOAT32_VEC4, "added after outTransform", kNoOffset},
+         }})},
+        {ANARI_SAMPLER, "primitive", "one array entry per primitive",
+         joined({kName, {
+             {"array", ANARI_ARRAY1D, "values (FLOAT32_VEC4...), indexed by primitive id", nullptr, nullptr, true},
+             {"inOffset", ANARI_UINT64, "added to the primitive id", nullptr},
          }})},
         {ANARI_LIGHT, "directional", "parallel light",
          joined({kLightCommon, {
@@ -310,7 +340,7 @@ const char** deviceExtensions() {
         "ANARI_KHR_GEOMETRY_TRIANGLE",    "ANARI_KHR_GEOMETRY_QUAD",          "ANARI_KHR_GEOMETRY_SPHERE",
         "ANARI_KHR_GEOMETRY_CYLINDER",    "ANARI_KHR_MATERIAL_MATTE",         "ANARI_KHR_MATERIAL_PHYSICALLY_BASED",
         "ANARI_KHR_SAMPLER_IMAGE2D",      "ANARI_KHR_LIGHT_DIRECTIONAL",      "ANARI_KHR_LIGHT_POINT",
-        "ANARI_KHR_LIGHT_QUAD",           "ANARI_KHR_LIGHT_SPOT",             "ANARI_KHR_LIGHT_RING",           "ANARI_KHR_LIGHT_HDRI",           "ANARI_KHR_SAMPLER_IMAGE1D",           "ANARI_KHR_CAMERA_PERSPECTIVE",     "ANARI_KHR_CAMERA_ORTHOGRAPHIC",
+        "ANARI_KHR_LIGHT_QUAD",           "ANARI_KHR_LIGHT_SPOT",             "ANARI_KHR_LIGHT_RING",           "ANARI_KHR_LIGHT_HDRI",           "ANARI_KHR_SAMPLER_IMAGE1D",  "ANARI_KHR_SAMPLER_IMAGE3D",  "ANARI_KHR_SAMPLER_PRIMITIVE",  "ANARI_KHR_SAMPLER_TRANSFORM",           "ANARI_KHR_CAMERA_PERSPECTIVE",     "ANARI_KHR_CAMERA_ORTHOGRAPHIC",
         "ANARI_KHR_INSTANCE_TRANSFORM",   "ANARI_KHR_RENDERER_BACKGROUND_COLOR", "ANARI_KHR_RENDERER_AMBIENT_LIGHT",
         "ANARI_KHR_GEOMETRY_CONE",        "ANARI_KHR_GEOMETRY_CURVE",         "ANARI_KHR_CAMERA_OMNIDIRECTIONAL",
         "ANARI_KHR_CAMERA_DEPTH_OF_FIELD", "ANARI_KHR_FRAME_CHANNEL_ALBEDO",  "ANARI_KHR_FRAME_CHANNEL_NORMAL",

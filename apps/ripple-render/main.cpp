@@ -126,6 +126,10 @@ int render(const Options& options, const mpi::Communicator& ranks) {
     // the lights become ANARI lights on rank 0 alone (the device gathers every rank's lights).
     if (ranks.distributed() && !gltf)
         throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
+    if (gltf && ranks.distributed() && partition == PartitionKind::RoundRobin && gltf->instances.size() < size_t(ranks.size()) &&
+        root)
+        std::fprintf(stderr, "[ripple-render] WARNING: %zu mesh instance(s) for %d ranks: some ranks hold nothing and one "
+                     "holds whole meshes; --partition spatial splits meshes\n", gltf->instances.size(), ranks.size());
     if (gltf) gltf = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()), partition);
     RankStats stats;
     stats.triangles = gltf ? gltf->trianglesDrawn() : 0;

@@ -221,7 +221,9 @@ void buildLightTable(const SceneDescription& description, float sceneRadius, Sha
         triangles.clear();
     }
     out.triangleLights = triangles.size();
+    out.localTriangleLights = triangles;
     lights.insert(lights.end(), triangles.begin(), triangles.end());
+    lights.insert(lights.end(), description.foreignTriangleLights.begin(), description.foreignTriangleLights.end());
     std::stable_partition(lights.begin(), lights.end(), tested);
     out.testedLightCount = static_cast<uint32_t>(std::count_if(lights.begin(), lights.end(), tested));
 

@@ -114,8 +114,12 @@ void flattenTriangles(const TriangleMesh& mesh, UsedGeometry& g, FlatScene& flat
     record.texcoordOffset = appendAttribute(mesh.texcoords, vertices, "texcoords", name, flat, report);
     record.primitiveColorOffset = appendAttribute(mesh.primitiveColors, p.inputPrimCount, "primitiveColors", name, flat, report);
     record.trianglesPerPrimitive = std::max(1u, mesh.trianglesPerPrimitive);
-    const bool perVertex = record.normalOffset != gpu::NO_ATTRIBUTE || record.colorOffset != gpu::NO_ATTRIBUTE ||
-                           record.texcoordOffset != gpu::NO_ATTRIBUTE;
+    bool perVertex = record.normalOffset != gpu::NO_ATTRIBUTE || record.colorOffset != gpu::NO_ATTRIBUTE ||
+                     record.texcoordOffset != gpu::NO_ATTRIBUTE;
+    for (size_t a = 0; a < mesh.attributes.size(); ++a) {
+        record.attributeOffset[a] = appendAttribute(mesh.attributes[a], vertices, "attribute" + std::to_string(a), name, flat, report);
+        perVertex = perVertex || record.attributeOffset[a] != gpu::NO_ATTRIBUTE;
+    }
     if (perVertex && !mesh.indices.empty()) {
         record.indexOffset = static_cast<uint32_t>(flat.vertexIndices.size());
         for (const glm::uvec3& idx : mesh.indices) flat.vertexIndices.insert(flat.vertexIndices.end(), {idx.x, idx.y, idx.z});
@@ -173,6 +177,7 @@ uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, F
     record.slotOffset = static_cast<uint32_t>(flat.primSlots.size());
     record.indexOffset = record.normalOffset = record.colorOffset = record.texcoordOffset =
         record.primitiveColorOffset = gpu::NO_ATTRIBUTE;
+    for (uint32_t& offset : record.attributeOffset) offset = gpu::NO_ATTRIBUTE;
     record.trianglesPerPrimitive = 1;
     flat.primSlots.resize(flat.primSlots.size() + p.inputPrimCount, ~0u);
     for (uint32_t slot = 0; slot < p.blas.primOrder.size(); ++slot)
@@ -309,6 +314,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     report_.lightsKept = shading.lights.size();
     report_.lightsSkipped = shading.lightsSkipped;
     report_.messages.insert(report_.messages.end(), shading.messages.begin(), shading.messages.end());
+    triangleLights_ = std::move(shading.localTriangleLights);
 
     std::vector<gpu::InstancePrim> instances;
     for (uint32_t slot : tlas.primOrder) {

@@ -59,6 +59,8 @@ public:
     // instances, textures, emission, alpha and light kinds. The frame adds its own (core/render/FeatureSet.h).
     uint32_t features() const { return features_; }
     const bvh::Aabb& bounds() const { return bounds_; }
+    // This scene's own emissive triangles as light records (what a data-parallel rank shares).
+    const std::vector<gpu::LightRecord>& triangleLights() const { return triangleLights_; }
 
 private:
     SceneReport report_;
@@ -66,6 +68,7 @@ private:
     uint32_t instanceCount_ = 0;
     uint32_t lightCount_ = 0;
     uint32_t features_ = 0;
+    std::vector<gpu::LightRecord> triangleLights_;
     // The validated geometries with an identity, kept so a later Scene can reuse them.
     std::vector<std::shared_ptr<const PreparedGeometry>> reusable_;
     vk::Buffer nodes_, triangles_, spheres_, cylinders_, cones_, instances_, instanceShading_, geometries_, primSlots_,

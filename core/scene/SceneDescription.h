@@ -4,8 +4,11 @@
 // space (the ANARI layer applies instance transforms to lights before they get here).
 #pragma once
 
+#include "shaders/shared/material.h"
+
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +34,8 @@ struct TriangleMesh {
     // Quads are split into two triangles by the ANARI layer; it sets this to 2 so that the primitive id a
     // frame reports is triangle / 2. 1 for plain triangle meshes.
     uint32_t trianglesPerPrimitive = 1;
+    // The ANARI vertex.attribute0..3, per vertex like colors; samplers read them (Texture::Input).
+    std::array<std::vector<glm::vec4>, 4> attributes;
     GeometryIdentity identity;            // last, so positional initialisers stay short
 };
 
@@ -75,19 +80,36 @@ struct GeometryRef {
     uint32_t index = 0;                   // into SceneDescription::meshes, ::sphereSets, ::cylinderSets or ::coneSets
 };
 
-// A linear-space RGBA texture. Texels are row-major with row 0 at texture coordinate v = 0.
+// A sampler as materials read it: an input from the surface, mapped to linear RGBA. Image texels are
+// row-major, then slice after slice, with row 0 at texture coordinate v = 0.
 struct Texture {
+    // Image: a 1D/2D/3D image read at inTransform * input + inOffset. Transform: no image, the output is
+    // the transformed input. Primitive: texel (primitive id + primitiveOffset) of a one-row image, nearest.
+    enum class Kind : uint32_t { Image = 0, Transform = 1, Primitive = 2 };
+    // The surface value a sampler reads (values of shared/material.h TEXTURE_INPUT_*). Absent attributes
+    // read as (0, 0, 0, 1); Texcoord is (u, v, 0, 1); PrimitiveId is (id, 0, 0, 1).
+    enum class Input : uint32_t {
+        Texcoord = 0, Attribute0 = 1, Attribute1 = 2, Attribute2 = 3, Attribute3 = 4, Color = 5,
+        PrimitiveId = 6, WorldPosition = 7, WorldNormal = 8
+    };
     enum class Format : uint32_t { Rgba8Unorm = 0, Rgba8Srgb = 1, Rgba32Float = 2 };
     enum class Wrap : uint32_t { Repeat = 0, ClampToEdge = 1, MirrorRepeat = 2 };
-    uint32_t width = 0;
+    Kind kind = Kind::Image;
+    Input input = Input::Texcoord;
+    uint32_t width = 0;                   // Transform: 0 (no image)
     uint32_t height = 0;
+    uint32_t depth = 1;                   // slices of a 3D image; 1 otherwise
     Format format = Format::Rgba8Unorm;
-    std::vector<uint8_t> texels;          // width * height * (4 or 16) bytes
+    std::vector<uint8_t> texels;          // width * height * depth * (4 or 16) bytes
     Wrap wrapS = Wrap::Repeat;
     Wrap wrapT = Wrap::Repeat;
+    Wrap wrapR = Wrap::ClampToEdge;
     bool linearFilter = true;             // false: nearest
-    glm::mat4 inTransform{1.0f};          // applied to (u, v, 0, 1) before lookup
-    glm::mat4 outTransform{1.0f};         // applied to the fetched RGBA
+    glm::mat4 inTransform{1.0f};          // applied to the input before lookup
+    glm::vec4 inOffset{0.0f};             // added after inTransform
+    glm::mat4 outTransform{1.0f};         // applied to the fetched RGBA (or, for Transform, the input)
+    glm::vec4 outOffset{0.0f};            // added after outTransform
+    uint32_t primitiveOffset = 0;         // Primitive: added to the primitive id
 };
 
 inline constexpr int32_t kNoTexture = -1;
@@ -168,6 +190,9 @@ struct SceneDescription {
     // Radius of the sphere directional and hdri lights' power is measured through (their chance of being
     // picked). 0: half the diagonal of this scene's bounds. A data-parallel rank sets the whole world's.
     float lightSceneRadius = 0.0f;
+    // Data-parallel: the other ranks' emissive-triangle lights (Scene::triangleLights() there), added to
+    // this rank's light table so that every rank samples every emitter and weighs its hits alike.
+    std::vector<gpu::LightRecord> foreignTriangleLights;
 };
 
 }  // namespace ripple::core

@@ -15,6 +15,7 @@ namespace {
 
 bool finite(float x) { return std::isfinite(x); }
 bool finite(const glm::vec3& v) { return finite(v.x) && finite(v.y) && finite(v.z); }
+bool finite(const glm::vec4& v) { return finite(glm::vec3(v)) && finite(v.w); }
 bool finite(const glm::mat4& m) {
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
@@ -40,17 +41,36 @@ bool convertTexture(const Texture& texture, uint32_t index, ShadingTables& out, 
                                "; materials sample it as absent");
         return false;
     }
-    const uint64_t expected = uint64_t(texture.width) * texture.height * bytesPerTexel(texture.format);
-    if (texture.width == 0 || texture.height == 0 || texture.texels.size() != expected) {
-        out.messages.push_back(name + ": " + std::to_string(texture.texels.size()) + " bytes of texels for " +
-                               std::to_string(texture.width) + "x" + std::to_string(texture.height) + " (need " +
-                               std::to_string(expected) + ", and a nonzero size); materials sample it as absent");
+    if (static_cast<uint32_t>(texture.kind) > gpu::TEXTURE_KIND_PRIMITIVE ||
+        static_cast<uint32_t>(texture.input) > gpu::TEXTURE_INPUT_WORLD_NORMAL) {
+        out.messages.push_back(name + ": unknown kind " + std::to_string(static_cast<uint32_t>(texture.kind)) +
+                               " or input " + std::to_string(static_cast<uint32_t>(texture.input)) +
+                               "; materials sample it as absent");
         return false;
     }
+    // A transform sampler has no image; a primitive sampler's image is one row.
+    const bool imageless = texture.kind == Texture::Kind::Transform;
+    const uint64_t expected = uint64_t(texture.width) * texture.height * texture.depth * bytesPerTexel(texture.format);
+    const bool sized = imageless ? texture.texels.empty()
+                                 : texture.width > 0 && texture.height > 0 && texture.depth > 0 &&
+                                       (texture.kind == Texture::Kind::Image || (texture.height == 1 && texture.depth == 1));
+    if (!sized || texture.texels.size() != expected) {
+        std::string size = std::to_string(texture.width) + "x" + std::to_string(texture.height);
+        if (texture.depth != 1) size.append("x").append(std::to_string(texture.depth));
+        out.messages.push_back(name + ": " + std::to_string(texture.texels.size()) + " bytes of texels for " +
+                               size + " (need " + std::to_string(expected) +
+                               (imageless ? ", and none for a transform" : ", and a nonzero size") +
+                               "); materials sample it as absent");
+        return false;
+    }
+    record.kind = static_cast<uint32_t>(texture.kind);
+    record.inputAttribute = static_cast<uint32_t>(texture.input);
     record.width = texture.width;
     record.height = texture.height;
+    record.depth = texture.depth;
     record.format = static_cast<uint32_t>(texture.format);
     record.texelOffset = static_cast<uint32_t>(out.texels.size());
+    record.primitiveOffset = texture.primitiveOffset;
     auto wrap = [&](Texture::Wrap w, const char* axis) {
         if (w == Texture::Wrap::Repeat || w == Texture::Wrap::ClampToEdge || w == Texture::Wrap::MirrorRepeat)
             return static_cast<uint32_t>(w);
@@ -60,13 +80,17 @@ bool convertTexture(const Texture& texture, uint32_t index, ShadingTables& out, 
     };
     record.wrapS = wrap(texture.wrapS, "s");
     record.wrapT = wrap(texture.wrapT, "t");
+    record.wrapR = wrap(texture.wrapR, "r");
     record.linearFilter = texture.linearFilter ? 1u : 0u;
-    const bool transformsFinite = finite(texture.inTransform) && finite(texture.outTransform);
-    if (!transformsFinite) out.messages.push_back(name + ": non-finite in/out transform; identity used");
+    const bool transformsFinite = finite(texture.inTransform) && finite(texture.outTransform) &&
+                                  finite(texture.inOffset) && finite(texture.outOffset);
+    if (!transformsFinite) out.messages.push_back(name + ": non-finite in/out transform or offset; identity used");
     for (int c = 0; c < 4; ++c) {
         record.inTransform[c] = transformsFinite ? texture.inTransform[c] : glm::mat4(1.0f)[c];
         record.outTransform[c] = transformsFinite ? texture.outTransform[c] : glm::mat4(1.0f)[c];
     }
+    record.inOffset = transformsFinite ? texture.inOffset : glm::vec4(0.0f);
+    record.outOffset = transformsFinite ? texture.outOffset : glm::vec4(0.0f);
 
     const size_t first = out.texels.size();
     out.texels.resize(first + texture.texels.size() / 4);

@@ -21,6 +21,7 @@ struct ShadingTables {
     int32_t environmentLight = -1;             // index in lights of the hdri light, or -1
     uint32_t bsdfTableOffset = 0;              // first word of the BSDF energy tables in texels
     uint64_t triangleLights = 0;               // LIGHT_TRIANGLE records made from emissive geometry
+    std::vector<gpu::LightRecord> localTriangleLights;  // those records (not the description's foreign ones)
     uint64_t materialsRepaired = 0;            // materials with a value replaced by its default
     uint64_t texturesSkipped = 0;              // wrong size or format: materials sample them as absent
     uint64_t texelsRepaired = 0;               // non-finite float texels replaced by 0

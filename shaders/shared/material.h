@@ -49,6 +49,17 @@ RIPPLE_CONST uint WRAP_REPEAT = 0u;
 RIPPLE_CONST uint WRAP_CLAMP_TO_EDGE = 1u;
 RIPPLE_CONST uint WRAP_MIRROR_REPEAT = 2u;
 
+// What a sampler is (core::Texture::Kind) and what it reads (core::Texture::Input).
+RIPPLE_CONST uint TEXTURE_KIND_IMAGE = 0u;
+RIPPLE_CONST uint TEXTURE_KIND_TRANSFORM = 1u;
+RIPPLE_CONST uint TEXTURE_KIND_PRIMITIVE = 2u;
+RIPPLE_CONST uint TEXTURE_INPUT_TEXCOORD = 0u;
+RIPPLE_CONST uint TEXTURE_INPUT_ATTRIBUTE0 = 1u;   // ..3 follow
+RIPPLE_CONST uint TEXTURE_INPUT_COLOR = 5u;
+RIPPLE_CONST uint TEXTURE_INPUT_PRIMITIVE_ID = 6u;
+RIPPLE_CONST uint TEXTURE_INPUT_WORLD_POSITION = 7u;
+RIPPLE_CONST uint TEXTURE_INPUT_WORLD_NORMAL = 8u;
+
 struct TextureRecord {
     uint width;
     uint height;
@@ -56,10 +67,16 @@ struct TextureRecord {
     uint texelOffset;       // first word in SceneDesc.texels
     uint wrapS;             // WRAP_*
     uint wrapT;
-    uint linearFilter;      // 0: nearest, 1: bilinear
-    uint pad0;
-    vec4 inTransform[4];    // columns, applied to (u, v, 0, 1)
-    vec4 outTransform[4];   // columns, applied to the fetched linear RGBA
+    uint linearFilter;      // 0: nearest, 1: bilinear (trilinear for 3D images)
+    uint kind;              // TEXTURE_KIND_*
+    uint depth;             // slices of a 3D image; 1 otherwise
+    uint wrapR;
+    uint inputAttribute;    // TEXTURE_INPUT_*
+    uint primitiveOffset;   // TEXTURE_KIND_PRIMITIVE: added to the primitive id
+    vec4 inTransform[4];    // columns, applied to the input
+    vec4 inOffset;          // added after inTransform
+    vec4 outTransform[4];   // columns, applied to the fetched linear RGBA (or the transformed input)
+    vec4 outOffset;         // added after outTransform
 };
 
 RIPPLE_CONST uint LIGHT_DIRECTIONAL = 0u;

@@ -95,6 +95,7 @@ struct GeometryRecord {
     uint texcoordOffset;    // per vertex (triangles): xy
     uint primitiveColorOffset; // per triangle
     uint trianglesPerPrimitive;
+    uint attributeOffset[4];   // per vertex (triangles): attribute0..3
 };
 
 // Everything the kernels need to find the scene. All BVHs live in one node array: the TLAS first, then

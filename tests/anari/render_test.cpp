@@ -431,7 +431,7 @@ TEST_CASE("every subtype the device lists is created without the unknown-subtype
             anariRelease(s.device, object);
         }
     }
-    CHECK(listed == 21);  // 14 + cone, curve, omnidirectional + spot, ring, hdri + image1D
+    CHECK(listed == 24);  // 14 + cone, curve, omnidirectional + spot, ring, hdri + image1D, image3D, transform, primitive
     CHECK_MESSAGE(s.log.count({"unknown"}) == 0, s.log.dump());
 }
 

@@ -3,6 +3,9 @@
 // others skipped).
 #include "anari/device/frame/DataParallelFrame.h"
 
+#include "anari/device/scene/SceneSync.h"
+#include "mpi/LightGather.h"
+
 #include <cstring>
 #include <type_traits>
 #include <vector>
@@ -49,6 +52,18 @@ std::string ranksDisagree(const mpi::Communicator& ranks, const FrameIdentity& m
             return rank + "'s renderer differs from rank 0's (pixelSamples, maxPathLength)";
     }
     return {};
+}
+
+const core::Scene& sceneWithSharedEmitters(const mpi::Communicator& ranks, SceneSync& sync,
+                                           const vk::Context& context, bool& rebuilt) {
+    const core::Scene* scene = &sync.scene(context, rebuilt);
+    if (ranks.max(rebuilt ? 1 : 0) == 0) return *scene;  // no emitter can have changed anywhere
+    if (sync.setForeignTriangleLights(mpi::gatherForeignLightRecords(ranks, scene->triangleLights()))) {
+        bool again = false;
+        scene = &sync.scene(context, again);
+        rebuilt = true;
+    }
+    return *scene;
 }
 
 }  // namespace ripple::device

@@ -30,4 +30,12 @@ struct FrameIdentity {
 // first rank that differs from rank 0 and how.
 std::string ranksDisagree(const mpi::Communicator& ranks, const FrameIdentity& mine);
 
+class SceneSync;
+
+// Collective, on the rendering thread: the scene of `sync`, and when any rank rebuilt its scene, every
+// rank's emissive-triangle lights shared with the others (rebuilding where they changed), so that each
+// rank samples all emitters. `rebuilt` as SceneSync::scene sets it.
+const core::Scene& sceneWithSharedEmitters(const mpi::Communicator& ranks, SceneSync& sync,
+                                           const vk::Context& context, bool& rebuilt);
+
 }  // namespace ripple::device

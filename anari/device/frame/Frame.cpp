@@ -189,7 +189,8 @@ void Frame::run(const Job& job) {
         }
 
         bool rebuilt = false;
-        const core::Scene& scene = sync_.scene(context, rebuilt);
+        const core::Scene& scene =
+            ring_ ? sceneWithSharedEmitters(ring_->communicator(), sync_, context, rebuilt) : sync_.scene(context, rebuilt);
         if (rebuilt)
             for (const std::string& message : scene.report().messages) reportWarning("scene: " + message);
 

@@ -191,8 +191,10 @@ Geometry::Shape Geometry::buildPolygonMesh(int corners) {
 
     for (const glm::vec4& n : pullVectors("vertex.normal", vertexCount)) mesh.normals.emplace_back(n);
     mesh.colors = pullVectors("vertex.color", vertexCount);
-    // attribute0 is the texture coordinate an image2D sampler reads by default.
-    for (const glm::vec4& t : pullVectors("vertex.attribute0", vertexCount)) mesh.texcoords.emplace_back(t);
+    for (size_t a = 0; a < mesh.attributes.size(); ++a)
+        mesh.attributes[a] = pullVectors("vertex.attribute" + std::to_string(a), vertexCount);
+    // attribute0 is also the texture coordinate: normal maps take their tangent frame from it.
+    for (const glm::vec4& t : mesh.attributes[0]) mesh.texcoords.emplace_back(t);
     std::vector<glm::vec4> polygonColors = pullVectors("primitive.color", polygonCount);
     if (polygonColors.empty() && mesh.colors.empty()) polygonColors = pullUniformColor(polygonCount);
     // Core stores primitive colours per triangle: each quad's colour goes to both of its halves.

@@ -1,6 +1,7 @@
-// Sampler subtypes "image1D" and "image2D" (KHR_SAMPLER_IMAGE1D/2D): an image read at the texture
-// coordinate (attribute0), with filter, per-axis wrap modes and input/output transforms. A 1D image is a
-// core texture one row high, so only the coordinate's first component (after inTransform) matters.
+// Sampler subtypes "image1D", "image2D" and "image3D" (KHR_SAMPLER_IMAGE1D/2D/3D): an image read at a
+// surface attribute (inAttribute), with filter, per-axis wrap modes and input/output transforms. A 1D
+// image is a core texture one row high and a 2D one a single slice, so only the first one or two
+// components of the transformed input matter.
 #include "anari/device/sampler/Sampler.h"
 
 #include "anari/device/scene/ArrayConversion.h"
@@ -22,14 +23,12 @@ core::Texture::Wrap wrapMode(const std::string& name) {
 class ImageSampler final : public Sampler {
 public:
     ImageSampler(DeviceState& state, int dimensions)
-        : Sampler(state, dimensions == 1 ? "image1D" : "image2D"), dimensions_(dimensions) {}
-
-    const core::Texture* texture() const override { return texture_ ? &*texture_ : nullptr; }
+        : Sampler(state, "image" + std::to_string(dimensions) + "D"), dimensions_(dimensions) {}
 
     void commit() override {
         forgetDependencies();
         texture_.reset();
-        const ANARIDataType arrayType = dimensions_ == 1 ? ANARI_ARRAY1D : ANARI_ARRAY2D;
+        const ANARIDataType arrayType = dimensions_ == 1 ? ANARI_ARRAY1D : dimensions_ == 2 ? ANARI_ARRAY2D : ANARI_ARRAY3D;
         Array* image = getArray("image", arrayType);
         if (!image) {
             invalidate(has("image") ? "parameter 'image' must be an " + std::string(ripple_anari::typeName(arrayType))
@@ -40,29 +39,25 @@ public:
         core::Texture texture;
         texture.width = uint32_t(image->dim(0));
         texture.height = dimensions_ == 1 ? 1u : uint32_t(image->dim(1));
-        if (texture.width == 0 || texture.height == 0) {
+        texture.depth = dimensions_ == 3 ? uint32_t(image->dim(2)) : 1u;
+        if (texture.width == 0 || texture.height == 0 || texture.depth == 0) {
             invalidate("parameter 'image' is empty");
             return;
         }
         if (!convertTexels(*image, texture)) return;
 
-        const std::string inAttribute = getString("inAttribute", "attribute0");
-        if (inAttribute != "attribute0")
-            reportWarning("inAttribute '" + inAttribute +
-                          "' is not supported; using 'attribute0' (texture coordinates)");
+        texture.input = pullInAttribute();
         const std::string filter = getString("filter", "linear");
         if (filter != "linear" && filter != "nearest")
             reportWarning("parameter 'filter' has unknown value '" + filter + "'; using 'linear'");
         texture.linearFilter = filter != "nearest";
         texture.wrapS = wrapMode(checkedWrapMode("wrapMode1"));
         texture.wrapT = dimensions_ == 1 ? core::Texture::Wrap::ClampToEdge : wrapMode(checkedWrapMode("wrapMode2"));
-
-        // The input is (u, v, 0, 1), so an offset folds into the translation column exactly.
+        texture.wrapR = dimensions_ == 3 ? wrapMode(checkedWrapMode("wrapMode3")) : core::Texture::Wrap::ClampToEdge;
         texture.inTransform = get<glm::mat4>("inTransform", glm::mat4(1.0f));
-        texture.inTransform[3] += get<glm::vec4>("inOffset", glm::vec4(0.0f));
+        texture.inOffset = get<glm::vec4>("inOffset", glm::vec4(0.0f));
         texture.outTransform = get<glm::mat4>("outTransform", glm::mat4(1.0f));
-        if (get<glm::vec4>("outOffset", glm::vec4(0.0f)) != glm::vec4(0.0f))
-            reportWarning("parameter 'outOffset' is not supported yet; ignored");
+        texture.outOffset = get<glm::vec4>("outOffset", glm::vec4(0.0f));
         texture_ = std::move(texture);
     }
 
@@ -113,7 +108,6 @@ private:
     }
 
     int dimensions_;
-    std::optional<core::Texture> texture_;
 };
 
 }  // namespace

@@ -1,9 +1,11 @@
 // ANARI sampler: turns a surface attribute into a colour. Each subtype becomes a core::Texture that
-// materials reference. image3D is not supported (core has no 3D textures): the factory reports it unknown.
+// materials reference: image1D/2D/3D (Image.cpp), transform (Transform.cpp), primitive (Primitive.cpp).
 #pragma once
 
 #include "anari/device/scene/SceneObject.h"
 #include "core/scene/SceneDescription.h"
+
+#include <optional>
 
 namespace ripple::device {
 
@@ -11,10 +13,18 @@ class Sampler : public SceneObject {
 public:
     Sampler(DeviceState& state, std::string subtype) : SceneObject(state, ANARI_SAMPLER, std::move(subtype)) {}
     // The committed texture; nullptr when nothing valid was committed.
-    virtual const core::Texture* texture() const = 0;
+    const core::Texture* texture() const { return texture_ ? &*texture_ : nullptr; }
+
+protected:
+    // "inAttribute" (default attribute0) as a core input; an unknown name is reported, attribute0 used.
+    core::Texture::Input pullInAttribute();
+
+    std::optional<core::Texture> texture_;
 };
 
-// image1D (dimensions 1) or image2D (2).
+// image1D, image2D or image3D (dimensions 1, 2 or 3).
 Sampler* newImageSampler(DeviceState& state, int dimensions);
+Sampler* newTransformSampler(DeviceState& state);
+Sampler* newPrimitiveSampler(DeviceState& state);
 
 }  // namespace ripple::device

@@ -143,7 +143,10 @@ bool SceneSync::update(World& world) {
     if (&world == world_ && newest == newestStamp_ && scene_) return false;
     world_ = &world;
     newestStamp_ = newest;
+    // The other ranks' emitters stay until the next exchange says otherwise (usually they did not change).
+    std::vector<gpu::LightRecord> foreign = std::move(description_.foreignTriangleLights);
     description_ = DescriptionBuilder().build(world);
+    description_.foreignTriangleLights = std::move(foreign);
     localLights_ = description_.lights;
     pending_ = true;
     return true;
@@ -157,6 +160,16 @@ bool SceneSync::setLights(const std::vector<core::Light>& lights, float worldRad
     if (same && description_.lightSceneRadius == worldRadius) return false;
     description_.lights = lights;
     description_.lightSceneRadius = worldRadius;
+    pending_ = true;
+    return true;
+}
+
+bool SceneSync::setForeignTriangleLights(std::vector<gpu::LightRecord> lights) {
+    std::vector<gpu::LightRecord>& current = description_.foreignTriangleLights;
+    if (lights.size() == current.size() &&
+        (lights.empty() || std::memcmp(lights.data(), current.data(), lights.size() * sizeof(gpu::LightRecord)) == 0))
+        return false;
+    current = std::move(lights);
     pending_ = true;
     return true;
 }

@@ -36,6 +36,8 @@ public:
     // power. Returns whether that changed the scene.
     const std::vector<core::Light>& localLights() const { return localLights_; }
     bool setLights(const std::vector<core::Light>& lights, float worldRadius);
+    // Data-parallel: the other ranks' emissive-triangle lights; returns whether they changed the scene.
+    bool setForeignTriangleLights(std::vector<gpu::LightRecord> lights);
     // Scenes built so far: a camera-only change builds none.
     uint64_t builds() const { return builds_; }
 

@@ -1,0 +1,169 @@
+// Render tests of the sampler modes beyond image1D/2D at attribute0: inAttribute selecting another vertex
+// attribute, the transform and primitive samplers, and image3D (nearest and trilinear). Each drives the
+// emission of a quad seen straight on with no lights and one bounce, so a pixel is exactly the sampler's
+// output where the output is constant over the pixel (checked to 1e-4), or within the output's change
+// across a pixel (camera rays are jittered) where it varies.
+#include "tests/anari/RenderSession.h"
+
+#include <doctest/doctest.h>
+
+#include <cstring>
+
+using ripple::test::Image;
+using ripple::test::RenderSession;
+
+namespace {
+
+constexpr float kExact = 1e-4f;
+
+// A 2x2 grid of quads covering [-1, 1]^2 in z = 0, numbered row by row from the bottom left, with
+// per-vertex attribute0 = (u, v) over the whole grid and attribute2 = (1 - u, v, 0.75) (mirrored u).
+ANARIGeometry quadGrid(RenderSession& s) {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec2> uv;
+    std::vector<glm::vec3> mirrored;
+    for (int q = 0; q < 4; ++q) {
+        const glm::vec2 lower(float(q % 2) - 1.0f, float(q / 2) - 1.0f);
+        for (const glm::vec2 corner : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
+            const glm::vec2 p = lower + corner;
+            positions.emplace_back(p, 0.0f);
+            uv.push_back(0.5f * (p + 1.0f));
+            mirrored.emplace_back(1.0f - uv.back().x, uv.back().y, 0.75f);
+        }
+    }
+    ANARIGeometry grid = s.keep(anariNewGeometry(s.device, "quad"));
+    s.setObject(grid, "vertex.position", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC3, positions));
+    s.setObject(grid, "vertex.attribute0", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC2, uv));
+    s.setObject(grid, "vertex.attribute2", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC3, mirrored));
+    s.commit(grid);
+    return grid;
+}
+
+// The emission each pixel of an orthographic, straight-on view of the grid sees (float channel).
+Image renderEmission(RenderSession& s, ANARISampler emissive, glm::uvec2 size) {
+    ANARIMaterial material = s.keep(anariNewMaterial(s.device, "physicallyBased"));
+    s.set(material, "baseColor", glm::vec3(0.0f));
+    s.setObject(material, "emissive", ANARI_SAMPLER, emissive);
+    s.commit(material);
+    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+    s.set(camera, "position", glm::vec3(0, 0, 3));
+    s.set(camera, "direction", glm::vec3(0, 0, -1));
+    s.set(camera, "up", glm::vec3(0, 1, 0));
+    s.set(camera, "height", 2.0f);
+    s.commit(camera);
+    ANARIFrame frame = s.frame(s.world({s.surface(quadGrid(s), material)}, {}), camera,
+                               s.renderer(1, 1, glm::vec4(0, 0, 0, 1)), size, ANARI_FLOAT32_VEC4);
+    Image image = s.render(frame);
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    return image;
+}
+
+ANARISampler committed(RenderSession& s, ANARISampler sampler) {
+    s.commit(sampler);
+    return sampler;
+}
+
+bool near(glm::vec3 got, glm::vec3 expected, float tolerance) {
+    return glm::all(glm::lessThanEqual(glm::abs(got - expected), glm::vec3(tolerance)));
+}
+
+}  // namespace
+
+TEST_CASE("primitive sampler: each quad shows array entry (primitive id + inOffset), exactly") {
+    RenderSession s;
+    const std::vector<glm::vec4> colors{{9, 9, 9, 1}, {1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 0, 1}};
+    ANARISampler sampler = s.keep(anariNewSampler(s.device, "primitive"));
+    s.setObject(sampler, "array", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, colors));
+    const uint64_t offset = 1;
+    s.setRaw(sampler, "inOffset", ANARI_UINT64, &offset);
+    const Image image = renderEmission(s, committed(s, sampler), {8, 8});
+    // Quad q (row by row from the bottom left, as are frame rows) covers a 4x4 block of pixels.
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x) {
+            INFO("pixel " << x << "," << y);
+            CHECK(near(glm::vec3(image.at(x, y)), glm::vec3(colors[1 + (y / 4) * 2 + x / 4]), kExact));
+        }
+}
+
+TEST_CASE("transform sampler: outTransform * attribute2 + outOffset, analytic") {
+    RenderSession s;
+    ANARISampler sampler = s.keep(anariNewSampler(s.device, "transform"));
+    s.set(sampler, "inAttribute", "attribute2");
+    glm::mat4 out(0.0f);
+    out[0] = glm::vec4(0, 2, 0, 0);  // attribute x (1 - u) -> green, doubled
+    out[1] = glm::vec4(1, 0, 0, 0);  // attribute y (v) -> red
+    out[2] = glm::vec4(0, 0, 1, 0);  // attribute z (0.75) -> blue
+    s.setRaw(sampler, "outTransform", ANARI_FLOAT32_MAT4, &out);
+    s.set(sampler, "outOffset", glm::vec4(0.0f, 0.0f, 0.125f, 0.0f));
+    const Image image = renderEmission(s, committed(s, sampler), {16, 16});
+    // Over a pixel u and v change by 1/16, so green by 2/16 and red by 1/16 from the pixel centre's value.
+    for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 16; ++x) {
+            const float u = (float(x) + 0.5f) / 16.0f, v = (float(y) + 0.5f) / 16.0f;
+            const glm::vec3 got(image.at(x, y));
+            INFO("pixel " << x << "," << y << " got " << got.r << " " << got.g << " " << got.b);
+            CHECK(std::abs(got.r - v) <= 1.0f / 32.0f + kExact);
+            CHECK(std::abs(got.g - 2.0f * (1.0f - u)) <= 2.0f / 32.0f + kExact);
+            CHECK(std::abs(got.b - 0.875f) <= kExact);
+        }
+}
+
+TEST_CASE("image2D sampler reading inAttribute attribute2 (u mirrored), nearest: exact texels") {
+    RenderSession s;
+    const std::vector<glm::vec4> texels{{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+    ANARIArray2D image = s.keep(anariNewArray2D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32_VEC4, 2, 2));
+    std::memcpy(anariMapArray(s.device, image), texels.data(), texels.size() * sizeof(glm::vec4));
+    anariUnmapArray(s.device, image);
+    ANARISampler sampler = s.keep(anariNewSampler(s.device, "image2D"));
+    s.setObject(sampler, "image", ANARI_ARRAY2D, image);
+    s.set(sampler, "filter", "nearest");
+    s.set(sampler, "inAttribute", "attribute2");
+    const Image rendered = renderEmission(s, committed(s, sampler), {8, 8});
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x) {
+            INFO("pixel " << x << "," << y);
+            CHECK(near(glm::vec3(rendered.at(x, y)), glm::vec3(texels[(y / 4) * 2 + (1 - x / 4)]), kExact));
+        }
+}
+
+TEST_CASE("image3D sampler: nearest picks the slice at w (with inOffset); linear blends slices") {
+    RenderSession s;
+    // 2x2x2 texels: slice 0 red/green/blue/white, slice 1 the same times 4.
+    std::vector<glm::vec4> texels{{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
+    for (int i = 0; i < 4; ++i) texels.push_back(glm::vec4(glm::vec3(texels[i]) * 4.0f, 1.0f));
+    ANARIArray3D volume = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32_VEC4, 2, 2, 2));
+    std::memcpy(anariMapArray(s.device, volume), texels.data(), texels.size() * sizeof(glm::vec4));
+    anariUnmapArray(s.device, volume);
+    // attribute2 is (1 - u, v, 0.75): w = 0.75 lies in slice 1, and 0.25 (inOffset -0.5) in slice 0.
+    for (const float offset : {0.0f, -0.5f}) {
+        CAPTURE(offset);
+        ANARISampler sampler = s.keep(anariNewSampler(s.device, "image3D"));
+        s.setObject(sampler, "image", ANARI_ARRAY3D, volume);
+        s.set(sampler, "filter", "nearest");
+        s.set(sampler, "inAttribute", "attribute2");
+        s.set(sampler, "inOffset", glm::vec4(0.0f, 0.0f, offset, 0.0f));
+        const Image image = renderEmission(s, committed(s, sampler), {8, 8});
+        const int slice = offset == 0.0f ? 1 : 0;
+        for (uint32_t y = 0; y < 8; ++y)
+            for (uint32_t x = 0; x < 8; ++x) {
+                INFO("pixel " << x << "," << y);
+                CHECK(near(glm::vec3(image.at(x, y)), glm::vec3(texels[slice * 4 + (y / 4) * 2 + (1 - x / 4)]), kExact));
+            }
+    }
+    // Linear: in a 1x1x2 image (black, white), w = 0.75 + inOffset = 0.375 sits a quarter of the way from
+    // the centre of slice 0 (w 0.25) to that of slice 1 (w 0.75): exactly 0.25 grey.
+    const std::vector<glm::vec4> ends{{0, 0, 0, 1}, {1, 1, 1, 1}};
+    ANARIArray3D ramp = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32_VEC4, 1, 1, 2));
+    std::memcpy(anariMapArray(s.device, ramp), ends.data(), ends.size() * sizeof(glm::vec4));
+    anariUnmapArray(s.device, ramp);
+    ANARISampler linear = s.keep(anariNewSampler(s.device, "image3D"));
+    s.setObject(linear, "image", ANARI_ARRAY3D, ramp);
+    s.set(linear, "inAttribute", "attribute2");
+    s.set(linear, "inOffset", glm::vec4(0.0f, 0.0f, -0.375f, 0.0f));
+    const Image blended = renderEmission(s, committed(s, linear), {4, 4});
+    for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 0; x < 4; ++x) {
+            INFO("pixel " << x << "," << y);
+            CHECK(near(glm::vec3(blended.at(x, y)), glm::vec3(0.25f), kExact));
+        }
+}
