@@ -28,6 +28,9 @@ public:
     static Communicator world();
     // The application's communicator: `handle` points to an MPI_Comm. Null, or MPI not active: world().
     static Communicator fromHandle(const void* handle);
+    // The address of an MPI_Comm holding MPI_COMM_SELF (nullptr without MPI): given to a device that
+    // must render alone while its caller composites across ranks.
+    static const void* selfHandle();
 
     int rank() const { return rank_; }
     int size() const { return size_; }
@@ -42,6 +45,8 @@ public:
     std::vector<std::vector<uint8_t>> allgather(std::span<const uint8_t> bytes) const;
     // Every rank's bytes on rank 0 (indexed by rank); empty on the others.
     std::vector<std::vector<uint8_t>> gatherToRoot(std::span<const uint8_t> bytes) const;
+    // outgoing[r] goes to rank r; returns what each rank sent here, indexed by sender (MPI_Alltoallv).
+    std::vector<std::vector<uint8_t>> alltoallv(const std::vector<std::vector<uint8_t>>& outgoing) const;
     // Sends to rank + 1 and receives from rank - 1 (cyclically): one hop of a ring.
     std::vector<uint8_t> ringShift(std::span<const uint8_t> bytes) const;
     void barrier() const;

@@ -133,6 +133,40 @@ std::vector<std::vector<uint8_t>> Communicator::gatherToRoot(std::span<const uin
     return result;
 }
 
+const void* Communicator::selfHandle() {
+    static const MPI_Comm self = MPI_COMM_SELF;
+    return &self;
+}
+
+std::vector<std::vector<uint8_t>> Communicator::alltoallv(const std::vector<std::vector<uint8_t>>& outgoing) const {
+    if (outgoing.size() != size_t(size_))
+        throw MpiError("alltoallv: " + std::to_string(outgoing.size()) + " outgoing buffers for " +
+                       std::to_string(size_) + " ranks");
+    if (!distributed()) return {outgoing.front()};
+    const size_t ranks = size_t(size_);
+    std::vector<int> sendCounts(ranks), sendOffsets(ranks), receiveCounts(ranks), receiveOffsets(ranks);
+    std::vector<uint8_t> sendBuffer;
+    for (size_t r = 0; r < ranks; ++r) {
+        sendCounts[r] = countOf(outgoing[r].size());
+        sendOffsets[r] = countOf(sendBuffer.size());
+        sendBuffer.insert(sendBuffer.end(), outgoing[r].begin(), outgoing[r].end());
+    }
+    RIPPLE_MPI_CHECK(MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, handle_->comm));
+    size_t total = 0;
+    for (size_t r = 0; r < ranks; ++r) {
+        receiveOffsets[r] = countOf(total);
+        total += size_t(receiveCounts[r]);
+    }
+    sendBuffer.resize(std::max<size_t>(sendBuffer.size(), 1));
+    std::vector<uint8_t> all(std::max<size_t>(total, 1));
+    RIPPLE_MPI_CHECK(MPI_Alltoallv(sendBuffer.data(), sendCounts.data(), sendOffsets.data(), MPI_BYTE, all.data(),
+                                   receiveCounts.data(), receiveOffsets.data(), MPI_BYTE, handle_->comm));
+    std::vector<std::vector<uint8_t>> result(ranks);
+    for (size_t r = 0; r < ranks; ++r)
+        result[r].assign(all.begin() + receiveOffsets[r], all.begin() + receiveOffsets[r] + receiveCounts[r]);
+    return result;
+}
+
 std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) const {
     if (!distributed()) return std::vector<uint8_t>(bytes.begin(), bytes.end());
     const int next = (rank_ + 1) % size_, previous = (rank_ + size_ - 1) % size_;

@@ -1,0 +1,402 @@
+// PtcDevice (see PtcDevice.h): object handles are the wrapped device's own, so most calls pass straight
+// through; frames keep a little state on this side for the compositing.
+#include "anari/ptc/PtcDevice.h"
+
+#include "anari/anari_type_traits.hpp"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+
+namespace ripple::ptc {
+
+namespace {
+
+using NewLibraryFunction = ANARILibrary (*)(void*, ANARIStatusCallback, const void*);
+
+// The folder this library was loaded from, so the wrapped library is found beside it.
+std::string ownDirectory() {
+    static const char addressInside = 0;
+    Dl_info info{};
+    if (dladdr(&addressInside, &info) == 0 || info.dli_fname == nullptr) return {};
+    const std::string path = info.dli_fname;
+    const size_t slash = path.rfind('/');
+    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+uint8_t toUnorm8(float value) { return uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); }
+float linearToSrgb(float value) {
+    value = std::clamp(value, 0.0f, 1.0f);
+    return value <= 0.0031308f ? 12.92f * value : 1.055f * std::pow(value, 1.0f / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+PtcDevice::PtcDevice(ANARIStatusCallback defaultCallback, const void* defaultCallbackUserPtr)
+    : callback_(defaultCallback), callbackUserPtr_(defaultCallbackUserPtr) {
+    const char* fromEnvironment = std::getenv("RIPPLE_PTC_LIBRARY");
+    libraryName_ = fromEnvironment && *fromEnvironment ? fromEnvironment : "ripple";
+}
+
+PtcDevice::~PtcDevice() {
+    if (wrapped_) wrapped_->release(wrappedHandle());
+    delete library_;  // like the loader: delete the library object, then unmap its code
+    if (libraryHandle_) dlclose(libraryHandle_);
+}
+
+void PtcDevice::report(ANARIStatusSeverity severity, const std::string& message) const {
+    if (callback_)
+        callback_(callbackUserPtr_, handleFromDevice(const_cast<PtcDevice*>(this)), handleFromDevice(const_cast<PtcDevice*>(this)),
+                  ANARI_DEVICE, severity, severity == ANARI_SEVERITY_ERROR ? ANARI_STATUS_INVALID_OPERATION : ANARI_STATUS_NO_ERROR,
+                  ("ripple_ptc: " + message).c_str());
+}
+
+void PtcDevice::loadWrapped() {
+    const std::string fileName = "libanari_library_" + libraryName_ + ".so";
+    std::string reasons;
+    for (const std::string& candidate : {ownDirectory() + fileName, fileName}) {
+        dlerror();
+        libraryHandle_ = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL);
+        if (libraryHandle_) break;
+        const char* reason = dlerror();
+        reasons += "\n  " + candidate + ": " + (reason ? reason : "unknown dlopen error");
+    }
+    if (!libraryHandle_)
+        throw std::runtime_error("cannot load the wrapped library '" + libraryName_ + "' (device parameter "
+                                 "\"library\" or RIPPLE_PTC_LIBRARY):" + reasons);
+    const std::string symbol = "anari_library_" + libraryName_ + "_new_library";
+    auto newLibrary = reinterpret_cast<NewLibraryFunction>(dlsym(libraryHandle_, symbol.c_str()));
+    if (!newLibrary) throw std::runtime_error("the wrapped library '" + libraryName_ + "' does not export " + symbol);
+    // The wrapped library reports to the application's callback directly.
+    ANARILibrary library = newLibrary(libraryHandle_, callback_, callbackUserPtr_);
+    if (!library) throw std::runtime_error(symbol + " returned NULL");
+    library_ = abi::libraryFromHandle(library);
+    ANARIDevice device = library_->newDevice("default");
+    if (!device) throw std::runtime_error("the wrapped library '" + libraryName_ + "' created no device");
+    wrapped_ = abi::deviceFromHandle(device);
+    // The wrapped device renders this rank's share alone: a data-parallel device must not talk to the
+    // other ranks itself, or they would be composited twice.
+    if (const void* self = mpi::Communicator::selfHandle())
+        wrapped_->setParameter(device, "mpiCommunicator", ANARI_VOID_POINTER, &self);
+    for (const PendingParameter& p : pending_) {
+        wrapped_->setParameter(device, p.name.c_str(), p.type,
+                               p.type == ANARI_STRING ? static_cast<const void*>(p.text.c_str()) : p.bytes.data());
+    }
+    pending_.clear();
+}
+
+abi::DeviceInterface* PtcDevice::wrapped() {
+    if (wrapped_ || loadFailed_) return wrapped_;
+    try {
+        loadWrapped();
+    } catch (const std::exception& error) {
+        loadFailed_ = true;
+        report(ANARI_SEVERITY_ERROR, error.what());
+    }
+    return wrapped_;
+}
+
+// --- object creation: straight through -----------------------------------------------------------------
+
+#define RIPPLE_PTC_FORWARD(fallback, call)  \
+    if (abi::DeviceInterface* device = wrapped()) return device->call; \
+    return fallback
+
+ANARIArray1D PtcDevice::newArray1D(const void* m, ANARIMemoryDeleter d, const void* u, ANARIDataType t, uint64_t n1) {
+    RIPPLE_PTC_FORWARD(nullptr, newArray1D(m, d, u, t, n1));
+}
+ANARIArray2D PtcDevice::newArray2D(const void* m, ANARIMemoryDeleter d, const void* u, ANARIDataType t, uint64_t n1,
+                                   uint64_t n2) {
+    RIPPLE_PTC_FORWARD(nullptr, newArray2D(m, d, u, t, n1, n2));
+}
+ANARIArray3D PtcDevice::newArray3D(const void* m, ANARIMemoryDeleter d, const void* u, ANARIDataType t, uint64_t n1,
+                                   uint64_t n2, uint64_t n3) {
+    RIPPLE_PTC_FORWARD(nullptr, newArray3D(m, d, u, t, n1, n2, n3));
+}
+ANARIGeometry PtcDevice::newGeometry(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newGeometry(type)); }
+ANARIMaterial PtcDevice::newMaterial(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newMaterial(type)); }
+ANARISampler PtcDevice::newSampler(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newSampler(type)); }
+ANARISurface PtcDevice::newSurface() { RIPPLE_PTC_FORWARD(nullptr, newSurface()); }
+ANARISpatialField PtcDevice::newSpatialField(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newSpatialField(type)); }
+ANARIVolume PtcDevice::newVolume(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newVolume(type)); }
+ANARILight PtcDevice::newLight(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newLight(type)); }
+ANARIGroup PtcDevice::newGroup() { RIPPLE_PTC_FORWARD(nullptr, newGroup()); }
+ANARIInstance PtcDevice::newInstance(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newInstance(type)); }
+ANARIWorld PtcDevice::newWorld() { RIPPLE_PTC_FORWARD(nullptr, newWorld()); }
+ANARICamera PtcDevice::newCamera(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newCamera(type)); }
+ANARIRenderer PtcDevice::newRenderer(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newRenderer(type)); }
+ANARIObject PtcDevice::newObject(const char* objectType, const char* type) {
+    RIPPLE_PTC_FORWARD(nullptr, newObject(objectType, type));
+}
+
+ANARIFrame PtcDevice::newFrame() {
+    abi::DeviceInterface* device = wrapped();
+    if (!device) return nullptr;
+    ANARIFrame frame = device->newFrame();
+    if (!frame) return nullptr;
+    const ANARIDataType color = ANARI_FLOAT32_VEC4, depth = ANARI_FLOAT32;
+    device->setParameter(frame, "channel.color", ANARI_DATA_TYPE, &color);
+    device->setParameter(frame, "channel.depth", ANARI_DATA_TYPE, &depth);
+    frames_[frame].communicatorHandle = communicatorHandle_;
+    return frame;
+}
+
+// --- parameters ----------------------------------------------------------------------------------------
+
+void PtcDevice::setDeviceParameter(const char* name, ANARIDataType dataType, const void* mem) {
+    const std::string key = name;
+    if (key == "library" && dataType == ANARI_STRING) {
+        if (wrapped_ || loadFailed_)
+            report(ANARI_SEVERITY_WARNING, "\"library\" set after the wrapped device was created: ignored");
+        else
+            libraryName_ = static_cast<const char*>(mem);
+        return;
+    }
+    if ((key == "mpiCommunicator" && dataType == ANARI_VOID_POINTER) ||
+        (key == "pointer_to_mpi_communicator" && dataType == ANARI_UINT64)) {
+        std::memcpy(&communicatorHandle_, mem, sizeof(communicatorHandle_));
+        return;
+    }
+    if (key == "statusCallback" && dataType == ANARI_STATUS_CALLBACK)
+        std::memcpy(&callback_, mem, sizeof(callback_));
+    if (key == "statusCallbackUserData" && dataType == ANARI_VOID_POINTER)
+        std::memcpy(&callbackUserPtr_, mem, sizeof(callbackUserPtr_));
+    if (wrapped_) return wrapped_->setParameter(wrappedHandle(), name, dataType, mem);
+    PendingParameter p{key, dataType, {}, {}};
+    if (dataType == ANARI_STRING) {
+        p.text = static_cast<const char*>(mem);  // ANARI passes the characters themselves
+    } else {
+        const size_t bytes = ripple_anari::sizeOf(dataType);
+        p.bytes.assign(static_cast<const uint8_t*>(mem), static_cast<const uint8_t*>(mem) + bytes);
+    }
+    pending_.push_back(std::move(p));
+}
+
+void PtcDevice::setFrameParameter(FrameState& frame, ANARIFrame handle, const char* name, ANARIDataType dataType,
+                                  const void* mem) {
+    const std::string key = name;
+    if (key == "channel.color" && dataType == ANARI_DATA_TYPE) {
+        std::memcpy(&frame.colorType, mem, sizeof(ANARIDataType));
+        return;  // the wrapped frame keeps FLOAT32_VEC4
+    }
+    if (key == "channel.depth" && dataType == ANARI_DATA_TYPE) {
+        std::memcpy(&frame.depthType, mem, sizeof(ANARIDataType));
+        return;
+    }
+    if (key == "mpiCommunicator" && dataType == ANARI_VOID_POINTER) {
+        std::memcpy(&frame.communicatorHandle, mem, sizeof(frame.communicatorHandle));
+        return;
+    }
+    if (key == "size" && dataType == ANARI_UINT32_VEC2) {
+        uint32_t size[2];
+        std::memcpy(size, mem, sizeof(size));
+        frame.width = size[0];
+        frame.height = size[1];
+    }
+    wrapped_->setParameter(handle, name, dataType, mem);
+}
+
+void PtcDevice::setParameter(ANARIObject object, const char* name, ANARIDataType dataType, const void* mem) {
+    if (!name || !mem) return report(ANARI_SEVERITY_ERROR, "anariSetParameter: NULL name or value");
+    if (isDevice(object)) return setDeviceParameter(name, dataType, mem);
+    if (!wrapped()) return;
+    if (auto it = frames_.find(reinterpret_cast<ANARIFrame>(object)); it != frames_.end())
+        return setFrameParameter(it->second, it->first, name, dataType, mem);
+    wrapped_->setParameter(object, name, dataType, mem);
+}
+
+void PtcDevice::unsetParameter(ANARIObject object, const char* name) {
+    if (isDevice(object)) {
+        if (wrapped_) wrapped_->unsetParameter(wrappedHandle(), name);
+        return;
+    }
+    RIPPLE_PTC_FORWARD(void(), unsetParameter(object, name));
+}
+void PtcDevice::unsetAllParameters(ANARIObject object) {
+    if (isDevice(object)) {
+        if (wrapped_) wrapped_->unsetAllParameters(wrappedHandle());
+        return;
+    }
+    RIPPLE_PTC_FORWARD(void(), unsetAllParameters(object));
+}
+void* PtcDevice::mapParameterArray1D(ANARIObject o, const char* n, ANARIDataType t, uint64_t n1, uint64_t* s) {
+    RIPPLE_PTC_FORWARD(nullptr, mapParameterArray1D(o, n, t, n1, s));
+}
+void* PtcDevice::mapParameterArray2D(ANARIObject o, const char* n, ANARIDataType t, uint64_t n1, uint64_t n2,
+                                     uint64_t* s) {
+    RIPPLE_PTC_FORWARD(nullptr, mapParameterArray2D(o, n, t, n1, n2, s));
+}
+void* PtcDevice::mapParameterArray3D(ANARIObject o, const char* n, ANARIDataType t, uint64_t n1, uint64_t n2,
+                                     uint64_t n3, uint64_t* s) {
+    RIPPLE_PTC_FORWARD(nullptr, mapParameterArray3D(o, n, t, n1, n2, n3, s));
+}
+void PtcDevice::unmapParameterArray(ANARIObject object, const char* name) {
+    RIPPLE_PTC_FORWARD(void(), unmapParameterArray(object, name));
+}
+
+void PtcDevice::commitParameters(ANARIObject object) {
+    if (isDevice(object)) {
+        if (abi::DeviceInterface* device = wrapped()) device->commitParameters(wrappedHandle());
+        return;
+    }
+    abi::DeviceInterface* device = wrapped();
+    if (!device) return;
+    device->commitParameters(object);
+    auto it = frames_.find(reinterpret_cast<ANARIFrame>(object));
+    if (it == frames_.end()) return;
+    FrameState& frame = it->second;
+    try {
+        if (!frame.compositor)  // collective: every rank commits its frame
+            frame.compositor = std::make_unique<mpi::Compositor>(mpi::Communicator::fromHandle(frame.communicatorHandle));
+        frame.compositor->resize(frame.width, frame.height);
+    } catch (const std::exception& error) {
+        report(ANARI_SEVERITY_ERROR, std::string("anariCommitParameters(frame): ") + error.what());
+    }
+}
+
+// --- lifetime ------------------------------------------------------------------------------------------
+
+void PtcDevice::release(ANARIObject object) {
+    if (!object) return;
+    if (isDevice(object)) {
+        if (--references_ == 0) delete this;
+        return;
+    }
+    if (!wrapped_) return;
+    wrapped_->release(object);
+    // Frames are erased on release; a frame retained by the application keeps its state only while the
+    // application holds exactly one reference, which is all Ripple's apps do.
+    frames_.erase(reinterpret_cast<ANARIFrame>(object));
+}
+
+void PtcDevice::retain(ANARIObject object) {
+    if (!object) return;
+    if (isDevice(object)) {
+        ++references_;
+        return;
+    }
+    if (wrapped_) wrapped_->retain(object);
+}
+
+void* PtcDevice::mapArray(ANARIArray array) { RIPPLE_PTC_FORWARD(nullptr, mapArray(array)); }
+void PtcDevice::unmapArray(ANARIArray array) { RIPPLE_PTC_FORWARD(void(), unmapArray(array)); }
+
+// --- queries -------------------------------------------------------------------------------------------
+
+int PtcDevice::getProperty(ANARIObject object, const char* name, ANARIDataType type, void* mem, uint64_t size,
+                           ANARIWaitMask mask) {
+    if (isDevice(object)) {
+        if (abi::DeviceInterface* device = wrapped()) return device->getProperty(wrappedHandle(), name, type, mem, size, mask);
+        return 0;
+    }
+    RIPPLE_PTC_FORWARD(0, getProperty(object, name, type, mem, size, mask));
+}
+const char** PtcDevice::getObjectSubtypes(ANARIDataType objectType) {
+    RIPPLE_PTC_FORWARD(nullptr, getObjectSubtypes(objectType));
+}
+const void* PtcDevice::getObjectInfo(ANARIDataType objectType, const char* subtype, const char* infoName,
+                                     ANARIDataType infoType) {
+    RIPPLE_PTC_FORWARD(nullptr, getObjectInfo(objectType, subtype, infoName, infoType));
+}
+const void* PtcDevice::getParameterInfo(ANARIDataType objectType, const char* subtype, const char* parameterName,
+                                        ANARIDataType parameterType, const char* infoName, ANARIDataType infoType) {
+    RIPPLE_PTC_FORWARD(nullptr, getParameterInfo(objectType, subtype, parameterName, parameterType, infoName, infoType));
+}
+PtcDevice::ProcAddress PtcDevice::getProcAddress(const char* name) { RIPPLE_PTC_FORWARD(nullptr, getProcAddress(name)); }
+
+// --- frames --------------------------------------------------------------------------------------------
+
+void PtcDevice::renderFrame(ANARIFrame handle) {
+    auto it = frames_.find(handle);
+    if (!wrapped_ || it == frames_.end()) return report(ANARI_SEVERITY_ERROR, "anariRenderFrame: not a frame of this device");
+    FrameState& frame = it->second;
+    if (!frame.compositor) return report(ANARI_SEVERITY_ERROR, "anariRenderFrame: the frame was never committed");
+    wrapped_->renderFrame(handle);
+    wrapped_->frameReady(handle, ANARI_WAIT);
+    uint32_t width = 0, height = 0, depthWidth = 0, depthHeight = 0;
+    ANARIDataType colorType = ANARI_UNKNOWN, depthType = ANARI_UNKNOWN;
+    const auto* color = static_cast<const float*>(wrapped_->mapFrame(handle, "channel.color", &width, &height, &colorType));
+    const auto* depth =
+        static_cast<const float*>(wrapped_->mapFrame(handle, "channel.depth", &depthWidth, &depthHeight, &depthType));
+    try {
+        // Every rank goes through the collective, even with a bad local image, so none is left waiting.
+        const bool usable = color && depth && colorType == ANARI_FLOAT32_VEC4 && depthType == ANARI_FLOAT32 &&
+                            width == frame.width && height == frame.height && depthWidth == width &&
+                            depthHeight == height;
+        const size_t pixels = size_t(frame.width) * frame.height;
+        std::vector<float> blankColor, blankDepth;
+        if (!usable) {
+            report(ANARI_SEVERITY_ERROR, "anariRenderFrame: the wrapped device gave no FLOAT32_VEC4 color and FLOAT32 "
+                                         "depth of the frame's size; this rank contributes nothing");
+            blankColor.assign(pixels * 4, 0.0f);
+            blankDepth.assign(pixels, INFINITY);
+        }
+        frame.compositor->composite(usable ? std::span<const float>(color, pixels * 4) : std::span<const float>(blankColor),
+                                    usable ? std::span<const float>(depth, pixels) : std::span<const float>(blankDepth));
+    } catch (const std::exception& error) {
+        report(ANARI_SEVERITY_ERROR, std::string("anariRenderFrame: compositing failed: ") + error.what());
+    }
+    if (color) wrapped_->unmapFrame(handle, "channel.color");
+    if (depth) wrapped_->unmapFrame(handle, "channel.depth");
+}
+
+int PtcDevice::frameReady(ANARIFrame frame, ANARIWaitMask) {
+    return frames_.count(frame) ? 1 : 0;  // renderFrame returns only once the composite is done
+}
+
+void PtcDevice::discardFrame(ANARIFrame frame) { RIPPLE_PTC_FORWARD(void(), discardFrame(frame)); }
+
+const void* PtcDevice::mapFrame(ANARIFrame handle, const char* channel, uint32_t* width, uint32_t* height,
+                                ANARIDataType* pixelType) {
+    auto it = frames_.find(handle);
+    if (!wrapped_ || !channel || it == frames_.end()) return nullptr;
+    FrameState& frame = it->second;
+    const std::string name = channel;
+    if (name != "channel.color" && name != "channel.depth")
+        return wrapped_->mapFrame(handle, channel, width, height, pixelType);  // this rank's own
+    *width = *height = 0;
+    *pixelType = ANARI_UNKNOWN;
+    // Only rank 0 holds the composited image.
+    if (!frame.compositor || frame.compositor->rgba().empty()) return nullptr;
+    const std::vector<float>& rgba = frame.compositor->rgba();
+    if (name == "channel.depth") {
+        if (frame.depthType != ANARI_FLOAT32) return nullptr;
+        *width = frame.width;
+        *height = frame.height;
+        *pixelType = ANARI_FLOAT32;
+        return frame.compositor->depth().data();
+    }
+    *width = frame.width;
+    *height = frame.height;
+    *pixelType = frame.colorType;
+    switch (frame.colorType) {
+    case ANARI_FLOAT32_VEC4: return rgba.data();
+    case ANARI_UFIXED8_VEC4:
+    case ANARI_UFIXED8_RGBA_SRGB: {
+        const bool srgb = frame.colorType == ANARI_UFIXED8_RGBA_SRGB;
+        frame.mappedColor.resize(rgba.size());
+        for (size_t i = 0; i < rgba.size(); ++i)
+            frame.mappedColor[i] = toUnorm8(srgb && i % 4 != 3 ? linearToSrgb(rgba[i]) : rgba[i]);
+        return frame.mappedColor.data();
+    }
+    default:
+        *width = *height = 0;
+        *pixelType = ANARI_UNKNOWN;
+        report(ANARI_SEVERITY_ERROR, "anariMapFrame: channel.color type " + std::to_string(int(frame.colorType)) +
+                                         " is not one ripple_ptc converts to (FLOAT32_VEC4, UFIXED8_VEC4, "
+                                         "UFIXED8_RGBA_SRGB)");
+        return nullptr;
+    }
+}
+
+void PtcDevice::unmapFrame(ANARIFrame frame, const char* channel) {
+    if (!channel || !wrapped_) return;
+    const std::string name = channel;
+    if (name != "channel.color" && name != "channel.depth") wrapped_->unmapFrame(frame, channel);
+}
+
+}  // namespace ripple::ptc

@@ -1,0 +1,117 @@
+// The pass-through compositing device: forwards every ANARI call to a wrapped device that renders only
+// this rank's share of the world, and composites all ranks' color and depth into rank 0's frame.
+#pragma once
+
+#include "anari/backend/DeviceInterface.h"
+#include "anari/backend/LibraryInterface.h"
+#include "mpi/Compositor.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ripple::ptc {
+
+class PtcDevice final : public abi::DeviceInterface {
+public:
+    PtcDevice(ANARIStatusCallback defaultCallback, const void* defaultCallbackUserPtr);
+    ~PtcDevice() override;
+
+    ANARIDevice handle() { return abi::handleFromDevice(this); }
+
+    ANARIArray1D newArray1D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,
+                            ANARIDataType dataType, uint64_t n1) override;
+    ANARIArray2D newArray2D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,
+                            ANARIDataType dataType, uint64_t n1, uint64_t n2) override;
+    ANARIArray3D newArray3D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,
+                            ANARIDataType dataType, uint64_t n1, uint64_t n2, uint64_t n3) override;
+    ANARIGeometry newGeometry(const char* type) override;
+    ANARIMaterial newMaterial(const char* type) override;
+    ANARISampler newSampler(const char* type) override;
+    ANARISurface newSurface() override;
+    ANARISpatialField newSpatialField(const char* type) override;
+    ANARIVolume newVolume(const char* type) override;
+    ANARILight newLight(const char* type) override;
+    ANARIGroup newGroup() override;
+    ANARIInstance newInstance(const char* type) override;
+    ANARIWorld newWorld() override;
+    ANARICamera newCamera(const char* type) override;
+    ANARIRenderer newRenderer(const char* type) override;
+    ANARIFrame newFrame() override;
+    void setParameter(ANARIObject object, const char* name, ANARIDataType dataType, const void* mem) override;
+    void unsetParameter(ANARIObject object, const char* name) override;
+    void unsetAllParameters(ANARIObject object) override;
+    void* mapParameterArray1D(ANARIObject object, const char* name, ANARIDataType dataType, uint64_t n1,
+                              uint64_t* elementStride) override;
+    void* mapParameterArray2D(ANARIObject object, const char* name, ANARIDataType dataType, uint64_t n1,
+                              uint64_t n2, uint64_t* elementStride) override;
+    void* mapParameterArray3D(ANARIObject object, const char* name, ANARIDataType dataType, uint64_t n1,
+                              uint64_t n2, uint64_t n3, uint64_t* elementStride) override;
+    void unmapParameterArray(ANARIObject object, const char* name) override;
+    void commitParameters(ANARIObject object) override;
+    void release(ANARIObject object) override;
+    void retain(ANARIObject object) override;
+    void* mapArray(ANARIArray array) override;
+    void unmapArray(ANARIArray array) override;
+    int getProperty(ANARIObject object, const char* name, ANARIDataType type, void* mem, uint64_t size,
+                    ANARIWaitMask mask) override;
+    const char** getObjectSubtypes(ANARIDataType objectType) override;
+    const void* getObjectInfo(ANARIDataType objectType, const char* objectSubtype, const char* infoName,
+                              ANARIDataType infoType) override;
+    const void* getParameterInfo(ANARIDataType objectType, const char* objectSubtype, const char* parameterName,
+                                 ANARIDataType parameterType, const char* infoName,
+                                 ANARIDataType infoType) override;
+    const void* mapFrame(ANARIFrame frame, const char* channel, uint32_t* width, uint32_t* height,
+                         ANARIDataType* pixelType) override;
+    void unmapFrame(ANARIFrame frame, const char* channel) override;
+    void renderFrame(ANARIFrame frame) override;
+    int frameReady(ANARIFrame frame, ANARIWaitMask mask) override;
+    void discardFrame(ANARIFrame frame) override;
+    ANARIObject newObject(const char* objectType, const char* type) override;
+    ProcAddress getProcAddress(const char* name) override;
+
+private:
+    // What the application asked of a frame; the wrapped frame always renders FLOAT32_VEC4 color and
+    // FLOAT32 depth, which this side converts after compositing.
+    struct FrameState {
+        uint32_t width = 0, height = 0;
+        ANARIDataType colorType = ANARI_UNKNOWN, depthType = ANARI_UNKNOWN;
+        const void* communicatorHandle = nullptr;
+        std::unique_ptr<mpi::Compositor> compositor;
+        std::vector<uint8_t> mappedColor;  // the composited color in colorType
+    };
+
+    bool isDevice(ANARIObject object) const {
+        return static_cast<const void*>(object) == static_cast<const abi::DeviceInterface*>(this);
+    }
+    // Loads the wrapped library and creates its device on first use; null (reported once) if it cannot.
+    abi::DeviceInterface* wrapped();
+    ANARIDevice wrappedHandle() const { return abi::handleFromDevice(wrapped_); }
+    void loadWrapped();
+    void setDeviceParameter(const char* name, ANARIDataType dataType, const void* mem);
+    void setFrameParameter(FrameState& frame, ANARIFrame handle, const char* name, ANARIDataType dataType,
+                           const void* mem);
+    void report(ANARIStatusSeverity severity, const std::string& message) const;
+
+    ANARIStatusCallback callback_;
+    const void* callbackUserPtr_;
+    std::string libraryName_;
+    const void* communicatorHandle_ = nullptr;
+    // Device parameters set before the wrapped device exists, replayed when it is created.
+    struct PendingParameter {
+        std::string name;
+        ANARIDataType type;
+        std::vector<uint8_t> bytes;
+        std::string text;
+    };
+    std::vector<PendingParameter> pending_;
+    void* libraryHandle_ = nullptr;          // dlopen handle of the wrapped library
+    abi::LibraryInterface* library_ = nullptr;
+    abi::DeviceInterface* wrapped_ = nullptr;
+    bool loadFailed_ = false;
+    int references_ = 1;
+    std::map<ANARIFrame, FrameState> frames_;
+};
+
+}  // namespace ripple::ptc

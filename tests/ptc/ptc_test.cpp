@@ -1,0 +1,123 @@
+// The pass-through compositing device under mpirun: wrapping the test double (FakeRender.h), rank 0's
+// frame must equal, exactly, the depth-sorted premultiplied blend of every rank's fragments; a wrapped
+// library that does not exist must be reported, not crash.
+#include "FakeRender.h"
+#include "mpi/Communicator.h"
+
+#include "anari/anari.h"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct Messages {
+    std::vector<std::string> texts;
+    bool contains(const std::string& part) const {
+        return std::any_of(texts.begin(), texts.end(), [&](const std::string& t) { return t.find(part) != std::string::npos; });
+    }
+};
+
+void record(const void* userPtr, ANARIDevice, ANARIObject, ANARIDataType, ANARIStatusSeverity severity, ANARIStatusCode,
+            const char* message) {
+    if (severity <= ANARI_SEVERITY_WARNING) static_cast<Messages*>(const_cast<void*>(userPtr))->texts.push_back(message);
+}
+
+// What compositing must give for pixel (x, y): fragments in rank order, background only from rank 0,
+// stably sorted by depth, blended front to back (premultiplied).
+fakerender::Fragment expected(uint32_t x, uint32_t y, int ranks) {
+    std::vector<fakerender::Fragment> fragments;
+    for (int r = 0; r < ranks; ++r) {
+        const fakerender::Fragment f = fakerender::fragment(x, y, r);
+        if (std::isinf(f.depth) && (r != 0 || f.rgba[3] == 0.0f)) continue;
+        fragments.push_back(f);
+    }
+    std::stable_sort(fragments.begin(), fragments.end(),
+                     [](const fakerender::Fragment& a, const fakerender::Fragment& b) { return a.depth < b.depth; });
+    fakerender::Fragment out{{0.0f, 0.0f, 0.0f, 0.0f}, INFINITY};
+    for (const fakerender::Fragment& f : fragments) {
+        const float transmitted = 1.0f - out.rgba[3];
+        for (int c = 0; c < 4; ++c) out.rgba[c] += transmitted * f.rgba[c];
+        out.depth = std::min(out.depth, f.depth);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("ripple_ptc composites the test double's fragments exactly") {
+    const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();
+    Messages messages;
+    ANARILibrary library = anariLoadLibrary("ripple_ptc", record, &messages);
+    REQUIRE(library != nullptr);
+    ANARIDevice device = anariNewDevice(library, "default");
+    REQUIRE(device != nullptr);
+    anariSetParameter(device, device, "library", ANARI_STRING, "ptcfake");
+    const int32_t rank = ranks.rank();
+    anariSetParameter(device, device, "fakeRank", ANARI_INT32, &rank);
+    anariCommitParameters(device, device);
+
+    const uint32_t size[2] = {7, 5};  // 5 rows over up to 3 ranks: bands of unequal height
+    ANARIFrame frame = anariNewFrame(device);
+    REQUIRE(frame != nullptr);
+    const ANARIDataType colorType = ANARI_FLOAT32_VEC4, depthType = ANARI_FLOAT32;
+    anariSetParameter(device, frame, "size", ANARI_UINT32_VEC2, size);
+    anariSetParameter(device, frame, "channel.color", ANARI_DATA_TYPE, &colorType);
+    anariSetParameter(device, frame, "channel.depth", ANARI_DATA_TYPE, &depthType);
+    anariCommitParameters(device, frame);
+    anariRenderFrame(device, frame);
+    anariFrameReady(device, frame, ANARI_WAIT);
+
+    // The wrapped device's status message reached the application's callback; with MPI it was told to
+    // render alone (MPI_COMM_SELF).
+    CHECK(messages.contains(fakerender::kRenderedMessage));
+    if (ripple::mpi::mpiActive()) CHECK(messages.contains(std::string(fakerender::kRenderedMessage) + " alone"));
+
+    uint32_t width = 0, height = 0;
+    ANARIDataType type = ANARI_UNKNOWN;
+    const auto* color = static_cast<const float*>(anariMapFrame(device, frame, "channel.color", &width, &height, &type));
+    if (ranks.rank() == 0) {
+        REQUIRE(color != nullptr);
+        CHECK(width == size[0]);
+        CHECK(height == size[1]);
+        CHECK(type == ANARI_FLOAT32_VEC4);
+        int wrong = 0;
+        for (uint32_t y = 0; y < size[1]; ++y)
+            for (uint32_t x = 0; x < size[0]; ++x) {
+                const fakerender::Fragment want = expected(x, y, ranks.size());
+                for (int c = 0; c < 4; ++c) wrong += color[(y * size[0] + x) * 4 + uint32_t(c)] != want.rgba[c];
+            }
+        CHECK(wrong == 0);  // exact: every value is dyadic
+        anariUnmapFrame(device, frame, "channel.color");
+        const auto* depth = static_cast<const float*>(anariMapFrame(device, frame, "channel.depth", &width, &height, &type));
+        REQUIRE(depth != nullptr);
+        int wrongDepth = 0;
+        for (uint32_t y = 0; y < size[1]; ++y)
+            for (uint32_t x = 0; x < size[0]; ++x) wrongDepth += depth[y * size[0] + x] != expected(x, y, ranks.size()).depth;
+        CHECK(wrongDepth == 0);
+        anariUnmapFrame(device, frame, "channel.depth");
+    } else {
+        CHECK(color == nullptr);  // only rank 0 holds the composited image
+    }
+    anariRelease(device, frame);
+    anariRelease(device, device);
+    anariUnloadLibrary(library);
+}
+
+TEST_CASE("ripple_ptc reports a wrapped library that does not exist") {
+    Messages messages;
+    ANARILibrary library = anariLoadLibrary("ripple_ptc", record, &messages);
+    REQUIRE(library != nullptr);
+    ANARIDevice device = anariNewDevice(library, "default");
+    REQUIRE(device != nullptr);
+    anariSetParameter(device, device, "library", ANARI_STRING, "nosuchdevice");
+    anariCommitParameters(device, device);
+    CHECK(anariNewFrame(device) == nullptr);
+    CHECK(anariNewWorld(device) == nullptr);
+    CHECK(messages.contains("cannot load the wrapped library 'nosuchdevice'"));
+    anariRelease(device, device);
+    anariUnloadLibrary(library);
+}
