@@ -15,18 +15,11 @@ public:
 
 private:
     Shape build() override {
-        std::optional<std::vector<glm::vec3>> positions = pullPositions();
-        if (!positions) return {};
-        std::vector<uint64_t> index;
-        if (!pullIndices("primitive.index", 2, positions->size(), index)) return {};
-        if (index.empty() && positions->size() % 2 != 0)
-            reportWarning("'vertex.position' has an odd number of vertices; the last one is ignored");
-        const size_t coneCount = index.empty() ? positions->size() / 2 : index.size() / 2;
-
+        std::optional<Segments> segments = pullSegments();
+        if (!segments) return {};
+        const size_t coneCount = segments->count;
         core::ConeSet cones;
-        cones.positions = std::move(*positions);
-        for (size_t i = 0; i < index.size(); i += 2) cones.indices.emplace_back(index[i], index[i + 1]);
-        const std::vector<glm::vec4> radii = pullVectors("vertex.radius", cones.positions.size());
+        const std::vector<glm::vec4> radii = pullVectors("vertex.radius", segments->positions.size());
         if (radii.empty()) {
             invalidate(has("vertex.radius") ? "parameter 'vertex.radius' is unusable (reported above)"
                                             : "missing required parameter 'vertex.radius'");
@@ -40,21 +33,13 @@ private:
             cones.radii.push_back(radii[i].x);
         }
         cones.caps = pullCaps();
-        if (has("vertex.cap")) {
-            (void)getArray("vertex.cap");
-            reportWarning("per-vertex caps ('vertex.cap') are not supported; 'caps' applies to all cones");
+        cones.colors = pullSegmentColors(*segments);
+        cones.positions = std::move(segments->positions);
+        cones.indices = std::move(segments->indices);
+        if (cones.indices.empty()) {
+            cones.positions.resize(coneCount * 2);
+            cones.radii.resize(coneCount * 2);
         }
-        cones.colors = pullVectors("primitive.color", coneCount);
-        const std::vector<glm::vec4> vertexColors = pullVectors("vertex.color", cones.positions.size());
-        if (cones.colors.empty() && !vertexColors.empty()) {
-            for (size_t i = 0; i < coneCount; ++i) {
-                const size_t a = index.empty() ? 2 * i : index[2 * i], b = index.empty() ? 2 * i + 1 : index[2 * i + 1];
-                cones.colors.push_back(0.5f * (vertexColors[a] + vertexColors[b]));
-            }
-        }
-        if (cones.colors.empty()) cones.colors = pullUniformColor(coneCount);
-        if (index.empty()) cones.positions.resize(coneCount * 2);
-        if (index.empty()) cones.radii.resize(coneCount * 2);
         return cones;
     }
 };

@@ -153,7 +153,38 @@ std::vector<glm::vec4> Geometry::pullUniformColor(size_t count) {
     return uniform ? std::vector<glm::vec4>(count, *uniform) : std::vector<glm::vec4>{};
 }
 
+std::optional<Geometry::Segments> Geometry::pullSegments() {
+    std::optional<std::vector<glm::vec3>> positions = pullPositions();
+    if (!positions) return std::nullopt;
+    std::vector<uint64_t> index;
+    if (!pullIndices("primitive.index", 2, positions->size(), index)) return std::nullopt;
+    if (index.empty() && positions->size() % 2 != 0)
+        reportWarning("'vertex.position' has an odd number of vertices; the last one is ignored");
+    Segments segments;
+    segments.count = index.empty() ? positions->size() / 2 : index.size() / 2;
+    segments.positions = std::move(*positions);
+    for (size_t i = 0; i < index.size(); i += 2) segments.indices.emplace_back(index[i], index[i + 1]);
+    return segments;
+}
+
+std::vector<glm::vec4> Geometry::pullSegmentColors(const Segments& segments) {
+    std::vector<glm::vec4> colors = pullVectors("primitive.color", segments.count);
+    const std::vector<glm::vec4> vertexColors = pullVectors("vertex.color", segments.positions.size());
+    if (colors.empty() && !vertexColors.empty()) {
+        for (size_t i = 0; i < segments.count; ++i) {
+            const glm::uvec2 ends = segments.ends(i);
+            colors.push_back(0.5f * (vertexColors[ends.x] + vertexColors[ends.y]));
+        }
+    }
+    if (colors.empty()) colors = pullUniformColor(segments.count);
+    return colors;
+}
+
 core::CapEnds Geometry::pullCaps() {
+    if (has("vertex.cap")) {
+        (void)getArray("vertex.cap");
+        reportWarning("per-vertex caps ('vertex.cap') are not supported; 'caps' applies to every primitive");
+    }
     const std::string caps = getString("caps", "none");
     if (caps == "first") return core::CapEnds::First;
     if (caps == "second") return core::CapEnds::Second;

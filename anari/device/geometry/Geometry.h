@@ -40,7 +40,19 @@ protected:
     // The uniform "color" repeated `count` times; empty when unset. It applies when neither
     // "primitive.color" nor "vertex.color" is given.
     std::vector<glm::vec4> pullUniformColor(size_t count);
+    // Cylinders and cones: two vertices per primitive, consecutive or from "primitive.index".
+    struct Segments {
+        std::vector<glm::vec3> positions;
+        std::vector<glm::uvec2> indices;  // empty: consecutive pairs (an odd last vertex is ignored)
+        size_t count = 0;
+        glm::uvec2 ends(size_t i) const { return indices.empty() ? glm::uvec2(2 * i, 2 * i + 1) : indices[i]; }
+    };
+    std::optional<Segments> pullSegments();
+    // "primitive.color"; else "vertex.color" averaged over each segment's two ends (core colours whole
+    // segments); else the uniform "color".
+    std::vector<glm::vec4> pullSegmentColors(const Segments& segments);
     // "caps" of cylinders and cones: none, first, second or both (unknown values are reported: none).
+    // Per-vertex caps ("vertex.cap") are not supported and reported.
     core::CapEnds pullCaps();
     // Triangle and quad meshes: polygons of `corners` vertices (3 or 4), quads split into two triangles.
     Shape buildPolygonMesh(int corners);
