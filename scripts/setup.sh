@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools  # Vulkan + lavapipe, shaders
-  libglm-dev libtbb-dev doctest-dev libtinygltf-dev libcli11-dev libstb-dev
+  libglm-dev libtbb-dev doctest-dev libtinygltf-dev libcli11-dev libstb-dev libtinyexr-dev
   libembree-dev                                                                # ripple-bench comparison only
   libopenmpi-dev openmpi-bin                                                   # data-parallel rendering
 )

@@ -1,6 +1,8 @@
-// The project's one image writer: PNG for RGBA8 and PFM for float pixels, both taking rows as ANARI frames
-// map them (row 0 at the bottom of the image).
+// The project's one image reader and writer: PNG for RGBA8 and PFM for float pixels, both taking rows as
+// ANARI frames map them (row 0 at the bottom of the image); PNG, PFM and EXR read into linear RGB.
 #pragma once
+
+#include "apps/common/ImageMetrics.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -14,5 +16,13 @@ void writePngBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
 // Writes width x height float RGBA pixels, bottom row first, as a little-endian colour PFM. PFM has no
 // alpha and stores its rows bottom to top, so alpha is dropped and the rows keep their order.
 void writePfmBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba);
+
+// Writes width x height LINEAR float RGBA pixels, bottom row first, as an 8-bit sRGB-encoded PNG (colour
+// clamped to [0, 1], alpha kept linear), as a device's UFIXED8_RGBA_SRGB channel would be.
+void writePngFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba);
+
+// Reads a PNG (sRGB-decoded to linear), PFM or EXR (linear) file into linear RGB, row 0 at the top.
+// Throws std::runtime_error naming the file and what is wrong with it.
+LinearImage readLinearImage(const std::filesystem::path& file);
 
 }  // namespace ripple::apps

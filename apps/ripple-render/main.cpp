@@ -1,11 +1,14 @@
 // ripple-render: renders a glTF file or a built-in demo scene to a PNG (or PFM) through any ANARI library,
-// using only standard ANARI objects and parameters. Frames accumulate samples batch by batch.
+// using only standard ANARI objects and parameters. Frames accumulate samples batch by batch; after each the
+// float color channel feeds a no-reference error estimate (Convergence.h), reported as it falls.
 #include "apps/common/AnariParams.h"
 #include "apps/common/AnariScene.h"
 #include "apps/common/DemoScene.h"
 #include "apps/common/GltfScene.h"
 #include "apps/common/ImageIO.h"
 #include "apps/common/ScenePartition.h"
+#include "apps/ripple-render/Convergence.h"
+#include "apps/ripple-render/ErrorPlot.h"
 #include "apps/ripple-render/Progress.h"
 #include "apps/ripple-render/RankStats.h"
 #include "mpi/Communicator.h"
@@ -13,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -36,7 +40,19 @@ struct Options {
     bool quiet = false;
     std::string partition = "round-robin";  // under mpirun: which share of the file each rank imports
     bool stats = false;
+    std::string reference;              // converged image of the same view: the true error is reported too
+    std::string report;                 // CSV of the convergence series; its plot goes beside it as .png
+    std::optional<double> seconds;      // stop after this much render time
+    std::optional<double> targetError;  // stop when the estimated relMSE reaches this
+    bool sppGiven = false;              // --spp on the command line: it caps --time and --target-error too
+
+    // Reporting mode: one sample per frame, so that the series has points, and a line per report point.
+    bool reporting() const { return !reference.empty() || !report.empty() || seconds || targetError; }
 };
+
+// The estimate is too unsteady to stop on before this many samples (each half needs a few batches).
+constexpr uint32_t kMinSamplesForTarget = 8;
+constexpr uint32_t kMaxSpp = 1000000;
 
 // The device's messages: errors always, warnings unless --quiet, chatter never.
 struct StatusLog {
@@ -83,6 +99,37 @@ bool deviceHasExtension(ANARIDevice device, const char* name) {
     return false;
 }
 
+// Maps the color channel (FLOAT32_VEC4) after frame number `frames` (from 1) of `batch` samples and adds
+// it to the estimator. A device that reports `numSamples` says how many samples the mapped average holds;
+// one that does not is taken to accumulate when it lists ANARI_KHR_FRAME_ACCUMULATION.
+void addFrameToEstimator(ANARIDevice device, ANARIFrame frame, glm::uvec2 size, uint32_t frames, uint32_t batch,
+                         bool accumulationExtension, HalfBufferEstimator& estimator) {
+    uint32_t width = 0, height = 0;
+    ANARIDataType mappedType = ANARI_UNKNOWN;
+    const void* pixels = anariMapFrame(device, frame, "channel.color", &width, &height, &mappedType);
+    if (!pixels || width != size.x || height != size.y || mappedType != ANARI_FLOAT32_VEC4) {
+        if (pixels) anariUnmapFrame(device, frame, "channel.color");
+        throw std::runtime_error("the device returned no " + std::to_string(size.x) + "x" + std::to_string(size.y) +
+                                 " FLOAT32_VEC4 color channel");
+    }
+    const float* mean = static_cast<const float*>(pixels);
+    uint32_t samples = 0;
+    try {
+        if (anariGetProperty(device, frame, "numSamples", ANARI_UINT32, &samples, sizeof samples, ANARI_WAIT)) {
+            if (samples > estimator.samples()) estimator.addAccumulatedFrame(mean, samples);
+            else estimator.addBatchFrame(mean, batch);  // the device started afresh: this frame alone
+        } else if (accumulationExtension) {
+            estimator.addAccumulatedFrame(mean, frames * batch);
+        } else {
+            estimator.addBatchFrame(mean, batch);
+        }
+    } catch (...) {
+        anariUnmapFrame(device, frame, "channel.color");
+        throw;
+    }
+    anariUnmapFrame(device, frame, "channel.color");
+}
+
 // The library, its device and the objects of one render, released in reverse order whatever happens.
 struct Session {
     ANARILibrary library = nullptr;
@@ -100,6 +147,27 @@ int render(const Options& options, const mpi::Communicator& ranks) {
     const bool root = ranks.rank() == 0;
     const glm::uvec2 size = parseSize(options.size);
     const bool pfm = std::filesystem::path(options.output).extension() == ".pfm";
+    const std::filesystem::path reportFile = options.report;
+    const std::filesystem::path plotFile = std::filesystem::path(options.report).replace_extension(".png");
+    if (!options.report.empty()) {
+        if (reportFile == plotFile)
+            throw std::runtime_error("--report " + options.report + ": give a .csv file (the plot goes beside it as .png)");
+        if (reportFile.has_parent_path() && !std::filesystem::is_directory(reportFile.parent_path()))
+            throw std::runtime_error("--report " + options.report + ": no such folder");
+        if (std::filesystem::weakly_canonical(plotFile) == std::filesystem::weakly_canonical(options.output))
+            throw std::runtime_error("--report " + options.report + ": its plot " + plotFile.string() +
+                                     " would overwrite the output image");
+        if (options.sppGiven && options.spp < 2)
+            throw std::runtime_error("--report with --spp 1: the error estimate needs 2 samples or more");
+    }
+    // Read before any library is loaded, so that a bad reference fails fast.
+    std::optional<LinearImage> reference;
+    if (!options.reference.empty()) {
+        reference = readLinearImage(options.reference);
+        if (reference->width != size.x || reference->height != size.y)
+            throw std::runtime_error("--reference " + options.reference + " is " + std::to_string(reference->width) +
+                                     "x" + std::to_string(reference->height) + " but the render is " + options.size);
+    }
     if (!options.scene.empty() && !options.demo.empty())
         throw std::runtime_error("give either a scene file or --demo, not both");
     const std::string demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
@@ -157,7 +225,7 @@ int render(const Options& options, const mpi::Communicator& ranks) {
     ANARICamera camera = newAnariCamera(s.device, view, aspect);
     s.objects.push_back(camera);
 
-    const uint32_t batch = samplesPerFrame(options.spp);
+    const uint32_t batch = options.reporting() ? 1 : samplesPerFrame(options.spp);
     ANARIRenderer renderer = anariNewRenderer(s.device, "default");
     if (!renderer) throw std::runtime_error("the device has no 'default' renderer");
     s.objects.push_back(renderer);
@@ -170,26 +238,36 @@ int render(const Options& options, const mpi::Communicator& ranks) {
     ANARIFrame frame = anariNewFrame(s.device);
     if (!frame) throw std::runtime_error("the device created no frame");
     s.objects.push_back(frame);
-    const ANARIDataType colorType = pfm ? ANARI_FLOAT32_VEC4 : ANARI_UFIXED8_RGBA_SRGB;
+    const ANARIDataType colorType = ANARI_FLOAT32_VEC4;  // the estimate needs the linear average
     anari::set(s.device, frame, "size", size);
     anariSetParameter(s.device, frame, "channel.color", ANARI_DATA_TYPE, &colorType);
-    if (deviceHasExtension(s.device, "ANARI_KHR_FRAME_ACCUMULATION")) anari::set(s.device, frame, "accumulation", true);
+    const bool accumulationExtension = deviceHasExtension(s.device, "ANARI_KHR_FRAME_ACCUMULATION");
+    if (accumulationExtension) anari::set(s.device, frame, "accumulation", true);
     anari::setObject(s.device, frame, "world", ANARI_WORLD, scene.world);
     anari::setObject(s.device, frame, "renderer", ANARI_RENDERER, renderer);
     anari::setObject(s.device, frame, "camera", ANARI_CAMERA, camera);
     anariCommitParameters(s.device, frame);
 
-    const uint32_t frames = options.spp / batch;
-    Progress progress(options.spp, !options.quiet && root);
+    // Stops: --time, --target-error, whichever comes first (and --spp when given); with neither, --spp. The
+    // largest --spp bounds a target that is never reached.
+    const bool stopOnSpp = options.sppGiven || (!options.seconds && !options.targetError);
+    const uint32_t sppLimit = stopOnSpp ? options.spp : kMaxSpp;
+    const bool printPoints = options.reporting() && !options.quiet && root;
+    Progress progress(options.spp, !options.reporting() && !options.quiet && root);
+    HalfBufferEstimator estimator(size.x, size.y);
+    std::vector<ConvergencePoint> series;
+    RenderClock clock;
+    uint32_t nextReport = 2;  // the first spp with a batch in each half
     bool reportsRays = true;  // until the device says it has no such property (only Ripple has it)
-    for (uint32_t f = 0; f < frames; ++f) {
+    uint32_t frames = 0;
+    for (bool stop = false; !stop;) {
         anariRenderFrame(s.device, frame);
         anariFrameReady(s.device, frame, ANARI_WAIT);
+        ++frames;
         float raysPerSecond = 0.0f;
         if (reportsRays)
             reportsRays = anariGetProperty(s.device, frame, "ripple.raysPerSecond", ANARI_FLOAT32, &raysPerSecond,
                                            sizeof raysPerSecond, ANARI_WAIT);
-        progress.update((f + 1) * batch, reportsRays ? raysPerSecond : 0.0f);
         if (options.stats) {  // this rank's traffic in the frame just rendered
             uint64_t rays = 0, bytes = 0;
             anariGetProperty(s.device, frame, "ripple.raysSent", ANARI_UINT64, &rays, sizeof rays, ANARI_WAIT);
@@ -198,36 +276,53 @@ int render(const Options& options, const mpi::Communicator& ranks) {
             stats.bytesSent += bytes;
             ++stats.frames;
         }
+        // Only rank 0 holds the image (data-parallel ANARI): it decides when to stop, and tells the others.
+        if (root) {
+            addFrameToEstimator(s.device, frame, size, frames, batch, accumulationExtension, estimator);
+            const uint32_t spp = estimator.samples();
+            progress.update(spp, reportsRays ? raysPerSecond : 0.0f);
+            const double estimate = options.targetError || spp >= nextReport ? estimator.estimatedRelMse() : 0.0;
+            // --time leaves at least two frames, so that there is an estimate.
+            stop = spp >= sppLimit || (options.seconds && frames >= 2 && clock.seconds() >= *options.seconds) ||
+                   (options.targetError && spp >= kMinSamplesForTarget && estimate <= *options.targetError);
+            if (options.reporting() && (spp >= nextReport || stop)) {
+                clock.pause();  // metrics and printing are not render time
+                ConvergencePoint point{clock.seconds(), spp, estimator.estimatedRelMse(), std::nullopt};
+                if (reference) point.reference = compareToReference(estimator.meanImage(), *reference);
+                if (printPoints) std::printf("%s\n", formatConvergencePoint(point).c_str());
+                std::fflush(stdout);
+                series.push_back(point);
+                nextReport = nextReportSpp(spp);
+                clock.resume();
+            }
+        }
+        if (ranks.distributed()) stop = ranks.max(uint64_t(stop ? 1 : 0)) > 0;
     }
     progress.finish();
-    const double seconds = progress.elapsedSeconds();
+    const double seconds = clock.seconds();
     if (options.stats) {
         anariGetProperty(s.device, frame, "ripple.sceneBytes", ANARI_UINT64, &stats.sceneBytes, sizeof stats.sceneBytes,
                          ANARI_WAIT);
         printRankStats(ranks, stats);
     }
-    // Only rank 0 holds the final image (data-parallel ANARI); the other ranks are done.
     if (!root) return log.errors > 0 ? 1 : 0;
 
-    uint32_t width = 0, height = 0;
-    ANARIDataType mappedType = ANARI_UNKNOWN;
-    const void* pixels = anariMapFrame(s.device, frame, "channel.color", &width, &height, &mappedType);
-    if (!pixels || width != size.x || height != size.y || mappedType != colorType) {
-        if (pixels) anariUnmapFrame(s.device, frame, "channel.color");
-        throw std::runtime_error("the device returned no " + std::to_string(size.x) + "x" + std::to_string(size.y) +
-                                 " color channel of the requested type");
+    const std::vector<float> image = estimator.meanRgbaBottomUp();
+    if (pfm) writePfmBottomUp(options.output, size.x, size.y, image.data());
+    else writePngFromLinearBottomUp(options.output, size.x, size.y, image.data());
+    if (!options.report.empty()) {
+        writeConvergenceCsv(reportFile, series);
+        const std::string sceneName =
+            options.scene.empty() ? "demo " + demo : std::filesystem::path(options.scene).filename().string();
+        writeErrorPlot(plotFile, series, sceneName + ", " + options.size + ": relMSE against render time");
     }
-    try {
-        if (pfm) writePfmBottomUp(options.output, width, height, static_cast<const float*>(pixels));
-        else writePngBottomUp(options.output, width, height, static_cast<const uint8_t*>(pixels));
-    } catch (...) {
-        anariUnmapFrame(s.device, frame, "channel.color");
-        throw;
-    }
-    anariUnmapFrame(s.device, frame, "channel.color");
 
-    std::printf("rendered %ux%u, %u spp (%u frames of %u) in %.2f s -> %s\n", width, height, options.spp, frames,
-                batch, seconds, options.output.c_str());
+    const double finalEstimate = estimator.estimatedRelMse();
+    char estimateText[48] = "n/a (one frame)";
+    if (!std::isnan(finalEstimate)) std::snprintf(estimateText, sizeof estimateText, "%.3e", finalEstimate);
+    std::printf("rendered %ux%u, %u spp (%u frames of %u) in %.2f s, estimated relMSE %s -> %s\n", size.x, size.y,
+                estimator.samples(), frames, batch, seconds, estimateText, options.output.c_str());
+    if (!options.report.empty()) std::printf("report: %s, plot: %s\n", reportFile.c_str(), plotFile.c_str());
     if (log.errors > 0) {
         std::fprintf(stderr, "[ripple-render] ERROR: the device reported %d error(s); the image may be wrong\n", log.errors);
         return 1;
@@ -252,7 +347,15 @@ int main(int argc, char** argv) {
     app.add_option("--demo", options.demo, "built-in scene: " + demoNames + " (default: default)");
     app.add_option("-o,--output", options.output, "output image: .png (8-bit sRGB) or .pfm (linear float)")->capture_default_str();
     app.add_option("--size", options.size, "image size WIDTHxHEIGHT")->capture_default_str();
-    app.add_option("--spp", options.spp, "samples per pixel")->check(CLI::Range(1u, 1000000u))->capture_default_str();
+    app.add_option("--spp", options.spp, "samples per pixel (with --time or --target-error: a cap, when given)")
+        ->check(CLI::Range(1u, ripple::apps::kMaxSpp))->capture_default_str();
+    app.add_option("--time", options.seconds, "stop after this many seconds of rendering")->check(CLI::PositiveNumber);
+    app.add_option("--target-error", options.targetError, "stop when the estimated relMSE falls to this")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--reference", options.reference,
+                   "converged image (PNG, PFM, EXR) of the same view: also report the true relMSE, PSNR, SSIM, FLIP");
+    app.add_option("--report", options.report,
+                   "write the convergence series to this CSV and its log-log plot beside it (.png)");
     app.add_option("--library", options.library, "ANARI library name (loads libanari_library_NAME.so)")->capture_default_str();
     app.add_option("--max-path-length", options.maxPathLength, "surface interactions per path")
         ->check(CLI::Range(1u, 1024u))->capture_default_str();
@@ -268,6 +371,7 @@ int main(int argc, char** argv) {
     app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame");
     try {
         app.parse(argc, argv);
+        options.sppGiven = app.count("--spp") > 0;
     } catch (const CLI::ParseError& e) {
         // Every rank parses the same arguments and reaches the same verdict; one rank speaks.
         return ranks.rank() == 0 ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 1);

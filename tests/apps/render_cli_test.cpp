@@ -1,42 +1,17 @@
 // ripple-render as a user runs it: every error must end the process with exit code 1 and a message naming
-// the problem, never a crash (a crash shows as a signal); and one small render through the Ripple device.
+// the problem, never a crash (a crash shows as a signal); one small render through the Ripple device; and
+// the convergence options (--time, --target-error, --report) stopping and writing what they promise.
+#include "apps/common/ImageIO.h"
+#include "tests/apps/RenderProcess.h"
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>
 #include <stb_image.h>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
+#include <fstream>
+#include <sstream>
 
 using namespace ripple::test;
-
-namespace {
-
-struct Run {
-    int exitCode = -1;      // -1: killed by a signal
-    std::string output;     // stdout and stderr together
-};
-
-// Runs ripple-render with the Vulkan validation layers on in the device: a validation message becomes a
-// device error, which makes ripple-render exit with 1.
-Run runRender(const std::string& arguments) {
-    const std::string command = std::string("RIPPLE_VK_VALIDATION=1 '") + RIPPLE_RENDER_PATH + "' " + arguments + " 2>&1";
-    Run run;
-    FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::array<char, 512> chunk;
-    size_t n;
-    while ((n = fread(chunk.data(), 1, chunk.size(), pipe)) > 0) run.output.append(chunk.data(), n);
-    const int status = pclose(pipe);
-    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-}  // namespace
 
 TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
     TempFolder dir;
@@ -71,14 +46,40 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
         arguments = "'" + writeGlb(dir / "t.glb", triangleSource()).string() + "' --demo default";
         expected = "either a scene file or --demo";
     }
-    const Run run = runRender(arguments);
+    SUBCASE("reference image that does not exist") {
+        arguments = "--size 16x16 --reference '" + (dir / "absent.pfm").string() + "'";
+        expected = "absent.pfm";
+    }
+    SUBCASE("reference image that is not an image") {
+        arguments = "--size 16x16 --reference '" + writeText(dir / "text.pfm", "not a picture\n").string() + "'";
+        expected = "text.pfm";
+    }
+    SUBCASE("reference image of another size") {
+        const std::vector<float> pixels(4 * 4 * 4, 0.5f);
+        ripple::apps::writePfmBottomUp(dir / "small.pfm", 4, 4, pixels.data());
+        arguments = "--size 16x16 --reference '" + (dir / "small.pfm").string() + "'";
+        expected = "small.pfm is 4x4 but the render is 16x16";
+    }
+    SUBCASE("report that is not a CSV") {
+        arguments = "--report '" + (dir / "plot.png").string() + "'";
+        expected = "give a .csv file";
+    }
+    SUBCASE("report whose plot would overwrite the image") {
+        arguments = "--report '" + (dir / "out.csv").string() + "' -o '" + (dir / "out.png").string() + "'";
+        expected = "would overwrite the output image";
+    }
+    SUBCASE("report of one sample") {
+        arguments = "--report '" + (dir / "out.csv").string() + "' --spp 1";
+        expected = "the error estimate needs 2 samples or more";
+    }
+    const RenderRun run = runRender(arguments);
     CHECK_MESSAGE(run.exitCode == 1, run.output);
     CHECK_MESSAGE(contains(run.output, "[ripple-render] ERROR: "), run.output);
     CHECK_MESSAGE(contains(run.output, expected), run.output);
 }
 
 TEST_CASE("ripple-render option errors from the parser exit non-zero") {
-    const Run run = runRender("--spp 0");
+    const RenderRun run = runRender("--spp 0");
     CHECK(run.exitCode > 0);
     CHECK(contains(run.output, "--spp"));
 }
@@ -91,7 +92,7 @@ TEST_CASE("ripple-render option errors from the parser exit non-zero") {
 TEST_CASE("ripple-render renders the Cornell demo through the Ripple device") {
     TempFolder dir;
     const auto image = dir / "cornell.png";
-    const Run run = runRender("--demo cornell --size 48x48 --spp 4 --quiet -o '" + image.string() + "'");
+    const RenderRun run = runRender("--demo cornell --size 48x48 --spp 4 --quiet -o '" + image.string() + "'");
     REQUIRE_MESSAGE(run.exitCode == 0, run.output);
     CHECK(contains(run.output, "rendered 48x48, 4 spp"));
     int w = 0, h = 0, comp = 0;
@@ -114,4 +115,93 @@ TEST_CASE("ripple-render renders the Cornell demo through the Ripple device") {
     CHECK(mean(42, 48, 16, 32, 1) > 1.25 * mean(42, 48, 16, 32, 0));   // right: green
     CHECK(luminance(12, 36, 12, 20) > 2.0 * luminance(12, 36, 33, 41)); // lit wall above, shaded boxes below
     stbi_image_free(pixels);
+}
+
+namespace {
+
+// The CSV rows of a --report file (header included), split at commas.
+std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> cells;
+        std::stringstream cellStream(line);
+        for (std::string cell; std::getline(cellStream, cell, ',');) cells.push_back(cell);
+        rows.push_back(cells);
+    }
+    return rows;
+}
+
+// The number after `key` in ripple-render's last line ("... in 1.23 s, estimated relMSE 4.5e-02 -> ...").
+double numberAfter(const std::string& output, const std::string& key) {
+    const size_t at = output.rfind(key);
+    REQUIRE_MESSAGE(at != std::string::npos, output);
+    return std::stod(output.substr(at + key.size()));
+}
+
+}  // namespace
+
+// --time stops on render time, not on the default --spp (which it does not cap unless given).
+TEST_CASE("ripple-render --time stops after the given render time") {
+    TempFolder dir;
+    const RenderRun run = runRender("--demo cornell --size 16x16 --time 2 --quiet -o '" + (dir / "t.pfm").string() + "'");
+    REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+    // The loop checks the clock after each frame of one sample: it stops in the first frame past 2 s (a frame
+    // takes well under a second at 16x16 even on a loaded machine).
+    const double seconds = numberAfter(run.output, " in ");
+    CHECK(seconds >= 2.0);
+    CHECK(seconds < 5.0);
+}
+
+// --target-error stops at the first frame whose estimate reaches the target (from 8 spp on): every earlier
+// report point's estimate is above it, the last one's at or below.
+TEST_CASE("ripple-render --target-error stops when the estimate reaches it") {
+    TempFolder dir;
+    const auto report = dir / "series.csv";
+    const RenderRun run = runRender("--demo cornell --size 16x16 --target-error 0.04 --spp 400 --quiet --report '" +
+                                    report.string() + "' -o '" + (dir / "t.png").string() + "'");
+    REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+    const auto rows = readCsv(report);
+    REQUIRE(rows.size() >= 3);
+    CHECK(std::stod(rows.back()[2]) <= 0.04);
+    CHECK(numberAfter(run.output, "estimated relMSE ") <= 0.04);
+    CHECK(std::stoul(rows.back()[1]) >= 8);
+    CHECK(std::stoul(rows.back()[1]) < 400);  // reached, not capped
+    for (size_t i = 1; i + 1 < rows.size(); ++i)
+        if (std::stoul(rows[i][1]) >= 8) CHECK_MESSAGE(std::stod(rows[i][2]) > 0.04, "row " << i);
+}
+
+// --report: the CSV has the documented columns, one row per report point with spp rising to --spp, and the
+// plot beside it is a PNG of the plot's size.
+TEST_CASE("ripple-render --report writes the series as CSV and a plot") {
+    TempFolder dir;
+    const auto report = dir / "series.csv";
+    std::string arguments = "--demo cornell --size 16x16 --spp 12 --quiet --report '" + report.string() + "' -o '" +
+                            (dir / "t.png").string() + "'";
+    std::vector<std::string> header{"time_s", "spp", "estimated_relmse"};
+    SUBCASE("without a reference") {}
+    SUBCASE("with a reference: the true error too") {
+        const std::vector<float> grey(16 * 16 * 4, 0.25f);
+        ripple::apps::writePfmBottomUp(dir / "grey.pfm", 16, 16, grey.data());
+        arguments += " --reference '" + (dir / "grey.pfm").string() + "'";
+        header.insert(header.end(), {"relmse", "psnr_db", "ssim", "flip_ldr", "flip_hdr"});
+    }
+    const RenderRun run = runRender(arguments);
+    REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+    const auto rows = readCsv(report);
+    REQUIRE(rows.size() == 10);  // header, then spp 2 3 4 5 6 7 8 10 12 (nextReportSpp)
+    CHECK(rows[0] == header);
+    const std::vector<unsigned long> spp{2, 3, 4, 5, 6, 7, 8, 10, 12};
+    for (size_t i = 1; i < rows.size(); ++i) {
+        CHECK(rows[i].size() == header.size());
+        CHECK(std::stoul(rows[i][1]) == spp[i - 1]);
+        CHECK(std::stod(rows[i][2]) > 0.0);
+        if (i > 1) CHECK(std::stod(rows[i][0]) >= std::stod(rows[i - 1][0]));
+    }
+    int w = 0, h = 0, comp = 0;
+    unsigned char* plot = stbi_load((dir / "series.png").string().c_str(), &w, &h, &comp, 4);
+    REQUIRE(plot != nullptr);
+    CHECK(w == 880);
+    CHECK(h == 560);
+    stbi_image_free(plot);
 }

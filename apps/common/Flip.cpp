@@ -1,0 +1,304 @@
+// FLIP, written from the papers named in ImageMetrics.h: LDR-FLIP compares two images as a viewer at a given
+// number of pixels per degree would see them (colour after contrast sensitivity filtering, plus edges and
+// points); HDR-FLIP runs LDR-FLIP on tone-mapped exposures spanning the reference and keeps the worst.
+#include "apps/common/ImageMetrics.h"
+
+#include "apps/common/ImageMetricsDetail.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace ripple::apps {
+
+namespace {
+
+using detail::Plane;
+using Vec3 = std::array<float, 3>;
+
+// Linear sRGB (D65) <-> CIE XYZ with the matrix FLIP publishes (its entries are exact fractions; the inverse is
+// given to ten digits), so that Ripple's Lab and YCxCz values are FLIP's own.
+Vec3 linearRgbToXyz(const Vec3& c) {
+    return {(10135552.0f * c[0] + 8788810.0f * c[1] + 4435075.0f * c[2]) / 24577794.0f,
+            (2613072.0f * c[0] + 8788810.0f * c[1] + 887015.0f * c[2]) / 12288897.0f,
+            (1425312.0f * c[0] + 8788810.0f * c[1] + 70074185.0f * c[2]) / 73733382.0f};
+}
+
+Vec3 xyzToLinearRgb(const Vec3& c) {
+    return {3.241003275f * c[0] - 1.537398934f * c[1] - 0.498615861f * c[2],
+            -0.969224334f * c[0] + 1.875930071f * c[1] + 0.041554224f * c[2],
+            0.055639423f * c[0] - 0.204011202f * c[1] + 1.057148933f * c[2]};
+}
+
+// FLIP's D65 reference white, so linear RGB (1, 1, 1) maps to Yy = 100 and Cx, Cz within 1e-4 of 0.
+constexpr Vec3 kWhite = {0.950428545f, 1.0f, 1.088900371f};
+
+// YCxCz: the opponent space in which FLIP applies its contrast sensitivity functions (achromatic, red-green,
+// blue-yellow). Linear in XYZ, so filtering there is filtering of light.
+Vec3 xyzToYcxcz(const Vec3& c) {
+    const float x = c[0] / kWhite[0], y = c[1] / kWhite[1], z = c[2] / kWhite[2];
+    return {116 * y - 16, 500 * (x - y), 200 * (y - z)};
+}
+
+Vec3 ycxczToXyz(const Vec3& c) {
+    const float y = (c[0] + 16) / 116, x = y + c[1] / 500, z = y - c[2] / 200;
+    return {x * kWhite[0], y * kWhite[1], z * kWhite[2]};
+}
+
+Vec3 xyzToLab(const Vec3& c) {
+    constexpr float delta = 6.0f / 29.0f;
+    auto f = [](float t) { return t > delta * delta * delta ? std::cbrt(t) : t / (3 * delta * delta) + 4.0f / 29.0f; };
+    const float fx = f(c[0] / kWhite[0]), fy = f(c[1] / kWhite[1]), fz = f(c[2] / kWhite[2]);
+    return {116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)};
+}
+
+// Hunt effect: colourfulness grows with lightness, so chroma is scaled by L / 100.
+Vec3 huntAdjust(const Vec3& lab) { return {lab[0], 0.01f * lab[0] * lab[1], 0.01f * lab[0] * lab[2]}; }
+
+// HyAB: city-block in lightness, Euclidean in chroma; better than Euclidean Lab for large differences.
+float hyab(const Vec3& a, const Vec3& b) {
+    return std::abs(a[0] - b[0]) + std::hypot(a[1] - b[1], a[2] - b[2]);
+}
+
+constexpr float kQc = 0.7f, kPc = 0.4f, kPt = 0.95f, kQf = 0.5f;
+// Edge width the feature detectors look for, in degrees of visual angle.
+constexpr float kFeatureWidth = 0.082f;
+
+struct YcxczPlanes {
+    std::array<Plane, 3> channels;
+};
+
+YcxczPlanes toYcxcz(const LinearImage& image) {
+    YcxczPlanes planes;
+    for (Plane& plane : planes.channels) plane = Plane{image.width, image.height, std::vector<float>(size_t(image.width) * image.height)};
+    for (size_t p = 0; p < planes.channels[0].values.size(); ++p) {
+        const Vec3 ycxcz = xyzToYcxcz(linearRgbToXyz({image.rgb[p * 3], image.rgb[p * 3 + 1], image.rgb[p * 3 + 2]}));
+        for (int c = 0; c < 3; ++c) planes.channels[size_t(c)].values[p] = ycxcz[size_t(c)];
+    }
+    return planes;
+}
+
+// The spatial contrast sensitivity filter of one opponent channel: a sum of two Gaussians whose published
+// parameters (a1, b1, a2, b2) are in cycles-per-degree units; x is the distance in degrees.
+//   S(x) = a1 sqrt(pi / b1) exp(-pi^2 x^2 / b1) + a2 sqrt(pi / b2) exp(-pi^2 x^2 / b2), normalised to sum 1.
+// Each Gaussian is separable, so the filter is the weighted sum of two separable convolutions.
+struct CsfParameters {
+    float a1, b1, a2, b2;
+};
+constexpr std::array<CsfParameters, 3> kCsf = {{{1.0f, 0.0047f, 0.0f, 1e-5f},       // achromatic
+                                                 {1.0f, 0.0053f, 0.0f, 1e-5f},       // red-green
+                                                 {34.1f, 0.04f, 13.5f, 0.025f}}};  // blue-yellow
+
+Plane csfFilter(const Plane& plane, const CsfParameters& csf, double pixelsPerDegree) {
+    constexpr float pi = std::numbers::pi_v<float>;
+    // Radius: three standard deviations of the widest Gaussian of all three channels (b = 0.04), as FLIP does, so
+    // every channel's kernel has the same size (21 taps at 67 px/deg).
+    const float widest = std::sqrt(0.04f / (2 * pi * pi));
+    const int radius = int(std::ceil(3 * widest * float(pixelsPerDegree)));
+    std::array<std::vector<float>, 2> kernels;
+    std::array<double, 2> mass{};
+    const std::array<std::array<float, 2>, 2> terms = {{{csf.a1, csf.b1}, {csf.a2, csf.b2}}};
+    for (size_t t = 0; t < 2; ++t) {
+        kernels[t].resize(size_t(2 * radius + 1));
+        double sum = 0;
+        for (int i = -radius; i <= radius; ++i) {
+            const float degrees = float(i) / float(pixelsPerDegree);
+            sum += kernels[t][size_t(i + radius)] = std::exp(-pi * pi * degrees * degrees / terms[t][1]);
+        }
+        for (float& weight : kernels[t]) weight = float(weight / sum);
+        mass[t] = double(terms[t][0]) * std::sqrt(pi / terms[t][1]) * sum * sum;  // the term's 2D kernel sum
+    }
+    Plane result = convolveSeparable(plane, kernels[0], kernels[0]);
+    if (mass[1] == 0) return result;
+    const Plane second = convolveSeparable(plane, kernels[1], kernels[1]);
+    const float w0 = float(mass[0] / (mass[0] + mass[1])), w1 = 1 - w0;
+    for (size_t p = 0; p < result.values.size(); ++p) result.values[p] = w0 * result.values[p] + w1 * second.values[p];
+    return result;
+}
+
+// Per-pixel colour error in [0, 1]: HyAB of the Hunt-adjusted Lab of the filtered images, raised to q_c and
+// redistributed so that the p_c fraction of the largest possible error (green against blue) covers [0, p_t].
+std::vector<float> colourError(const YcxczPlanes& test, const YcxczPlanes& reference, double pixelsPerDegree) {
+    std::array<Plane, 3> filteredTest, filteredReference;
+    for (size_t c = 0; c < 3; ++c) {
+        filteredTest[c] = detail::flipCsfFilter(test.channels[c], int(c), pixelsPerDegree);
+        filteredReference[c] = detail::flipCsfFilter(reference.channels[c], int(c), pixelsPerDegree);
+    }
+    auto perceived = [](const std::array<Plane, 3>& planes, size_t p) {
+        Vec3 rgb = xyzToLinearRgb(ycxczToXyz({planes[0].values[p], planes[1].values[p], planes[2].values[p]}));
+        for (float& v : rgb) v = std::clamp(v, 0.0f, 1.0f);  // filtering may leave the gamut
+        return huntAdjust(xyzToLab(linearRgbToXyz(rgb)));
+    };
+    std::vector<float> error(filteredTest[0].values.size());
+    for (size_t p = 0; p < error.size(); ++p)
+        error[p] = detail::flipRedistributeColourError(hyab(perceived(filteredTest, p), perceived(filteredReference, p)));
+    return error;
+}
+
+// Edge (first derivative) and point (second derivative) responses of Gaussians of the feature width, on the
+// UNFILTERED YCxCz luminance normalised to [0, 1] as (Yy + 16) / 116, as FLIP does. Each derivative kernel's positive weights sum to 1 and its negative
+// weights to -1, so a step from 0 to 1 gives an edge response near 1.
+struct FeatureResponses {
+    std::vector<float> edge, point;
+};
+
+FeatureResponses features(const YcxczPlanes& image, double pixelsPerDegree) {
+    const float sigma = 0.5f * kFeatureWidth * float(pixelsPerDegree);
+    const int radius = int(std::ceil(3 * sigma));
+    const std::vector<float> gaussian = detail::gaussianKernel(sigma, radius);
+    std::vector<float> first(gaussian.size()), second(gaussian.size());
+    for (int i = -radius; i <= radius; ++i) {
+        const float x = float(i), g = gaussian[size_t(i + radius)];
+        first[size_t(i + radius)] = -x * g;
+        second[size_t(i + radius)] = (x * x / (sigma * sigma) - 1) * g;
+    }
+    auto normaliseSigns = [](std::vector<float>& kernel) {
+        float positive = 0, negative = 0;
+        for (float w : kernel) (w > 0 ? positive : negative) += w;
+        for (float& w : kernel) w = w > 0 ? w / positive : w < 0 ? w / -negative : 0.0f;
+    };
+    normaliseSigns(first);
+    normaliseSigns(second);
+
+    Plane luminance = image.channels[0];
+    for (float& v : luminance.values) v = (v + 16) / 116;
+    const Plane edgeX = convolveSeparable(luminance, first, gaussian), edgeY = convolveSeparable(luminance, gaussian, first);
+    const Plane pointX = convolveSeparable(luminance, second, gaussian), pointY = convolveSeparable(luminance, gaussian, second);
+    FeatureResponses responses{std::vector<float>(luminance.values.size()), std::vector<float>(luminance.values.size())};
+    for (size_t p = 0; p < luminance.values.size(); ++p) {
+        responses.edge[p] = std::hypot(edgeX.values[p], edgeY.values[p]);
+        responses.point[p] = std::hypot(pointX.values[p], pointY.values[p]);
+    }
+    return responses;
+}
+
+// The LDR-FLIP map of two images whose linear values are already in [0, 1].
+std::vector<float> ldrErrorMap(const LinearImage& test, const LinearImage& reference, double pixelsPerDegree) {
+    const YcxczPlanes testPlanes = toYcxcz(test), referencePlanes = toYcxcz(reference);
+    std::vector<float> error = colourError(testPlanes, referencePlanes, pixelsPerDegree);
+    const FeatureResponses testFeatures = features(testPlanes, pixelsPerDegree);
+    const FeatureResponses referenceFeatures = features(referencePlanes, pixelsPerDegree);
+    for (size_t p = 0; p < error.size(); ++p) {
+        const float featureDifference = std::max(std::abs(referenceFeatures.edge[p] - testFeatures.edge[p]),
+                                                 std::abs(referenceFeatures.point[p] - testFeatures.point[p]));
+        const float featureError = std::pow(std::min(featureDifference / std::numbers::sqrt2_v<float>, 1.0f), kQf);
+        // Features raise the colour error toward 1 (the exponent shrinks) where edges or points differ.
+        error[p] = std::pow(error[p], 1 - featureError);
+    }
+    return error;
+}
+
+template <typename Transform>
+LinearImage transformed(const LinearImage& image, Transform transform) {
+    LinearImage result = image;
+    for (float& v : result.rgb) {
+        v = transform(v);
+        v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+    }
+    return result;
+}
+
+double meanOf(const std::vector<float>& map) {
+    double sum = 0;
+    for (float v : map) sum += v;
+    return sum / double(map.size());
+}
+
+void requirePixelsPerDegree(double pixelsPerDegree) {
+    if (!(pixelsPerDegree > 0 && pixelsPerDegree < 1e4))
+        throw std::invalid_argument("FLIP: pixels per degree must be in (0, 10000), not " + std::to_string(pixelsPerDegree));
+}
+
+// ACES filmic curve (Narkowicz's fit) with HDR-FLIP's 0.6 pre-exposure cancelled into its coefficients:
+// t(x) = (a x^2 + b x) / (c x^2 + d x + e).
+constexpr float kAcesA = 0.6f * 0.6f * 2.51f, kAcesB = 0.6f * 0.03f, kAcesC = 0.6f * 0.6f * 2.43f,
+                kAcesD = 0.6f * 0.59f, kAcesE = 0.14f;
+
+// The input the tone mapper maps to `target` (the positive root of a quadratic).
+float acesInverse(float target) {
+    const float a = kAcesA - target * kAcesC, b = kAcesB - target * kAcesD, c = -target * kAcesE;
+    return (-b + std::sqrt(b * b - 4 * a * c)) / (2 * a);
+}
+
+}  // namespace
+
+namespace detail {
+
+Plane flipCsfFilter(const Plane& plane, int channel, double pixelsPerDegree) {
+    if (channel < 0 || channel > 2) throw std::invalid_argument("FLIP: CSF channel must be 0, 1 or 2, not " + std::to_string(channel));
+    return csfFilter(plane, kCsf[size_t(channel)], pixelsPerDegree);
+}
+
+float flipColourDistance(const std::array<float, 3>& rgbA, const std::array<float, 3>& rgbB) {
+    return hyab(huntAdjust(xyzToLab(linearRgbToXyz(rgbA))), huntAdjust(xyzToLab(linearRgbToXyz(rgbB))));
+}
+
+float flipRedistributeColourError(float hyabDistance) {
+    const float largest = std::pow(flipColourDistance({0, 1, 0}, {0, 0, 1}), kQc);
+    const float e = std::pow(hyabDistance, kQc), knee = kPc * largest;
+    const float redistributed = e < knee ? kPt / knee * e : kPt + (e - knee) / (largest - knee) * (1 - kPt);
+    // FLIP leaves this unclamped; only a pair further apart than green and blue could exceed 1.
+    return std::min(redistributed, 1.0f);
+}
+
+float flipToneMap(float x) {
+    if (std::isinf(x)) return 1.0f;
+    return (kAcesA * x * x + kAcesB * x) / (kAcesC * x * x + kAcesD * x + kAcesE);
+}
+
+FlipExposures flipExposures(const LinearImage& reference) {
+    std::vector<float> luminance(size_t(reference.width) * reference.height);
+    for (size_t p = 0; p < luminance.size(); ++p) {
+        const float y = 0.2126f * reference.rgb[p * 3] + 0.7152f * reference.rgb[p * 3 + 1] + 0.0722f * reference.rgb[p * 3 + 2];
+        luminance[p] = std::isfinite(y) ? std::max(y, 0.0f) : 0.0f;
+    }
+    const float brightest = *std::max_element(luminance.begin(), luminance.end());
+    if (brightest <= 0) return {0, 0, 1};  // a black reference: FLIP uses the single exposure 0
+    // The median as FLIP's C++ tool takes it: the element at index n / 2 (the upper middle one for even n).
+    std::nth_element(luminance.begin(), luminance.begin() + ptrdiff_t(luminance.size() / 2), luminance.end());
+    const float median = luminance[luminance.size() / 2];
+    // FLIP's stop exposure is infinite when over half the reference is black; twenty stops below the
+    // brightest pixel bound it instead.
+    const float darkest = std::max(median, brightest * 0x1p-20f);
+    const float mapsTo085 = acesInverse(0.85f);
+    FlipExposures exposures{std::log2(mapsTo085 / brightest), std::log2(mapsTo085 / darkest), 1};
+    if (exposures.stop > exposures.start) exposures.count = std::max(2, int(std::ceil(exposures.stop - exposures.start)));
+    return exposures;
+}
+
+}  // namespace detail
+
+double flipLdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap,
+               double pixelsPerDegree) {
+    detail::requireComparable(test, reference, "FLIP");
+    requirePixelsPerDegree(pixelsPerDegree);
+    auto identity = [](float v) { return v; };
+    std::vector<float> map = ldrErrorMap(transformed(test, identity), transformed(reference, identity), pixelsPerDegree);
+    const double mean = meanOf(map);
+    if (errorMap) *errorMap = std::move(map);
+    return mean;
+}
+
+double flipHdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap,
+               double pixelsPerDegree) {
+    detail::requireComparable(test, reference, "HDR-FLIP");
+    requirePixelsPerDegree(pixelsPerDegree);
+    const detail::FlipExposures exposures = detail::flipExposures(reference);
+    std::vector<float> map(size_t(reference.width) * reference.height, 0.0f);
+    for (int i = 0; i < exposures.count; ++i) {
+        const double exposure = exposures.start + (exposures.stop - exposures.start) * i / std::max(exposures.count - 1, 1);
+        const float scale = float(std::exp2(exposure));
+        auto toneMapped = [scale](float v) { return detail::flipToneMap(std::max(v, 0.0f) * scale); };
+        const std::vector<float> exposureMap =
+            ldrErrorMap(transformed(test, toneMapped), transformed(reference, toneMapped), pixelsPerDegree);
+        for (size_t p = 0; p < map.size(); ++p) map[p] = std::max(map[p], exposureMap[p]);
+    }
+    const double mean = meanOf(map);
+    if (errorMap) *errorMap = std::move(map);
+    return mean;
+}
+
+}  // namespace ripple::apps

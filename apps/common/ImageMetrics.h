@@ -1,0 +1,39 @@
+// Image comparison metrics shared by ripple-imgdiff, ripple-render's convergence report and the tests:
+// relMSE, PSNR, SSIM and FLIP (LDR and HDR, after Andersson et al., "FLIP: A Difference Evaluator for
+// Alternating Images", HPG 2020, and "Visualizing Errors in Rendered High Dynamic Range Images", EG 2021).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace ripple::apps {
+
+// Linear RGB, row 0 at the TOP of the image, 3 floats a pixel.
+struct LinearImage {
+    uint32_t width = 0, height = 0;
+    std::vector<float> rgb;
+    float at(uint32_t x, uint32_t y, int c) const { return rgb[(size_t(y) * width + x) * 3 + size_t(c)]; }
+};
+
+// relMSE = mean over pixels and channels of (test - ref)^2 / (ref^2 + epsilon).
+double relMse(const LinearImage& test, const LinearImage& reference, double epsilon = 1e-2);
+// PSNR in dB of the sRGB-encoded images clamped to [0, 1] (peak 1); +infinity when they are equal.
+double psnr(const LinearImage& test, const LinearImage& reference);
+// Mean SSIM (Wang et al. 2004: 11x11 Gaussian window, sigma 1.5, K1 0.01, K2 0.03) of the luminance of the
+// sRGB-encoded images clamped to [0, 1].
+double ssim(const LinearImage& test, const LinearImage& reference);
+
+// FLIP: the mean of the per-pixel error map (values in [0, 1]); the map is filled when asked for (row 0 at
+// the top). LDR-FLIP takes linear values and clamps them to [0, 1], what a display shows; pixelsPerDegree
+// defaults to the paper's 0.7 m viewing of a 0.7 m wide 3840-pixel monitor (0.7 * 3840 / 0.7 * pi / 180 =
+// 67.02 px/deg, rounded to 67). Checked against the published algorithm: see README, "ripple-imgdiff".
+double flipLdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap = nullptr,
+               double pixelsPerDegree = 67.0);
+// HDR-FLIP: LDR-FLIP of ACES-tone-mapped exposures, the per-pixel maximum over them. The exposures run from the
+// one that maps the reference's brightest luminance to 0.85 to the one that maps its median there,
+// max(2, ceil(stop - start)) of them (detail::flipExposures).
+double flipHdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap = nullptr,
+               double pixelsPerDegree = 67.0);
+
+}  // namespace ripple::apps

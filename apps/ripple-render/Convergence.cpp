@@ -1,0 +1,149 @@
+// Half-buffer error estimate, the report series and its CSV. Sums are kept in double: recovering a batch as
+// the difference of two large accumulated sums would lose it in float.
+#include "apps/ripple-render/Convergence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+
+namespace ripple::apps {
+
+HalfBufferEstimator::HalfBufferEstimator(uint32_t width, uint32_t height)
+    : width_(width), height_(height), previousSum_(size_t(width) * height * 4, 0.0) {
+    halfSum_[0].assign(previousSum_.size(), 0.0);
+    halfSum_[1].assign(previousSum_.size(), 0.0);
+}
+
+void HalfBufferEstimator::addAccumulatedFrame(const float* mean, uint32_t totalSamples) {
+    if (totalSamples <= previousSamples_)
+        throw std::runtime_error("the device's sample count went from " + std::to_string(previousSamples_) + " to " +
+                                 std::to_string(totalSamples) + ": it restarted its accumulation");
+    std::vector<double> batchSum(previousSum_.size());
+    for (size_t i = 0; i < batchSum.size(); ++i) {
+        const double sum = double(mean[i]) * double(totalSamples);
+        batchSum[i] = sum - previousSum_[i];
+        previousSum_[i] = sum;
+    }
+    addBatchSums(batchSum, totalSamples - previousSamples_);
+    previousSamples_ = totalSamples;
+}
+
+void HalfBufferEstimator::addBatchFrame(const float* mean, uint32_t batchSamples) {
+    if (batchSamples == 0) throw std::runtime_error("a frame of 0 samples");
+    std::vector<double> batchSum(previousSum_.size());
+    for (size_t i = 0; i < batchSum.size(); ++i) batchSum[i] = double(mean[i]) * double(batchSamples);
+    addBatchSums(batchSum, batchSamples);
+}
+
+void HalfBufferEstimator::addBatchSums(const std::vector<double>& batchSum, uint32_t batchSamples) {
+    // Alternate batches, so that each half is an independent estimate of the same image.
+    const int half = int(batches_ % 2);
+    for (size_t i = 0; i < batchSum.size(); ++i) halfSum_[half][i] += batchSum[i];
+    halfSamples_[half] += batchSamples;
+    ++batches_;
+}
+
+double HalfBufferEstimator::estimatedRelMse(double epsilon) const {
+    const double nA = halfSamples_[0], nB = halfSamples_[1];
+    if (nA == 0 || nB == 0) return std::numeric_limits<double>::quiet_NaN();
+    const double varianceFactor = nA * nB / ((nA + nB) * (nA + nB));  // Var(F) = E[(A - B)^2] * this
+    double total = 0.0;
+    const size_t pixels = size_t(width_) * height_;
+    for (size_t p = 0; p < pixels; ++p)
+        for (size_t c = 0; c < 3; ++c) {
+            const size_t i = p * 4 + c;
+            const double a = halfSum_[0][i] / nA, b = halfSum_[1][i] / nB;
+            // The halves are independent, so E[A B] = mu^2: unlike F^2 (E[F^2] = mu^2 + Var(F)) this denominator
+            // is not inflated where a rare bright sample inflates the numerator.
+            total += (a - b) * (a - b) * varianceFactor / (std::max(a * b, 0.0) + epsilon);
+        }
+    return total / double(pixels * 3);
+}
+
+std::vector<float> HalfBufferEstimator::meanRgbaBottomUp() const {
+    std::vector<float> rgba(previousSum_.size(), 0.0f);
+    const double n = samples();
+    if (n == 0) return rgba;
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = float((halfSum_[0][i] + halfSum_[1][i]) / n);
+    return rgba;
+}
+
+LinearImage HalfBufferEstimator::meanImage() const {
+    const std::vector<float> rgba = meanRgbaBottomUp();
+    LinearImage image;
+    image.width = width_;
+    image.height = height_;
+    image.rgb.resize(size_t(width_) * height_ * 3);
+    for (uint32_t y = 0; y < height_; ++y)
+        for (uint32_t x = 0; x < width_; ++x)
+            for (size_t c = 0; c < 3; ++c)
+                image.rgb[(size_t(y) * width_ + x) * 3 + c] = rgba[(size_t(height_ - 1 - y) * width_ + x) * 4 + c];
+    return image;
+}
+
+ReferenceMetrics compareToReference(const LinearImage& image, const LinearImage& reference) {
+    ReferenceMetrics m;
+    m.relMse = relMse(image, reference, kRelMseEpsilon);
+    m.psnr = psnr(image, reference);
+    m.ssim = ssim(image, reference);
+    m.flipLdr = flipLdr(image, reference);
+    m.flipHdr = flipHdr(image, reference);
+    return m;
+}
+
+uint32_t nextReportSpp(uint32_t spp) {
+    return std::max(spp + 1, uint32_t(std::lround(double(spp) * 1.2)));
+}
+
+std::string formatConvergencePoint(const ConvergencePoint& point) {
+    char line[256];
+    int n = std::snprintf(line, sizeof line, "%8.2f s %7u spp  estimated relMSE %.3e", point.seconds, point.spp,
+                          point.estimatedRelMse);
+    if (point.reference && n > 0 && size_t(n) < sizeof line) {
+        const ReferenceMetrics& r = *point.reference;
+        std::snprintf(line + n, sizeof line - size_t(n), "  relMSE %.3e  PSNR %.2f dB  SSIM %.4f  FLIP %.4f (HDR %.4f)",
+                      r.relMse, r.psnr, r.ssim, r.flipLdr, r.flipHdr);
+    }
+    return line;
+}
+
+void writeConvergenceCsv(const std::filesystem::path& file, const std::vector<ConvergencePoint>& points) {
+    std::ofstream out(file);
+    if (!out) throw std::runtime_error(file.string() + ": cannot write the report");
+    const bool withReference = !points.empty() && points.front().reference.has_value();
+    out << "time_s,spp,estimated_relmse" << (withReference ? ",relmse,psnr_db,ssim,flip_ldr,flip_hdr" : "") << "\n";
+    char line[256];
+    for (const ConvergencePoint& p : points) {
+        std::snprintf(line, sizeof line, "%.4f,%u,%.6e", p.seconds, p.spp, p.estimatedRelMse);
+        out << line;
+        if (withReference && p.reference) {
+            const ReferenceMetrics& r = *p.reference;
+            std::snprintf(line, sizeof line, ",%.6e,%.4f,%.6f,%.6f,%.6f", r.relMse, r.psnr, r.ssim, r.flipLdr, r.flipHdr);
+            out << line;
+        }
+        out << "\n";
+    }
+    if (!out) throw std::runtime_error(file.string() + ": cannot write the report");
+}
+
+double RenderClock::seconds() const {
+    const auto now = paused_ ? pausedAt_ : std::chrono::steady_clock::now();
+    return std::chrono::duration<double>(now - start_).count() - excluded_;
+}
+
+void RenderClock::pause() {
+    if (paused_) return;
+    paused_ = true;
+    pausedAt_ = std::chrono::steady_clock::now();
+}
+
+void RenderClock::resume() {
+    if (!paused_) return;
+    paused_ = false;
+    excluded_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - pausedAt_).count();
+}
+
+}  // namespace ripple::apps

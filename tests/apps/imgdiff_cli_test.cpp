@@ -1,0 +1,123 @@
+// ripple-imgdiff as a user runs it: equal images give zero error and infinite PSNR, black against white gives
+// a white-hot heat map, and missing files, size mismatches and malformed headers end with exit code 1 and a
+// message naming the fault.
+#include "apps/common/ImageIO.h"
+#include "tests/apps/TestFiles.h"
+
+#include <doctest/doctest.h>
+#include <stb_image.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+using namespace ripple::test;
+
+namespace {
+
+struct Run {
+    int exitCode = -1;  // -1: killed by a signal
+    std::string output;  // stdout and stderr together
+};
+
+Run runImgdiff(const std::string& arguments) {
+    const std::string command = std::string("'") + RIPPLE_IMGDIFF_PATH + "' " + arguments + " 2>&1";
+    Run run;
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::array<char, 512> chunk;
+    size_t n;
+    while ((n = fread(chunk.data(), 1, chunk.size(), pipe)) > 0) run.output.append(chunk.data(), n);
+    const int status = pclose(pipe);
+    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// Built with append: GCC 12 gives a false -Wrestrict for "'" + string + "'".
+std::string quoted(const std::filesystem::path& file) {
+    std::string text(1, '\'');
+    text.append(file.string()).push_back('\'');
+    return text;
+}
+
+std::filesystem::path writeConstantPfm(const std::filesystem::path& file, uint32_t width, uint32_t height, float value) {
+    const std::vector<float> rgba(size_t(width) * height * 4, value);
+    ripple::apps::writePfmBottomUp(file, width, height, rgba.data());
+    return file;
+}
+
+}  // namespace
+
+TEST_CASE("ripple-imgdiff: equal images, zero error, JSON written") {
+    TempFolder dir;
+    const auto image = writeConstantPfm(dir / "a.pfm", 8, 8, 0.25f);
+    const auto json = dir / "out.json";
+    const Run run = runImgdiff(quoted(image) + " " + quoted(image) + " --json " + quoted(json));
+    CAPTURE(run.output);
+    REQUIRE(run.exitCode == 0);
+    CHECK(contains(run.output, "PSNR      inf dB"));
+    CHECK(contains(run.output, "SSIM      1.000000"));
+    CHECK(contains(run.output, "LDR-FLIP  0.000000"));
+    CHECK(contains(run.output, "HDR-FLIP  0.000000"));
+    std::ifstream in(json);
+    std::stringstream text;
+    text << in.rdbuf();
+    CHECK(contains(text.str(), "\"psnr\": null"));
+    CHECK(contains(text.str(), "\"flipLdr\": 0,"));
+    CHECK(contains(text.str(), "\"width\": 8,"));
+}
+
+TEST_CASE("ripple-imgdiff: black against white, heat map at the top of the colour map everywhere") {
+    TempFolder dir;
+    const auto black = writeConstantPfm(dir / "black.pfm", 6, 4, 0.0f);
+    const auto white = writeConstantPfm(dir / "white.pfm", 6, 4, 1.0f);
+    for (const char* source : {"ldr-flip", "difference"}) {
+        CAPTURE(source);
+        const auto heat = dir / "heat.png";
+        const Run run = runImgdiff(quoted(black) + " " + quoted(white) + " --heatmap " + quoted(heat) +
+                                   " --heatmap-source " + source);
+        CAPTURE(run.output);
+        REQUIRE(run.exitCode == 0);
+        int width = 0, height = 0, channels = 0;
+        unsigned char* pixels = stbi_load(heat.string().c_str(), &width, &height, &channels, 3);
+        REQUIRE(pixels != nullptr);
+        CHECK(width == 6);
+        CHECK(height == 4);
+        // FLIP of black against white is about 0.97 (see image_metrics_test), the normalised difference 1:
+        // both land in magma's last segment, between #fec287 and #fcfdbf.
+        int outside = 0;
+        for (int i = 0; i < width * height; ++i) outside += pixels[i * 3] < 0xfc || pixels[i * 3 + 1] < 0xc2;
+        stbi_image_free(pixels);
+        CHECK(outside == 0);
+    }
+}
+
+TEST_CASE("ripple-imgdiff: missing files, size mismatch and malformed headers are clear errors") {
+    TempFolder dir;
+    const auto small = writeConstantPfm(dir / "small.pfm", 4, 4, 0.5f);
+    const auto wide = writeConstantPfm(dir / "wide.pfm", 5, 4, 0.5f);
+    const auto broken = writeText(dir / "broken.pfm", "PF\n4 four\n-1.0\n");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {quoted(dir / "absent.png") + " " + quoted(small), "absent.png: cannot open the image (no such file)"},
+        {quoted(small) + " " + quoted(wide), "differ in size"},
+        {quoted(broken) + " " + quoted(small), "height 'four'"},
+        {quoted(small), "reference is required"},
+        {quoted(small) + " " + quoted(small) + " --heatmap-source sideways", "sideways"},
+    };
+    for (const auto& [arguments, message] : cases) {
+        const Run run = runImgdiff(arguments);
+        CAPTURE(arguments);
+        CAPTURE(run.output);
+        CHECK(run.exitCode != 0);
+        CHECK(run.exitCode != -1);
+        CHECK(contains(run.output, message));
+    }
+    const Run help = runImgdiff("--help");
+    CHECK(help.exitCode == 0);
+    CHECK(contains(help.output, "relMSE = mean((test - ref)^2 / (ref^2 + epsilon))"));
+}
