@@ -24,13 +24,6 @@ struct BandPixel {
     float depth;
 };
 
-template <typename T>
-void append(std::vector<uint8_t>& bytes, const T& value) {
-    const size_t at = bytes.size();
-    bytes.resize(at + sizeof(T));
-    std::memcpy(bytes.data() + at, &value, sizeof(T));
-}
-
 }  // namespace
 
 Compositor::Compositor(Communicator ranks) : ranks_(std::move(ranks)) {}
@@ -60,53 +53,72 @@ void Compositor::composite(std::span<const float> rgba, std::span<const float> d
     }
     const int rankCount = ranks_.size();
     const bool keepBackground = ranks_.rank() == 0;
-    std::vector<std::vector<uint8_t>> outgoing(static_cast<size_t>(rankCount));
+    auto sent = [&](size_t p) { return !std::isinf(depth[p]) || (keepBackground && rgba[p * 4 + 3] != 0.0f); };
+    // Counted first, so each owner's buffer is written in place at its final size; the buffers are kept
+    // from frame to frame, so a steady frame allocates (and page-faults) nothing for them.
+    outgoing_.resize(static_cast<size_t>(rankCount));
     for (int owner = 0; owner < rankCount; ++owner) {
         const size_t first = size_t(bandBegin(owner)) * width_, last = size_t(bandBegin(owner + 1)) * width_;
+        size_t count = 0;
+        for (size_t p = first; p < last; ++p) count += sent(p);
+        std::vector<uint8_t>& bytes = outgoing_[size_t(owner)];
+        bytes.resize(count * sizeof(Fragment));
+        uint8_t* out = bytes.data();
         for (size_t p = first; p < last; ++p) {
-            const bool background = std::isinf(depth[p]);
-            if (background && (!keepBackground || rgba[p * 4 + 3] == 0.0f)) continue;
-            Fragment fragment{uint32_t(p - first), {rgba[p * 4], rgba[p * 4 + 1], rgba[p * 4 + 2], rgba[p * 4 + 3]},
-                              depth[p]};
-            append(outgoing[size_t(owner)], fragment);
+            if (!sent(p)) continue;
+            const Fragment fragment{uint32_t(p - first), {rgba[p * 4], rgba[p * 4 + 1], rgba[p * 4 + 2], rgba[p * 4 + 3]},
+                                    depth[p]};
+            std::memcpy(out, &fragment, sizeof(Fragment));
+            out += sizeof(Fragment);
         }
-        bytesSent_ += outgoing[size_t(owner)].size();
+        if (owner != ranks_.rank()) bytesSent_ += bytes.size();  // what stays on this rank crosses nothing
     }
-    const std::vector<std::vector<uint8_t>> received = ranks_.alltoallv(outgoing);
+    const std::vector<std::vector<uint8_t>> received = ranks_.alltoallv(outgoing_);
 
-    // Bucket the fragments by pixel (counting sort), then order each pixel's by depth; equal depths keep
+    // Bucket the fragments by pixel (counting sort, senders in rank order), then order each pixel's by
+    // depth with a stable insertion sort (a pixel has at most one fragment per rank); equal depths keep
     // rank order, so the result does not depend on MPI's arrival order.
     const size_t bandPixels = size_t(bandBegin(ranks_.rank() + 1) - bandBegin(ranks_.rank())) * width_;
-    std::vector<uint32_t> starts(bandPixels + 1, 0);
-    std::vector<Fragment> fragments;
+    std::vector<uint32_t>& starts = starts_;
+    starts.assign(bandPixels + 1, 0);
+    size_t total = 0;
+    for (const std::vector<uint8_t>& bytes : received) {
+        for (size_t at = 0; at + sizeof(Fragment) <= bytes.size(); at += sizeof(Fragment)) {
+            uint32_t pixel;
+            std::memcpy(&pixel, bytes.data() + at, sizeof(pixel));
+            if (pixel >= bandPixels) throw std::runtime_error("Compositor: a fragment outside the band");
+            ++starts[pixel + 1];
+            ++total;
+        }
+    }
+    for (size_t p = 0; p < bandPixels; ++p) starts[p + 1] += starts[p];
+    std::vector<Fragment> byPixel(total);
+    std::vector<uint32_t>& cursor = cursor_;
+    cursor.assign(starts.begin(), starts.end() - 1);
     for (const std::vector<uint8_t>& bytes : received) {
         for (size_t at = 0; at + sizeof(Fragment) <= bytes.size(); at += sizeof(Fragment)) {
             Fragment fragment;
             std::memcpy(&fragment, bytes.data() + at, sizeof(Fragment));
-            if (fragment.pixel >= bandPixels) throw std::runtime_error("Compositor: a fragment outside the band");
-            fragments.push_back(fragment);
-            ++starts[fragment.pixel + 1];
+            byPixel[cursor[fragment.pixel]++] = fragment;
         }
     }
-    for (size_t p = 0; p < bandPixels; ++p) starts[p + 1] += starts[p];
-    std::vector<Fragment> byPixel(fragments.size());
-    std::vector<uint32_t> cursor(starts.begin(), starts.end() - 1);
-    for (const Fragment& fragment : fragments) byPixel[cursor[fragment.pixel]++] = fragment;
 
-    std::vector<uint8_t> band;
-    band.reserve(bandPixels * sizeof(BandPixel));
+    std::vector<uint8_t>& band = band_;
+    band.resize(bandPixels * sizeof(BandPixel));
     for (size_t p = 0; p < bandPixels; ++p) {
-        auto begin = byPixel.begin() + starts[p], end = byPixel.begin() + starts[p + 1];
-        std::stable_sort(begin, end, [](const Fragment& a, const Fragment& b) { return a.depth < b.depth; });
+        Fragment* begin = byPixel.data() + starts[p];
+        Fragment* end = byPixel.data() + starts[p + 1];
+        for (Fragment* it = begin + 1; it < end; ++it)  // stable: moves a fragment only past deeper ones
+            for (Fragment* j = it; j > begin && (j - 1)->depth > j->depth; --j) std::swap(*(j - 1), *j);
         BandPixel out{{0.0f, 0.0f, 0.0f, 0.0f}, INFINITY};
-        for (auto it = begin; it != end; ++it) {
+        for (const Fragment* it = begin; it != end; ++it) {
             const float transmitted = 1.0f - out.rgba[3];
             for (int c = 0; c < 4; ++c) out.rgba[c] += transmitted * it->rgba[c];
             out.depth = std::min(out.depth, it->depth);
         }
-        append(band, out);
+        std::memcpy(band.data() + p * sizeof(BandPixel), &out, sizeof(BandPixel));
     }
-    bytesSent_ += band.size();
+    if (ranks_.rank() != 0) bytesSent_ += band.size();
 
     const std::vector<std::vector<uint8_t>> bands = ranks_.gatherToRoot(band);
     if (ranks_.rank() != 0) return;

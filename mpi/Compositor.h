@@ -28,7 +28,7 @@ public:
     // The whole composited image on rank 0 (empty on other ranks); depth is the nearest fragment's.
     const std::vector<float>& rgba() const { return rgba_; }
     const std::vector<float>& depth() const { return depth_; }
-    // Bytes this rank sent in the last composite (fragments and its band to rank 0).
+    // Bytes this rank sent to other ranks in the last composite (fragments, and its band to rank 0).
     uint64_t bytesSent() const { return bytesSent_; }
     const Communicator& ranks() const { return ranks_; }
 
@@ -39,6 +39,10 @@ private:
     uint32_t width_ = 0, height_ = 0;
     std::vector<float> rgba_, depth_;
     uint64_t bytesSent_ = 0;
+    // Working buffers of composite(), kept between frames.
+    std::vector<std::vector<uint8_t>> outgoing_;
+    std::vector<uint32_t> starts_, cursor_;
+    std::vector<uint8_t> band_;
 };
 
 }  // namespace ripple::mpi

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <limits>
 
 namespace ripple::ptc {
 
@@ -128,7 +129,13 @@ ANARIGroup PtcDevice::newGroup() { RIPPLE_PTC_FORWARD(nullptr, newGroup()); }
 ANARIInstance PtcDevice::newInstance(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newInstance(type)); }
 ANARIWorld PtcDevice::newWorld() { RIPPLE_PTC_FORWARD(nullptr, newWorld()); }
 ANARICamera PtcDevice::newCamera(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newCamera(type)); }
-ANARIRenderer PtcDevice::newRenderer(const char* type) { RIPPLE_PTC_FORWARD(nullptr, newRenderer(type)); }
+ANARIRenderer PtcDevice::newRenderer(const char* type) {
+    abi::DeviceInterface* device = wrapped();
+    if (!device) return nullptr;
+    ANARIRenderer renderer = device->newRenderer(type);
+    backgroundAlpha_.erase(renderer);  // a handle may be reused: a new renderer has the default background
+    return renderer;
+}
 ANARIObject PtcDevice::newObject(const char* objectType, const char* type) {
     RIPPLE_PTC_FORWARD(nullptr, newObject(objectType, type));
 }
@@ -191,6 +198,7 @@ void PtcDevice::setFrameParameter(FrameState& frame, ANARIFrame handle, const ch
         std::memcpy(&frame.communicatorHandle, mem, sizeof(frame.communicatorHandle));
         return;
     }
+    if (key == "renderer" && dataType == ANARI_RENDERER) std::memcpy(&frame.renderer, mem, sizeof(frame.renderer));
     if (key == "size" && dataType == ANARI_UINT32_VEC2) {
         uint32_t size[2];
         std::memcpy(size, mem, sizeof(size));
@@ -206,6 +214,11 @@ void PtcDevice::setParameter(ANARIObject object, const char* name, ANARIDataType
     if (!wrapped()) return;
     if (auto it = frames_.find(reinterpret_cast<ANARIFrame>(object)); it != frames_.end())
         return setFrameParameter(it->second, it->first, name, dataType, mem);
+    if (std::strcmp(name, "background") == 0) {
+        float rgba[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        if (dataType == ANARI_FLOAT32_VEC4) std::memcpy(rgba, mem, sizeof(rgba));
+        backgroundAlpha_[object] = rgba[3];
+    }
     wrapped_->setParameter(object, name, dataType, mem);
 }
 
@@ -214,6 +227,7 @@ void PtcDevice::unsetParameter(ANARIObject object, const char* name) {
         if (wrapped_) wrapped_->unsetParameter(wrappedHandle(), name);
         return;
     }
+    if (name && std::strcmp(name, "background") == 0) backgroundAlpha_.erase(object);
     RIPPLE_PTC_FORWARD(void(), unsetParameter(object, name));
 }
 void PtcDevice::unsetAllParameters(ANARIObject object) {
@@ -221,6 +235,7 @@ void PtcDevice::unsetAllParameters(ANARIObject object) {
         if (wrapped_) wrapped_->unsetAllParameters(wrappedHandle());
         return;
     }
+    backgroundAlpha_.erase(object);
     RIPPLE_PTC_FORWARD(void(), unsetAllParameters(object));
 }
 void* PtcDevice::mapParameterArray1D(ANARIObject o, const char* n, ANARIDataType t, uint64_t n1, uint64_t* s) {
@@ -268,9 +283,8 @@ void PtcDevice::release(ANARIObject object) {
     }
     if (!wrapped_) return;
     wrapped_->release(object);
-    // Frames are erased on release; a frame retained by the application keeps its state only while the
-    // application holds exactly one reference, which is all Ripple's apps do.
-    frames_.erase(reinterpret_cast<ANARIFrame>(object));
+    auto it = frames_.find(reinterpret_cast<ANARIFrame>(object));
+    if (it != frames_.end() && --it->second.references == 0) frames_.erase(it);
 }
 
 void PtcDevice::retain(ANARIObject object) {
@@ -279,7 +293,9 @@ void PtcDevice::retain(ANARIObject object) {
         ++references_;
         return;
     }
-    if (wrapped_) wrapped_->retain(object);
+    if (!wrapped_) return;
+    wrapped_->retain(object);
+    if (auto it = frames_.find(reinterpret_cast<ANARIFrame>(object)); it != frames_.end()) ++it->second.references;
 }
 
 void* PtcDevice::mapArray(ANARIArray array) { RIPPLE_PTC_FORWARD(nullptr, mapArray(array)); }
@@ -329,6 +345,15 @@ void PtcDevice::renderFrame(ANARIFrame handle) {
                             depthHeight == height;
         const size_t pixels = size_t(frame.width) * frame.height;
         std::vector<float> blankColor, blankDepth;
+        auto background = backgroundAlpha_.find(frame.renderer);
+        if (usable && background != backgroundAlpha_.end() && background->second == 0.0f) {
+            // A transparent background gives no alpha, so alpha at infinite depth is an edge whose latest
+            // sample missed: composited behind every surface of the pixel instead of dropped as background.
+            blankDepth.assign(depth, depth + pixels);
+            for (size_t p = 0; p < pixels; ++p)
+                if (std::isinf(blankDepth[p]) && color[p * 4 + 3] > 0.0f) blankDepth[p] = std::numeric_limits<float>::max();
+            depth = blankDepth.data();
+        }
         if (!usable) {
             report(ANARI_SEVERITY_ERROR, "anariRenderFrame: the wrapped device gave no FLOAT32_VEC4 color and FLOAT32 "
                                          "depth of the frame's size; this rank contributes nothing");

@@ -80,6 +80,8 @@ private:
         const void* communicatorHandle = nullptr;
         std::unique_ptr<mpi::Compositor> compositor;
         std::vector<uint8_t> mappedColor;  // the composited color in colorType
+        int references = 1;                // the application's, mirrored: the state lives as long as the frame
+        ANARIObject renderer = nullptr;
     };
 
     bool isDevice(ANARIObject object) const {
@@ -112,6 +114,9 @@ private:
     bool loadFailed_ = false;
     int references_ = 1;
     std::map<ANARIFrame, FrameState> frames_;
+    // The alpha of each renderer's "background": where it is 0, a pixel at infinite depth with some alpha is
+    // the coverage of a surface its latest sample missed (an edge), not background, and must be composited.
+    std::map<ANARIObject, float> backgroundAlpha_;
 };
 
 }  // namespace ripple::ptc

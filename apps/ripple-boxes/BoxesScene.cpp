@@ -132,7 +132,8 @@ private:
 
 }  // namespace
 
-BoxesPart buildBoxesPart(ANARIDevice device, uint32_t rank, uint32_t ranks, uint32_t tessellation) {
+BoxesPart buildBoxesPart(ANARIDevice device, uint32_t rank, uint32_t ranks, uint32_t tessellation,
+                         bool lightsOnEveryRank) {
     std::array<uint32_t, kBoxes> permutation{};
     std::iota(permutation.begin(), permutation.end(), 0u);
     uint32_t shuffle = 12345u;
@@ -161,7 +162,7 @@ BoxesPart buildBoxesPart(ANARIDevice device, uint32_t rank, uint32_t ranks, uint
         builder.surface(floor, glm::vec3(0.6f), false);
         part.triangles += floor.indices.size();
     }
-    if (rank == 0) {
+    if (rank == 0 || lightsOnEveryRank) {
         builder.pointLight({2.0f, -3.0f, 9.0f}, 60.0f);
         builder.sun(glm::normalize(glm::vec3(-0.5f, 0.7f, -1.0f)), 1.5f, {1.0f, 0.9f, 0.7f});
     }

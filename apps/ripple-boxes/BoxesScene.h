@@ -20,8 +20,10 @@ struct BoxesPart {
 // floor on the last rank, and the lights (a point light and a warm sun) on rank 0 alone: the device
 // gathers lights, so the other ranks need none. Each face of a box is cut into tessellation^2 quads (two
 // triangles each), which changes the memory and trace cost but not the picture. Throws
-// std::runtime_error when the device returns no object.
-BoxesPart buildBoxesPart(ANARIDevice device, uint32_t rank, uint32_t ranks, uint32_t tessellation);
+// std::runtime_error when the device returns no object. lightsOnEveryRank: every rank adds the lights, as
+// a device that renders each rank alone and composites (ripple_ptc) needs.
+BoxesPart buildBoxesPart(ANARIDevice device, uint32_t rank, uint32_t ranks, uint32_t tessellation,
+                         bool lightsOnEveryRank = false);
 
 // The view of the whole stack: the same on every rank, as data-parallel ANARI requires.
 struct BoxesView {

@@ -1,5 +1,6 @@
 // ripple-boxes: the 4x4x4 boxes of the data-parallel ANARI paper, each rank holding its own share of them
-// (run it under mpirun); rank 0 writes the image. --bench times frames and reports what crossed ranks.
+// (run it under mpirun); rank 0 writes the image. --bench times frames and reports what crossed ranks;
+// --compare renders natively, through the compositing device and on one rank, and measures the difference.
 #include "apps/common/AnariParams.h"
 #include "apps/common/ImageIO.h"
 #include "apps/ripple-boxes/BoxesScene.h"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -32,6 +34,7 @@ struct Options {
     bool bench = false;
     uint32_t frames = 5;
     std::string json = "ripple-boxes-bench.json";
+    std::string compare;  // --compare PREFIX: the three-way comparison instead of one image
 };
 
 struct StatusLog {
@@ -120,22 +123,128 @@ void printBench(glm::uvec2 size, const Options& options, const std::vector<RankR
     }
 }
 
-int run(const Options& options, const mpi::Communicator& ranks) {
-    const glm::uvec2 size = parseSize(options.size);
-    const auto rank = uint32_t(ranks.rank()), rankCount = uint32_t(ranks.size());
-    const bool pfm = std::filesystem::path(options.output).extension() == ".pfm";
+ANARIFrame makeFrame(Session& s, const Options& options, glm::uvec2 size, ANARIWorld world, ANARIDataType colorType);
 
+void openDevice(Session& s, const std::string& library, StatusLog& log) {
+    s.library = anariLoadLibrary(library.c_str(), onStatus, &log);
+    if (!s.library) throw std::runtime_error("cannot load the ANARI library '" + library + "'");
+    s.device = anariNewDevice(s.library, "default");
+    if (!s.device) throw std::runtime_error("the ANARI library '" + library + "' created no device");
+}
+
+// --- --compare: the paper's three-way figure ----------------------------------------------------------
+
+enum class Way { Native, Composited, Single };
+
+// One render of the comparison: native data-parallel Ripple and Ripple through ripple_ptc on every rank
+// (each rank holding its share; compositing needs the lights on every rank, the native device gathers
+// them), or on rank 0 alone a Ripple device told to render alone (MPI_COMM_SELF) holding every box.
+// Linear RGBA, bottom row first, on rank 0; empty elsewhere.
+std::vector<float> renderWay(const Options& options, glm::uvec2 size, const mpi::Communicator& ranks, Way way) {
     StatusLog log{ranks.rank(), 0};
     Session s;
-    s.library = anariLoadLibrary(options.library.c_str(), onStatus, &log);
-    if (!s.library) throw std::runtime_error("cannot load the ANARI library '" + options.library + "'");
-    s.device = anariNewDevice(s.library, "default");
-    if (!s.device) throw std::runtime_error("the ANARI library '" + options.library + "' created no device");
+    openDevice(s, way == Way::Composited ? "ripple_ptc" : "ripple", log);
     ANARIDevice d = s.device;
-
-    const BoxesPart part = buildBoxesPart(d, rank, rankCount, options.tessellation);
+    if (way == Way::Single) {
+        if (const void* self = mpi::Communicator::selfHandle())
+            anariSetParameter(d, d, "mpiCommunicator", ANARI_VOID_POINTER, &self);
+        anariCommitParameters(d, d);
+    }
+    const bool alone = way == Way::Single;
+    const BoxesPart part = buildBoxesPart(d, alone ? 0u : uint32_t(ranks.rank()), alone ? 1u : uint32_t(ranks.size()),
+                                          options.tessellation, way == Way::Composited);
     s.objects.push_back(part.world);
+    ANARIFrame frame = makeFrame(s, options, size, part.world, ANARI_FLOAT32_VEC4);
+    anariRenderFrame(d, frame);
+    anariFrameReady(d, frame, ANARI_WAIT);
+    if (log.errors > 0) throw std::runtime_error("the device reported errors (above)");
+    if (ranks.rank() != 0) return {};
+    uint32_t width = 0, height = 0;
+    ANARIDataType type = ANARI_UNKNOWN;
+    const auto* pixels = static_cast<const float*>(anariMapFrame(d, frame, "channel.color", &width, &height, &type));
+    std::vector<float> image;
+    if (pixels && width == size.x && height == size.y && type == ANARI_FLOAT32_VEC4)
+        image.assign(pixels, pixels + size_t(width) * height * 4);
+    if (pixels) anariUnmapFrame(d, frame, "channel.color");
+    if (image.empty()) throw std::runtime_error("the device returned no FLOAT32_VEC4 color channel of the requested size");
+    return image;
+}
 
+// A pixel "differs" when one of its linear RGB components is more than this apart.
+constexpr float kDifferThreshold = 0.05f;
+
+struct Difference {
+    double differing = 0.0;  // fraction of pixels
+    double brighter = 0.0;   // fraction of pixels where `test` is brighter by the threshold (luminance)
+    double darker = 0.0;
+    double meanAbs = 0.0;    // mean |test - reference| over pixels and RGB
+};
+
+float luminance(const float* rgba) { return 0.2126f * rgba[0] + 0.7152f * rgba[1] + 0.0722f * rgba[2]; }
+
+Difference difference(const std::vector<float>& test, const std::vector<float>& reference) {
+    Difference d;
+    const size_t pixels = test.size() / 4;
+    for (size_t p = 0; p < pixels; ++p) {
+        const float* a = &test[p * 4];
+        const float* b = &reference[p * 4];
+        float largest = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            largest = std::max(largest, std::abs(a[c] - b[c]));
+            d.meanAbs += std::abs(a[c] - b[c]);
+        }
+        d.differing += largest > kDifferThreshold;
+        d.brighter += luminance(a) > luminance(b) + kDifferThreshold;
+        d.darker += luminance(a) < luminance(b) - kDifferThreshold;
+    }
+    d.differing /= double(pixels);
+    d.brighter /= double(pixels);
+    d.darker /= double(pixels);
+    d.meanAbs /= 3.0 * double(pixels);
+    return d;
+}
+
+void printDifference(const char* what, const Difference& d) {
+    std::printf("%-26s %9.2f%% %10.4f %12.2f%% %11.2f%%\n", what, 100.0 * d.differing, d.meanAbs, 100.0 * d.brighter,
+                100.0 * d.darker);
+}
+
+int runCompare(const Options& options, const mpi::Communicator& ranks) {
+    const glm::uvec2 size = parseSize(options.size);
+    const std::vector<float> native = renderWay(options, size, ranks, Way::Native);
+    const std::vector<float> composited = renderWay(options, size, ranks, Way::Composited);
+    if (ranks.rank() != 0) return 0;
+    const std::vector<float> single = renderWay(options, size, ranks, Way::Single);
+
+    // The difference image: red where compositing is brighter than native (shadows and occlusion it
+    // cannot see), blue where darker (light from other ranks it misses), four times the luminance gap.
+    std::vector<float> diff(composited.size(), 1.0f);
+    for (size_t p = 0; p < diff.size() / 4; ++p) {
+        const float gap = luminance(&composited[p * 4]) - luminance(&native[p * 4]);
+        diff[p * 4] = std::min(1.0f, 4.0f * std::max(gap, 0.0f));
+        diff[p * 4 + 1] = 0.0f;
+        diff[p * 4 + 2] = std::min(1.0f, 4.0f * std::max(-gap, 0.0f));
+    }
+    const std::string prefix = options.compare;
+    writePngFromLinearBottomUp(prefix + "-native.png", size.x, size.y, native.data());
+    writePngFromLinearBottomUp(prefix + "-composited.png", size.x, size.y, composited.data());
+    writePngFromLinearBottomUp(prefix + "-single.png", size.x, size.y, single.data());
+    writePngFromLinearBottomUp(prefix + "-difference.png", size.x, size.y, diff.data());
+
+    std::printf("ripple-boxes --compare: %d rank(s), %ux%u, %u spp, paths of %u; a pixel differs when an RGB "
+                "component is %.2f apart\n",
+                ranks.size(), size.x, size.y, options.spp, options.maxPathLength, double(kDifferThreshold));
+    std::printf("%-26s %10s %10s %13s %12s\n", "", "differ", "mean |d|", "brighter", "darker");
+    printDifference("composited vs native", difference(composited, native));
+    printDifference("composited vs single-rank", difference(composited, single));
+    printDifference("native vs single-rank", difference(native, single));
+    std::printf("wrote %s-{native,composited,single,difference}.png\n", prefix.c_str());
+    return 0;
+}
+
+// The camera, renderer and committed frame of the boxes view over `world` (all kept in the session).
+ANARIFrame makeFrame(Session& s, const Options& options, glm::uvec2 size, ANARIWorld world, ANARIDataType colorType) {
+    ANARIDevice d = s.device;
     const BoxesView view;
     ANARICamera camera = anariNewCamera(d, "perspective");
     s.objects.push_back(camera);
@@ -155,13 +264,31 @@ int run(const Options& options, const mpi::Communicator& ranks) {
 
     ANARIFrame frame = anariNewFrame(d);
     s.objects.push_back(frame);
-    const ANARIDataType colorType = pfm ? ANARI_FLOAT32_VEC4 : ANARI_UFIXED8_RGBA_SRGB;
     anari::set(d, frame, "size", size);
     anariSetParameter(d, frame, "channel.color", ANARI_DATA_TYPE, &colorType);
-    anari::setObject(d, frame, "world", ANARI_WORLD, part.world);
+    anari::setObject(d, frame, "world", ANARI_WORLD, world);
     anari::setObject(d, frame, "renderer", ANARI_RENDERER, renderer);
     anari::setObject(d, frame, "camera", ANARI_CAMERA, camera);
     anariCommitParameters(d, frame);
+
+    return frame;
+}
+
+int run(const Options& options, const mpi::Communicator& ranks) {
+    const glm::uvec2 size = parseSize(options.size);
+    const auto rank = uint32_t(ranks.rank()), rankCount = uint32_t(ranks.size());
+    const bool pfm = std::filesystem::path(options.output).extension() == ".pfm";
+
+    StatusLog log{ranks.rank(), 0};
+    Session s;
+    openDevice(s, options.library, log);
+    ANARIDevice d = s.device;
+
+    const BoxesPart part = buildBoxesPart(d, rank, rankCount, options.tessellation);
+    s.objects.push_back(part.world);
+
+    const ANARIDataType colorType = pfm ? ANARI_FLOAT32_VEC4 : ANARI_UFIXED8_RGBA_SRGB;
+    ANARIFrame frame = makeFrame(s, options, size, part.world, colorType);
 
     // anariRenderFrame is collective: every rank renders every frame. The first frame builds the scene;
     // --bench times the ones after it.
@@ -247,6 +374,10 @@ int main(int argc, char** argv) {
     app.add_flag("--bench", options.bench, "time frames; print per-rank rays and bytes sent, scene memory; write JSON");
     app.add_option("--frames", options.frames, "timed frames in --bench")->check(CLI::Range(1u, 1000u))->capture_default_str();
     app.add_option("--json", options.json, "where --bench writes its numbers (rank 0)")->capture_default_str();
+    app.add_option("--compare", options.compare,
+                   "render three ways (native data-parallel, through ripple_ptc compositing, one rank holding "
+                   "everything), write PREFIX-{native,composited,single,difference}.png, print how they differ")
+        ->excludes("--bench");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -255,7 +386,7 @@ int main(int argc, char** argv) {
     }
 
     try {
-        return ripple::apps::run(options, ranks);
+        return options.compare.empty() ? ripple::apps::run(options, ranks) : ripple::apps::runCompare(options, ranks);
     } catch (const std::exception& e) {
         // The other ranks may be waiting in a collective call for this one: end them all, never hang.
         if (ranks.distributed()) ranks.abort(std::string("ripple-boxes: ") + e.what());

@@ -29,8 +29,8 @@ std::vector<glm::vec4> decodeSrgb(const uint8_t* bytes, size_t pixels) {
 
 }  // namespace
 
-RenderSession::RenderSession() {
-    library_ = anariLoadLibrary("ripple", &StatusLog::callback, &log);
+RenderSession::RenderSession(const char* libraryName) {
+    library_ = anariLoadLibrary(libraryName, &StatusLog::callback, &log);
     REQUIRE_MESSAGE(library_, log.dump());
     device = anariNewDevice(library_, "default");
     REQUIRE(device);
@@ -136,6 +136,10 @@ ANARIFrame RenderSession::frame(ANARIWorld world, ANARICamera camera, ANARIRende
 Image RenderSession::render(ANARIFrame frame) {
     anariRenderFrame(device, frame);
     REQUIRE(anariFrameReady(device, frame, ANARI_WAIT) == 1);
+    return mapped(frame);
+}
+
+Image RenderSession::mapped(ANARIFrame frame) {
     Image image;
     ANARIDataType type = ANARI_UNKNOWN;
     const void* color = anariMapFrame(device, frame, "channel.color", &image.width, &image.height, &type);

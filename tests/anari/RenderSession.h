@@ -28,7 +28,8 @@ struct Image {
 
 class RenderSession {
 public:
-    RenderSession();
+    // libraryName: the ANARI library to load (the compositing tests load "ripple_ptc" through the same helpers).
+    explicit RenderSession(const char* libraryName = "ripple");
     ~RenderSession();
     RenderSession(const RenderSession&) = delete;
     RenderSession& operator=(const RenderSession&) = delete;
@@ -89,6 +90,8 @@ public:
 
     // Renders once (waiting for the worker) and maps the channels the frame has.
     Image render(ANARIFrame frame);
+    // Maps the channels of a frame already rendered (data-parallel: only rank 0 holds the image).
+    Image mapped(ANARIFrame frame);
     uint32_t numSamples(ANARIFrame frame);
     uint64_t sceneBuilds(ANARIFrame frame);
 

@@ -18,6 +18,7 @@ namespace {
 struct FakeFrame {
     uint32_t width = 0, height = 0;
     std::vector<float> color, depth;
+    int references = 1;
 };
 
 // Handles of objects this double does not model: distinct, never dereferenced.
@@ -73,12 +74,14 @@ public:
             delete this;
             return;
         }
-        if (FakeFrame* frame = frameOf(object)) {
+        if (FakeFrame* frame = frameOf(object); frame && --frame->references == 0) {
             frames_.erase(object);
             delete frame;
         }
     }
-    void retain(ANARIObject) override {}
+    void retain(ANARIObject object) override {
+        if (FakeFrame* frame = frameOf(object)) ++frame->references;
+    }
     void* mapArray(ANARIArray) override { return nullptr; }
     void unmapArray(ANARIArray) override {}
     int getProperty(ANARIObject, const char*, ANARIDataType, void*, uint64_t, ANARIWaitMask) override { return 0; }

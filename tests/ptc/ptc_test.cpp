@@ -102,6 +102,19 @@ TEST_CASE("ripple_ptc composites the test double's fragments exactly") {
     } else {
         CHECK(color == nullptr);  // only rank 0 holds the composited image
     }
+
+    // A frame the application retained keeps its compositing state past the first release.
+    anariRetain(device, frame);
+    anariRelease(device, frame);
+    messages.texts.clear();
+    anariRenderFrame(device, frame);
+    anariFrameReady(device, frame, ANARI_WAIT);
+    CHECK_MESSAGE(!messages.contains("not a frame of this device"), "the retained frame lost its state");
+    if (ranks.rank() == 0) {
+        color = static_cast<const float*>(anariMapFrame(device, frame, "channel.color", &width, &height, &type));
+        CHECK(color != nullptr);
+        if (color) anariUnmapFrame(device, frame, "channel.color");
+    }
     anariRelease(device, frame);
     anariRelease(device, device);
     anariUnloadLibrary(library);
