@@ -77,7 +77,7 @@ void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 p
     vec3 contribution = clamped(f, throughput * fCos * ls.incident * (w / selection));
     // Stop just short of the light, so geometry at the light itself does not shadow it.
     float tmax = isinf(ls.distance) ? INFINITY : ls.distance * (1.0 - 1e-4);
-    vec3 origin = offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal);
+    vec3 origin = offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
     if (maxComponent(contribution) > 0.0) appendShadow(Ray(vec4(origin, 0.0), vec4(ls.direction, tmax)), contribution, pixel);
 }
 
@@ -117,7 +117,7 @@ void main() {
         if (passThroughs >= PATH_MAX_PASS_THROUGHS) return;
         path.flags += 1u << PATH_PASS_THROUGH_SHIFT;
         path.throughput.w += hitT;
-        appendPath(Ray(vec4(offsetRayOrigin(position, -geometricNormal), 0.0), vec4(ray.direction.xyz, INFINITY)), path);
+        appendPath(Ray(vec4(offsetRayOrigin(position, -geometricNormal, scene.originUnit), 0.0), vec4(ray.direction.xyz, INFINITY)), path);
         return;
     }
     if (camera) radiance.values[path.pixel].a = 1.0;
@@ -154,7 +154,7 @@ void main() {
         throughput /= survive;
     }
     if (!(maxComponent(throughput) > 0.0)) return;
-    vec3 origin = offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal);
+    vec3 origin = offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
     appendPath(Ray(vec4(origin, 0.0), vec4(wi, INFINITY)),
                PathState(vec4(throughput, 0.0), path.pixel, depth, path.flags & ~PATH_FLAG_CAMERA, pdf));
 }

@@ -41,10 +41,12 @@ float maxComponent(vec3 c) { return max(c.x, max(c.y, c.z)); }
 // Moves a hit point off its surface along the geometric normal n (pointing to the side the new ray
 // leaves from) by a few ULPs of its coordinates, so rounding of the hit point never puts the origin on
 // the wrong side; near the origin, where ULPs are tiny, by a small absolute amount instead. The method of
-// Waechter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection" (Ray Tracing Gems, ch. 6).
-vec3 offsetRayOrigin(vec3 p, vec3 n) {
-    const float nearOrigin = 1.0 / 32.0;
-    const float floatScale = 1.0 / 65536.0;
+// Waechter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection" (Ray Tracing Gems, ch. 6),
+// whose near-origin constants assume a world of unit size: `unit` (SceneDesc.originUnit, at most 1)
+// shrinks them for a smaller world, whose surfaces would otherwise all lie within 2^-16 of each other.
+vec3 offsetRayOrigin(vec3 p, vec3 n, float unit) {
+    float nearOrigin = unit / 32.0;
+    float floatScale = unit / 65536.0;
     const float intScale = 256.0;
     ivec3 ulps = ivec3(intScale * n);
     vec3 moved = vec3(intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0 ? -ulps.x : ulps.x)),

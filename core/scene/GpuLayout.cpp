@@ -32,6 +32,7 @@ static_assert(offsetof(GeometryRecord, trianglesPerPrimitive) == 28);
 static_assert(sizeof(ConePrim) == 48);
 static_assert(offsetof(ConePrim, primId) == 32);
 static_assert(sizeof(SceneDesc) == 160);
+static_assert(offsetof(SceneDesc, originUnit) == 136);
 static_assert(offsetof(SceneDesc, lightPowerTotal) == 144);
 static_assert(offsetof(SceneDesc, cones) == 128);
 static_assert(offsetof(SceneDesc, lights) == 104);

@@ -7,6 +7,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -385,6 +386,14 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.testedLightCount = shading.testedLightCount;
     desc.bsdfTables = shading.bsdfTableOffset;
     desc.environmentLight = shading.environmentLight;
+    // Near 0 ray origins move by a fixed fraction of this unit (offsetRayOrigin): a world smaller than one
+    // unit would otherwise hide its own thin gaps and contact shadows inside that offset.
+    float magnitude = description.worldMagnitude > 0.0f ? description.worldMagnitude : 1.0f;
+    if (description.worldMagnitude == 0.0f && bounds_.lo.x <= bounds_.hi.x) {
+        const glm::vec3 largest = glm::max(glm::abs(bounds_.lo), glm::abs(bounds_.hi));
+        magnitude = std::max(largest.x, std::max(largest.y, largest.z));
+    }
+    desc.originUnit = std::isfinite(magnitude) ? std::clamp(magnitude, 1e-30f, 1.0f) : 1.0f;
     upload(desc_, std::vector<gpu::SceneDesc>{desc}, "scene descriptor");
 }
 

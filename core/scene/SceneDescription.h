@@ -190,6 +190,9 @@ struct SceneDescription {
     // Radius of the sphere directional and hdri lights' power is measured through (their chance of being
     // picked). 0: half the diagonal of this scene's bounds. A data-parallel rank sets the whole world's.
     float lightSceneRadius = 0.0f;
+    // Largest |coordinate| of the whole world, which ray-origin offsets near 0 scale with (Scene.cpp). 0:
+    // this scene's own. A data-parallel rank sets the whole world's, so every rank offsets as one would.
+    float worldMagnitude = 0.0f;
     // Data-parallel: the other ranks' emissive-triangle lights (Scene::triangleLights() there), added to
     // this rank's light table so that every rank samples every emitter and weighs its hits alike.
     std::vector<gpu::LightRecord> foreignTriangleLights;

@@ -120,7 +120,8 @@ struct SceneDesc {
     uint materialCount;
     uint textureCount;
     uint64_t cones;           // ConePrim[]
-    uint64_t pad0;
+    float originUnit;         // min(1, largest |coordinate| of the world): ray-origin offsets near 0 scale with it
+    uint pad0;
     float lightPowerTotal;    // sum of the lights' selection powers: an emissive triangle's pdf needs it
     uint testedLightCount;    // the first lights, which rays test themselves (quad, ring, hdri)
     uint bsdfTables;          // first word of the BSDF energy tables in texels (core/scene/BsdfTables.h)

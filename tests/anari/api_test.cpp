@@ -93,6 +93,47 @@ TEST_CASE("unknown subtypes and wrong parameter types are reported, naming objec
     anariRelease(f.device, teapot);
 }
 
+TEST_CASE("bad data is refused at commit: one error naming object, parameter, first bad element and count") {
+    Fixture f;
+    const float nan = std::nanf("");
+    const float inf = INFINITY;
+    const std::vector<float> positions = {0, 0, 0, nan, 0, 0, 1, inf, 0, 0, 1, 0};  // vertices 1 and 2 of 4 are bad
+    ANARIArray1D vertices = anariNewArray1D(f.device, positions.data(), nullptr, nullptr, ANARI_FLOAT32_VEC3, 4);
+    ANARIGeometry mesh = anariNewGeometry(f.device, "triangle");
+    anariSetParameter(f.device, mesh, "vertex.position", ANARI_ARRAY1D, &vertices);
+    anariCommitParameters(f.device, mesh);
+    CHECK_MESSAGE(f.log.count({"geometry 'triangle'", "'vertex.position' is not finite: element 1 holds NaN; 2 of 4 "
+                                                      "elements hold NaN or Inf"}) == 1,
+                  f.log.dump());
+
+    std::vector<uint32_t> index = {0, 1, 2, 0, 2, 4, 4, 0, 9};  // triangles 1 and 2 of 3 reach past vertex 3
+    const std::vector<float> finite(12, 0.5f);
+    ANARIArray1D goodVertices = anariNewArray1D(f.device, finite.data(), nullptr, nullptr, ANARI_FLOAT32_VEC3, 4);
+    ANARIArray1D triangles = anariNewArray1D(f.device, index.data(), nullptr, nullptr, ANARI_UINT32_VEC3, 3);
+    anariSetParameter(f.device, mesh, "vertex.position", ANARI_ARRAY1D, &goodVertices);
+    anariSetParameter(f.device, mesh, "primitive.index", ANARI_ARRAY1D, &triangles);
+    anariCommitParameters(f.device, mesh);
+    CHECK_MESSAGE(f.log.count({"'primitive.index' element 1 refers to vertex 4, but there are 4 vertices; 2 of 3 "
+                               "elements are out of range"}) == 1,
+                  f.log.dump());
+
+    // Two bad parameters, one error: the first problem found invalidates the object.
+    f.log.clear();
+    ANARILight light = anariNewLight(f.device, "point");
+    const float position[3] = {0.0f, -inf, 0.0f};
+    anariSetParameter(f.device, light, "position", ANARI_FLOAT32_VEC3, position);
+    anariSetParameter(f.device, light, "intensity", ANARI_FLOAT32, &nan);
+    anariCommitParameters(f.device, light);
+    CHECK_MESSAGE(f.log.count({}) == 1, f.log.dump());
+    CHECK(f.log.count({"light 'point'", "'intensity' is not finite: it holds NaN"}) == 1);
+
+    anariRelease(f.device, light);
+    anariRelease(f.device, mesh);
+    anariRelease(f.device, triangles);
+    anariRelease(f.device, goodVertices);
+    anariRelease(f.device, vertices);
+}
+
 TEST_CASE("array deleters run exactly once, when the last reference goes") {
     Fixture f;
     static const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};

@@ -4,6 +4,7 @@
 #include "anari/device/scene/ArrayConversion.h"
 
 #include <cmath>
+#include <string>
 
 namespace ripple::device {
 
@@ -16,6 +17,19 @@ template <>
 constexpr ANARIDataType anariTypeOf<Box2>() {
     return ANARI_FLOAT32_BOX2;
 }
+
+namespace {
+
+// v / |v|, scaled first by its largest component so that neither a tiny nor a huge vector (1e-30, 1e30:
+// their squared length leaves float's range) is taken for zero or normalised to zero.
+std::optional<glm::vec3> unitVector(glm::vec3 v) {
+    if (!allFinite(v)) return std::nullopt;
+    const float largest = glm::max(glm::abs(v.x), glm::max(glm::abs(v.y), glm::abs(v.z)));
+    if (largest == 0.0f) return std::nullopt;
+    return glm::normalize(v / largest);
+}
+
+}  // namespace
 
 core::Camera Camera::camera(float frameAspect) const {
     core::Camera camera = camera_;
@@ -37,15 +51,23 @@ bool Camera::pullView(core::Camera::Kind kind) {
         aspect_.reset();
     }
 
-    if (!allFinite(camera_.position) || !allFinite(direction) || !allFinite(up) ||
-        glm::length(glm::cross(direction, up)) == 0.0f) {
-        invalidate(
-            "parameters 'position', 'direction' and 'up' must be finite, with 'direction' and 'up' "
-            "non-zero and not parallel");
+    if (!allFinite(camera_.position)) {
+        invalidate("parameter 'position' must be finite");
         return false;
     }
-    camera_.direction = glm::normalize(direction);
-    camera_.up = glm::normalize(up);
+    const std::optional<glm::vec3> unitDirection = unitVector(direction);
+    const std::optional<glm::vec3> unitUp = unitVector(up);
+    if (!unitDirection || !unitUp) {
+        invalidate(std::string("parameter '") + (unitDirection ? "up" : "direction") +
+                   "' must be a finite, non-zero vector");
+        return false;
+    }
+    if (glm::length(glm::cross(*unitDirection, *unitUp)) == 0.0f) {
+        invalidate("parameters 'direction' and 'up' are parallel; 'up' must point away from the view direction");
+        return false;
+    }
+    camera_.direction = *unitDirection;
+    camera_.up = *unitUp;
     if (!allFinite(camera_.imageRegion) || !(region.upper.x > region.lower.x) || !(region.upper.y > region.lower.y)) {
         reportWarning("parameter 'imageRegion' must be a non-empty finite box; using (0, 0)-(1, 1)");
         camera_.imageRegion = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);

@@ -7,6 +7,7 @@
 #include "mpi/LightGather.h"
 #include "core/vk/Context.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <exception>
@@ -153,7 +154,10 @@ void Frame::renderFrame() {
         ranks.min(std::span<float>(&bounds.lo.x, 3));
         ranks.max(std::span<float>(&bounds.hi.x, 3));
         const float radius = bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.hi - bounds.lo);
-        restart = sync_.setLights(mpi::gatherLights(ranks, sync_.localLights()), radius) || job.restartAccumulation;
+        const glm::vec3 largest = glm::max(glm::abs(bounds.lo), glm::abs(bounds.hi));
+        const float magnitude = bounds.empty() ? 0.0f : std::max(largest.x, std::max(largest.y, largest.z));
+        restart = sync_.setLights(mpi::gatherLights(ranks, sync_.localLights()), radius, magnitude) ||
+                  job.restartAccumulation;
         job.restartAccumulation = ranks.max(restart ? 1 : 0) > 0;
     }
     renderedCamera_ = camera_.get();

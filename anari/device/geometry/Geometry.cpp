@@ -1,6 +1,7 @@
 // Shared parameter pulling and validation of the geometry subtypes, and the triangle/quad mesh builder.
 #include "anari/device/geometry/Geometry.h"
 
+#include "anari/device/object/ArrayChecks.h"
 #include "anari/device/scene/ArrayConversion.h"
 
 #include <algorithm>
@@ -77,13 +78,12 @@ std::optional<std::vector<glm::vec3>> Geometry::pullPositions() {
     }
     useArray(array);
     if (componentCount(array->elementType()) != 3) {
-        invalidate("parameter 'vertex.position' has elements of type " +
-                   std::string(ripple_anari::typeName(array->elementType())) + ", expected FLOAT32_VEC3");
+        invalidate(elementTypeProblem("vertex.position", array->elementType(), "FLOAT32_VEC3"));
         return std::nullopt;
     }
     const std::vector<glm::vec4> values = *readFloatVectors(*array);
-    if (const int64_t bad = firstNonFinite(values); bad >= 0) {
-        invalidate("parameter 'vertex.position' element " + std::to_string(bad) + " is not finite");
+    if (std::optional<std::string> problem = nonFiniteProblem("vertex.position", values)) {
+        invalidate(*problem);
         return std::nullopt;
     }
     std::vector<glm::vec3> positions(values.size());
@@ -102,21 +102,14 @@ bool Geometry::pullIndices(std::string_view name, int components, size_t vertexC
     useArray(array);
     std::optional<std::vector<uint64_t>> values = readIndices(*array, components);
     if (!values) {
-        invalidate("parameter " + quoted(name) + " has elements of type " +
-                   ripple_anari::typeName(array->elementType()) + ", expected " + std::to_string(components) +
-                   " integers per element (e.g. UINT32" + (components > 1 ? "_VEC" + std::to_string(components) : "") +
-                   ")");
+        invalidate(elementTypeProblem(name, array->elementType(),
+                                      std::to_string(components) + " integers per element (e.g. UINT32" +
+                                          (components > 1 ? "_VEC" + std::to_string(components) : "") + ")"));
         return false;
     }
-    for (size_t i = 0; i < values->size(); ++i) {
-        if ((*values)[i] >= vertexCount) {
-            const uint64_t value = (*values)[i];
-            invalidate("parameter " + quoted(name) + " element " + std::to_string(i / components) +
-                       " refers to vertex " +
-                       (value == UINT64_MAX ? std::string("-1 or below") : std::to_string(value)) + ", but there are " +
-                       std::to_string(vertexCount) + " vertices");
-            return false;
-        }
+    if (std::optional<std::string> problem = indexProblem(name, *values, components, vertexCount)) {
+        invalidate(*problem);
+        return false;
     }
     indices = std::move(*values);
     return true;
@@ -126,23 +119,22 @@ std::vector<glm::vec4> Geometry::pullVectors(std::string_view name, size_t count
     if (!has(name)) return {};
     Array* array = getArray(name);
     if (!array) {
-        reportWarning("parameter " + quoted(name) + " must be an ARRAY1D; ignored");
+        invalidate("parameter " + quoted(name) + " must be an ARRAY1D");
         return {};
     }
     useArray(array);
     std::optional<std::vector<glm::vec4>> values = readFloatVectors(*array, fill);
     if (!values) {
-        reportWarning("parameter " + quoted(name) + " has elements of type " +
-                      ripple_anari::typeName(array->elementType()) + ", which are not numbers; ignored");
+        invalidate(elementTypeProblem(name, array->elementType(), "numbers (e.g. FLOAT32_VEC3)"));
         return {};
     }
     if (values->size() != count) {
-        reportWarning("parameter " + quoted(name) + " has " + std::to_string(values->size()) + " elements, expected " +
-                      std::to_string(count) + "; ignored");
+        invalidate("parameter " + quoted(name) + " has " + std::to_string(values->size()) + " elements, expected " +
+                   std::to_string(count));
         return {};
     }
-    if (const int64_t bad = firstNonFinite(*values); bad >= 0) {
-        reportWarning("parameter " + quoted(name) + " element " + std::to_string(bad) + " is not finite; ignored");
+    if (std::optional<std::string> problem = nonFiniteProblem(name, *values)) {
+        invalidate(*problem);
         return {};
     }
     return std::move(*values);

@@ -29,13 +29,13 @@ protected:
     // invalidate() named the parameter at fault.
     virtual Shape build() = 0;
 
-    // "vertex.position": required, three components, all finite.
+    // "vertex.position": required, three components, all finite (else invalidate() names the problem).
     std::optional<std::vector<glm::vec3>> pullPositions();
     // An optional index array of `components` integers per primitive, each below vertexCount. Fills
     // `indices` (empty when unset); false after invalidate() for a wrong type or an index out of range.
     bool pullIndices(std::string_view name, int components, size_t vertexCount, std::vector<uint64_t>& indices);
     // An optional per-vertex or per-primitive array of float vectors with exactly `count` elements; empty
-    // when unset. A wrong type or count is reported and the attribute ignored (the geometry still renders).
+    // when unset. A wrong type or count, or a NaN/Inf element, invalidates the geometry (reported once).
     std::vector<glm::vec4> pullVectors(std::string_view name, size_t count, glm::vec4 fill = {0, 0, 0, 1});
     // The uniform "color" repeated `count` times; empty when unset. It applies when neither
     // "primitive.color" nor "vertex.color" is given.

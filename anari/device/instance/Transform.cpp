@@ -2,7 +2,7 @@
 // column-major FLOAT32_MAT4 that must be affine and invertible.
 #include "anari/device/instance/Instance.h"
 
-#include "anari/device/scene/ArrayConversion.h"
+#include "anari/device/object/ArrayChecks.h"
 
 #include <cmath>
 
@@ -23,12 +23,14 @@ public:
             invalidate("missing required parameter 'group'");
             return;
         }
+        if (std::optional<std::string> problem = nonFiniteProblem("transform", transform_)) {
+            invalidate(*problem);
+            return;
+        }
         const glm::vec4 lastRow(transform_[0][3], transform_[1][3], transform_[2][3], transform_[3][3]);
         const float determinant = glm::determinant(glm::mat3(transform_));
-        bool finite = true;
-        for (int column = 0; column < 4; ++column) finite = finite && allFinite(transform_[column]);
-        if (!finite || lastRow != glm::vec4(0, 0, 0, 1) || !(std::abs(determinant) > 0.0f))
-            invalidate("parameter 'transform' must be a finite, affine, invertible matrix");
+        if (lastRow != glm::vec4(0, 0, 0, 1) || !(std::abs(determinant) > 0.0f) || !std::isfinite(determinant))
+            invalidate("parameter 'transform' must be an affine, invertible matrix");
     }
 };
 

@@ -2,7 +2,8 @@
 // "irradiance" W/m^2 on a surface facing it. "angularDiameter" (soft sun) is not supported yet.
 #include "anari/device/light/Light.h"
 
-#include "anari/device/scene/ArrayConversion.h"
+#include "anari/device/object/ArrayChecks.h"
+
 
 namespace ripple::device {
 namespace {
@@ -18,8 +19,9 @@ public:
         light_.color = pullColor();
         light_.intensity = pullAmount("irradiance").value_or(1.0f);
         const glm::vec3 direction = get<glm::vec3>("direction", glm::vec3(0.0f, 0.0f, -1.0f));
-        if (!allFinite(direction) || glm::length(direction) == 0.0f) {
-            invalidate("parameter 'direction' must be a finite, non-zero vector");
+        if (reject(nonFiniteProblem("direction", direction))) return;
+        if (!(glm::length(direction) > 0.0f)) {
+            invalidate("parameter 'direction' must be a non-zero vector");
             return;
         }
         light_.direction = glm::normalize(direction);

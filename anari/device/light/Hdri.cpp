@@ -3,6 +3,7 @@
 // its top row towards "up". Core importance-samples it by the image's luminance.
 #include "anari/device/light/Light.h"
 
+#include "anari/device/object/ArrayChecks.h"
 #include "anari/device/scene/ArrayConversion.h"
 
 #include <cstring>
@@ -31,10 +32,8 @@ public:
             invalidate("layout '" + layout + "' is not supported (only 'equirectangular')");
             return;
         }
-        if (!allFinite(light_.direction) || !allFinite(light_.up)) {
-            invalidate("parameter 'direction' or 'up' is not finite");
+        if (reject(nonFiniteProblem("direction", light_.direction)) || reject(nonFiniteProblem("up", light_.up)))
             return;
-        }
         Array* radiance = getArray("radiance", ANARI_ARRAY2D);
         if (!radiance) {
             invalidate(has("radiance") ? "parameter 'radiance' must be an ARRAY2D" : "missing required parameter 'radiance'");
@@ -43,8 +42,7 @@ public:
         useArray(radiance);
         const ANARIDataType type = radiance->elementType();
         if (type != ANARI_FLOAT32_VEC3 && type != ANARI_FLOAT32_VEC4) {
-            invalidate("parameter 'radiance' has elements of type " + std::string(ripple_anari::typeName(type)) +
-                       ", expected FLOAT32_VEC3 or FLOAT32_VEC4");
+            invalidate(elementTypeProblem("radiance", type, "FLOAT32_VEC3 or FLOAT32_VEC4"));
             return;
         }
         if (radiance->dim(0) == 0 || radiance->dim(1) == 0) {
@@ -52,8 +50,8 @@ public:
             return;
         }
         const std::vector<glm::vec4> texels = *readFloatVectors(*radiance, glm::vec4(0, 0, 0, 1));
-        if (const int64_t bad = firstNonFinite(texels); bad >= 0) {
-            invalidate("parameter 'radiance' texel " + std::to_string(bad) + " is not finite");
+        if (std::optional<std::string> problem = nonFiniteProblem("radiance", texels, "texel")) {
+            invalidate(*problem);
             return;
         }
         for (size_t i = 0; i < texels.size(); ++i)

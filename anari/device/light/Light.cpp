@@ -1,7 +1,7 @@
 // Parameter pulling shared by the light subtypes (see Light.h).
 #include "anari/device/light/Light.h"
 
-#include "anari/device/scene/ArrayConversion.h"
+#include "anari/device/object/ArrayChecks.h"
 
 #include <string>
 
@@ -9,17 +9,23 @@ namespace ripple::device {
 
 glm::vec3 Light::pullColor() {
     const glm::vec3 color = get<glm::vec3>("color", glm::vec3(1.0f));
-    if (allFinite(color) && glm::all(glm::greaterThanEqual(color, glm::vec3(0.0f)))) return color;
-    reportWarning("parameter 'color' must be finite and not negative; using white");
-    return glm::vec3(1.0f);
+    if (reject(nonFiniteProblem("color", color))) return glm::vec3(1.0f);
+    if (glm::any(glm::lessThan(color, glm::vec3(0.0f)))) {
+        invalidate("parameter 'color' is negative");
+        return glm::vec3(1.0f);
+    }
+    return color;
 }
 
 std::optional<float> Light::pullAmount(std::string_view name) {
     const std::optional<float> amount = getOptional<float>(name);
     if (!amount) return std::nullopt;
-    if (std::isfinite(*amount) && *amount >= 0.0f) return amount;
-    reportWarning("parameter '" + std::string(name) + "' must be finite and not negative; ignored");
-    return std::nullopt;
+    if (reject(nonFiniteProblem(name, *amount))) return std::nullopt;
+    if (*amount < 0.0f) {
+        invalidate("parameter '" + std::string(name) + "' is negative (" + std::to_string(*amount) + ")");
+        return std::nullopt;
+    }
+    return amount;
 }
 
 }  // namespace ripple::device

@@ -17,9 +17,9 @@ public:
     virtual const core::Texture* image() const { return nullptr; }
 
 protected:
-    // For commit(): "color" (default white), with non-finite or negative values reported.
+    // For commit(): "color" (default white); a non-finite or negative one invalidates the light.
     glm::vec3 pullColor();
-    // A non-negative finite float parameter, or nullopt when unset or bad (bad is reported).
+    // A non-negative finite float parameter, or nullopt when unset or bad (bad invalidates the light).
     std::optional<float> pullAmount(std::string_view name);
 
     core::Light light_;

@@ -2,7 +2,8 @@
 // (intensity = power / 4 pi) when that is given instead. "radius" (sphere light) is not supported yet.
 #include "anari/device/light/Light.h"
 
-#include "anari/device/scene/ArrayConversion.h"
+#include "anari/device/object/ArrayChecks.h"
+
 
 #include <glm/gtc/constants.hpp>
 
@@ -22,7 +23,7 @@ public:
         const std::optional<float> power = pullAmount("power");
         light_.intensity = intensity ? *intensity : power ? *power / (4.0f * glm::pi<float>()) : 1.0f;
         light_.position = get<glm::vec3>("position", glm::vec3(0.0f));
-        if (!allFinite(light_.position)) invalidate("parameter 'position' is not finite");
+        reject(nonFiniteProblem("position", light_.position));
     }
 };
 

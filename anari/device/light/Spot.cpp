@@ -4,6 +4,8 @@
 // spread over the annulus) or "power" sets its brightness.
 #include "anari/device/light/Light.h"
 
+#include "anari/device/object/ArrayChecks.h"
+
 #include "anari/device/scene/ArrayConversion.h"
 
 #include <glm/gtc/constants.hpp>
@@ -24,9 +26,16 @@ public:
         light_.color = pullColor();
         light_.position = get<glm::vec3>("position", glm::vec3(0.0f));
         light_.direction = get<glm::vec3>("direction", glm::vec3(0.0f, 0.0f, -1.0f));
-        light_.openingAngle = std::clamp(get<float>("openingAngle", glm::pi<float>()), 0.0f, glm::two_pi<float>());
-        light_.falloffAngle = std::max(get<float>("falloffAngle", 0.1f), 0.0f);
-        if (!allFinite(light_.position) || !allFinite(light_.direction)) invalidate("parameter 'position' or 'direction' is not finite");
+        const float openingAngle = get<float>("openingAngle", glm::pi<float>());
+        const float falloffAngle = get<float>("falloffAngle", 0.1f);
+        // Checked before the clamps below, which would pass a NaN through.
+        if (reject(nonFiniteProblem("position", light_.position)) ||
+            reject(nonFiniteProblem("direction", light_.direction)) ||
+            reject(nonFiniteProblem("openingAngle", openingAngle)) ||
+            reject(nonFiniteProblem("falloffAngle", falloffAngle)))
+            return;
+        light_.openingAngle = std::clamp(openingAngle, 0.0f, glm::two_pi<float>());
+        light_.falloffAngle = std::max(falloffAngle, 0.0f);
         // Solid angle of the cone, for "power".
         const float cone = glm::two_pi<float>() * (1.0f - std::cos(0.5f * std::min(light_.openingAngle, glm::two_pi<float>())));
         const std::optional<float> intensity = pullAmount("intensity");
@@ -34,8 +43,11 @@ public:
         float axisIntensity = intensity ? *intensity : power && cone > 0.0f ? *power / cone : 1.0f;
         light_.intensity = axisIntensity;
         if (!ring_) return;
-        light_.radius = std::max(get<float>("radius", 0.0f), 0.0f);
-        light_.innerRadius = std::clamp(get<float>("innerRadius", 0.0f), 0.0f, light_.radius);
+        const float radius = get<float>("radius", 0.0f);
+        const float innerRadius = get<float>("innerRadius", 0.0f);
+        if (reject(nonFiniteProblem("radius", radius)) || reject(nonFiniteProblem("innerRadius", innerRadius))) return;
+        light_.radius = std::max(radius, 0.0f);
+        light_.innerRadius = std::clamp(innerRadius, 0.0f, light_.radius);
         const float area = glm::pi<float>() * (light_.radius * light_.radius - light_.innerRadius * light_.innerRadius);
         const std::optional<float> radiance = pullAmount("radiance");
         // An area emitter of radiance L sends L * area along its axis.

@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "anari/device/scene/ArrayConversion.h"
+#include "anari/device/object/ArrayChecks.h"
 
 #include <cmath>
 #include <string>
@@ -69,10 +69,7 @@ void Material::pullBaseColor(std::string_view name) {
                           ", expected FLOAT32_VEC3, SAMPLER or STRING; using the default colour");
             (void)findParameter(name);
     }
-    if (!allFinite(material_.baseColor)) {
-        reportWarning("parameter " + quotedName + " is not finite; using black");
-        material_.baseColor = glm::vec3(0.0f);
-    }
+    if (reject(nonFiniteProblem(name, material_.baseColor))) material_.baseColor = glm::vec3(0.0f);
 }
 
 float Material::pullFactor(std::string_view name, float fallback, TextureSlot slot) {
@@ -89,11 +86,7 @@ float Material::pullValue(std::string_view name, float fallback) {
         return fallback;
     }
     const float value = get<float>(name, fallback);
-    if (!std::isfinite(value)) {
-        reportWarning("parameter '" + std::string(name) + "' is not finite; using " + std::to_string(fallback));
-        return fallback;
-    }
-    return value;
+    return reject(nonFiniteProblem(name, value)) ? fallback : value;
 }
 
 void Material::pullAlphaMode() {

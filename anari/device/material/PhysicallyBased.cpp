@@ -4,7 +4,7 @@
 // emissive and normal also from samplers); sheen, iridescence, thickness and attenuation are not yet,
 // and are reported as unused parameters when set.
 #include "anari/device/material/Material.h"
-#include "anari/device/scene/ArrayConversion.h"
+#include "anari/device/object/ArrayChecks.h"
 
 #include <algorithm>
 
@@ -50,10 +50,11 @@ private:
             return;
         }
         const glm::vec3 emissive = get<glm::vec3>("emissive", glm::vec3(0.0f));
-        if (allFinite(emissive) && glm::all(glm::greaterThanEqual(emissive, glm::vec3(0.0f))))
+        if (reject(nonFiniteProblem("emissive", emissive))) return;
+        if (glm::all(glm::greaterThanEqual(emissive, glm::vec3(0.0f))))
             material_.emissive = emissive;
         else
-            reportWarning("parameter 'emissive' must be finite and not negative; no emission");
+            reportWarning("parameter 'emissive' is negative; no emission");
     }
 };
 

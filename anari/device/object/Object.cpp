@@ -133,8 +133,15 @@ void Object::reportWarning(const std::string& message) const {
 }
 
 void Object::invalidate(const std::string& message) {
+    // One error per commit: the first problem found; later ones may be consequences of it.
+    if (!valid_) return;
     valid_ = false;
     reportError(message + "; the object renders nothing");
+}
+
+bool Object::reject(const std::optional<std::string>& problem) {
+    if (problem) invalidate(*problem);
+    return problem.has_value();
 }
 
 const Parameter* Object::findParameter(std::string_view name) {

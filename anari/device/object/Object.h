@@ -86,8 +86,11 @@ protected:
     // wrong type (reported). Array parameters accept ANARI_ARRAY and ANARI_ARRAY1D/2D/3D alike.
     Object* getObject(std::string_view name, ANARIDataType objectType);
     Array* getArray(std::string_view name, ANARIDataType arrayType = ANARI_ARRAY1D);
-    // Marks the object invalid with an error message (a required parameter missing, bad data...).
+    // Marks the object invalid with an error message (a required parameter missing, bad data...); only
+    // the first call of a commit reports.
     void invalidate(const std::string& message);
+    // invalidate() with the problem a check of ArrayChecks.h found; true when there was one.
+    bool reject(const std::optional<std::string>& problem);
 
     const Parameter* findParameter(std::string_view name);  // marks it read
 

@@ -4,6 +4,7 @@
 // components of the transformed input matter.
 #include "anari/device/sampler/Sampler.h"
 
+#include "anari/device/object/ArrayChecks.h"
 #include "anari/device/scene/ArrayConversion.h"
 
 #include <cstring>
@@ -58,6 +59,11 @@ public:
         texture.inOffset = get<glm::vec4>("inOffset", glm::vec4(0.0f));
         texture.outTransform = get<glm::mat4>("outTransform", glm::mat4(1.0f));
         texture.outOffset = get<glm::vec4>("outOffset", glm::vec4(0.0f));
+        if (reject(nonFiniteProblem("inTransform", texture.inTransform)) ||
+            reject(nonFiniteProblem("inOffset", texture.inOffset)) ||
+            reject(nonFiniteProblem("outTransform", texture.outTransform)) ||
+            reject(nonFiniteProblem("outOffset", texture.outOffset)))
+            return;
         texture_ = std::move(texture);
     }
 
@@ -77,8 +83,8 @@ private:
         const int components = componentCount(type);
         const bool srgb = type >= ANARI_UFIXED8_R_SRGB && type <= ANARI_UFIXED8_RGBA_SRGB;
         if (components == 0) {
-            invalidate("parameter 'image' has elements of type " + std::string(ripple_anari::typeName(type)) +
-                       ", expected numbers (e.g. UFIXED8_VEC4, UFIXED8_RGBA_SRGB or FLOAT32_VEC4)");
+            invalidate(elementTypeProblem("image", type,
+                                          "numbers (e.g. UFIXED8_VEC4, UFIXED8_RGBA_SRGB or FLOAT32_VEC4)"));
             return false;
         }
         const size_t texelCount = image.size();
@@ -97,10 +103,7 @@ private:
             return true;
         }
         const std::vector<glm::vec4> values = *readFloatVectors(image, glm::vec4(0, 0, 0, 1));
-        if (const int64_t bad = firstNonFinite(values); bad >= 0) {
-            invalidate("parameter 'image' texel " + std::to_string(bad) + " is not finite");
-            return false;
-        }
+        if (reject(nonFiniteProblem("image", values, "texel"))) return false;
         texture.format = core::Texture::Format::Rgba32Float;
         texture.texels.resize(texelCount * sizeof(glm::vec4));
         std::memcpy(texture.texels.data(), values.data(), texture.texels.size());

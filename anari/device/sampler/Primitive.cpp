@@ -2,6 +2,7 @@
 // value per primitive. Ids past the end read the last entry.
 #include "anari/device/sampler/Sampler.h"
 
+#include "anari/device/object/ArrayChecks.h"
 #include "anari/device/scene/ArrayConversion.h"
 
 #include <algorithm>
@@ -31,14 +32,10 @@ public:
         }
         const std::optional<std::vector<glm::vec4>> values = readFloatVectors(*array, glm::vec4(0, 0, 0, 1));
         if (!values) {
-            invalidate("parameter 'array' has elements of type " + std::string(ripple_anari::typeName(array->elementType())) +
-                       ", expected numbers (e.g. FLOAT32_VEC4)");
+            invalidate(elementTypeProblem("array", array->elementType(), "numbers (e.g. FLOAT32_VEC4)"));
             return;
         }
-        if (const int64_t bad = firstNonFinite(*values); bad >= 0) {
-            invalidate("parameter 'array' entry " + std::to_string(bad) + " is not finite");
-            return;
-        }
+        if (reject(nonFiniteProblem("array", *values, "entry"))) return;
         core::Texture texture;
         texture.kind = core::Texture::Kind::Primitive;
         texture.input = core::Texture::Input::PrimitiveId;

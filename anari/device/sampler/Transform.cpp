@@ -2,6 +2,8 @@
 // outOffset, so any surface attribute can drive a material parameter.
 #include "anari/device/sampler/Sampler.h"
 
+#include "anari/device/object/ArrayChecks.h"
+
 namespace ripple::device {
 namespace {
 
@@ -11,11 +13,15 @@ public:
 
     void commit() override {
         forgetDependencies();
+        texture_.reset();
         core::Texture texture;
         texture.kind = core::Texture::Kind::Transform;
         texture.input = pullInAttribute();
         texture.outTransform = get<glm::mat4>("outTransform", glm::mat4(1.0f));
         texture.outOffset = get<glm::vec4>("outOffset", glm::vec4(0.0f));
+        if (reject(nonFiniteProblem("outTransform", texture.outTransform)) ||
+            reject(nonFiniteProblem("outOffset", texture.outOffset)))
+            return;
         texture_ = std::move(texture);
     }
 };

@@ -106,10 +106,4 @@ std::optional<std::vector<uint64_t>> readIndices(const Array& array, int compone
     return indices;
 }
 
-int64_t firstNonFinite(const std::vector<glm::vec4>& values) {
-    for (size_t i = 0; i < values.size(); ++i)
-        if (!allFinite(values[i])) return int64_t(i);
-    return -1;
-}
-
 }  // namespace ripple::device

@@ -33,7 +33,4 @@ bool allFinite(const glm::vec<N, float>& v) {
     return true;
 }
 
-// Index of the first element with a non-finite component, or -1 when all are finite.
-int64_t firstNonFinite(const std::vector<glm::vec4>& values);
-
 }  // namespace ripple::device

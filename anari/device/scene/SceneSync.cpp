@@ -152,14 +152,16 @@ bool SceneSync::update(World& world) {
     return true;
 }
 
-bool SceneSync::setLights(const std::vector<core::Light>& lights, float worldRadius) {
+bool SceneSync::setLights(const std::vector<core::Light>& lights, float worldRadius, float worldMagnitude) {
     // Byte comparison: lights are plain data, and a rank whose lights did not change sends the same bytes.
     const bool same = lights.size() == description_.lights.size() &&
                       (lights.empty() || std::memcmp(static_cast<const void*>(lights.data()), description_.lights.data(),
                                                      lights.size() * sizeof(core::Light)) == 0);
-    if (same && description_.lightSceneRadius == worldRadius) return false;
+    if (same && description_.lightSceneRadius == worldRadius && description_.worldMagnitude == worldMagnitude)
+        return false;
     description_.lights = lights;
     description_.lightSceneRadius = worldRadius;
+    description_.worldMagnitude = worldMagnitude;
     pending_ = true;
     return true;
 }

@@ -33,9 +33,9 @@ public:
     const core::Scene& scene(const vk::Context& context, bool& rebuilt);
     // Data-parallel: this rank's own lights as of the latest update(), and the lights of all ranks that
     // replace them in the scene (mpi/LightGather), with the whole world's radius for picking lights by
-    // power. Returns whether that changed the scene.
+    // power and its largest |coordinate| for ray offsets. Returns whether that changed the scene.
     const std::vector<core::Light>& localLights() const { return localLights_; }
-    bool setLights(const std::vector<core::Light>& lights, float worldRadius);
+    bool setLights(const std::vector<core::Light>& lights, float worldRadius, float worldMagnitude);
     // Data-parallel: the other ranks' emissive-triangle lights; returns whether they changed the scene.
     bool setForeignTriangleLights(std::vector<gpu::LightRecord> lights);
     // Scenes built so far: a camera-only change builds none.
