@@ -126,6 +126,10 @@ void printTables(std::ostream& out, const RunInfo& info, const std::vector<Scene
                   info.vkDevice.c_str(),
                   info.embreeVersion.empty() ? "nothing (--no-embree)" : ("Embree " + info.embreeVersion).c_str(),
                   info.hardwareThreads, info.width, info.height, info.repeat);
+    out << format("Ripple levers: --bvh-width %u (%s), --features %s, --nodes %s, --ray-order %s.\n",
+                  info.bvhWidth, info.singleLevel ? "single-level kernel, BVH4 layout" : "two-level kernel",
+                  info.features.c_str(),
+                  info.nodes.c_str(), info.rayOrder.c_str());
     out << "Ripple trace times: device-side launch incl. submit+wait, excluding upload/download.\n"
         << (info.embreeVersion.empty() ? "Secondary rays start from Ripple's primary hits (--no-embree).\n\n"
                                        : "Secondary rays start from Embree's primary hits (the reference).\n\n");
@@ -188,6 +192,11 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
     j.value("repeat", uint64_t(info.repeat));
     j.value("workgroupSize", uint64_t(info.workgroup));
     j.value("quick", info.quick);
+    j.value("bvhWidth", uint64_t(info.bvhWidth));
+    j.value("singleLevel", info.singleLevel);
+    j.value("nodes", info.nodes);
+    j.value("features", info.features);
+    j.value("rayOrder", info.rayOrder);
     j.value("rippleTiming", std::string("device-side launch incl. submit+wait, excluding upload/download"));
     j.value("tieRelative", double(kTieRelative));
     j.close('}');
@@ -210,6 +219,13 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
             j.value("tlasSeconds", s.rippleTlasSeconds);
             j.value("trianglesSkipped", s.rippleTrianglesSkipped);
             j.value("gpuBytes", s.rippleGpuBytes);
+            if (s.bvh4Nodes) {
+                j.value("bvh4Nodes", s.bvh4Nodes);
+                j.value("bvh4ChildSlotsUsed", s.bvh4ChildSlotsUsed);
+                j.value("bvh4Depth", uint64_t(s.bvh4Depth));
+                j.value("bvh4NodeBytes", s.bvh4NodeBytes);
+                j.value("bvh4CollapseSeconds", s.bvh4CollapseSeconds);
+            }
         }
         j.close('}');
         j.open("embreeBuild", '{');
@@ -230,6 +246,7 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
                 j.value("rippleOverEmbreePerCpuSecond", e > 0.0 ? r / e : 0.0);
             }
             j.value("rippleRunMismatches", k.rippleRunMismatches);
+            if (info.rayOrder != "none") j.value("rippleOrderSeconds", k.rippleOrderSeconds);
             if (k.compared) {
                 j.open("agreement", '{');
                 j.value("percent", k.agreement.percent());

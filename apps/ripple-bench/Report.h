@@ -27,6 +27,7 @@ struct KindResult {
     bool compared = false;           // both ran: `agreement` holds
     Agreement agreement;
     uint64_t rippleRunMismatches = 0;  // device-side launch vs host convenience call: should be 0
+    double rippleOrderSeconds = 0.0;   // --ray-order morton: host time to sort the rays (not in the trace times)
 };
 
 struct BuildResult {
@@ -46,6 +47,12 @@ struct SceneResult {
     double rippleTlasSeconds = 0.0;  // core::SceneReport of the last build
     uint64_t rippleTrianglesSkipped = 0;
     uint64_t rippleGpuBytes = 0;
+    // single-level kernel: the collapsed tree (its BVH2 is built again, untimed in the table, for the collapse).
+    uint64_t bvh4Nodes = 0;
+    uint64_t bvh4ChildSlotsUsed = 0;  // over all nodes; 4 * bvh4Nodes when every node is full
+    uint32_t bvh4Depth = 0;
+    uint64_t bvh4NodeBytes = 0;
+    double bvh4CollapseSeconds = 0.0;
     std::string secondaryFrom;       // whose primary hits seeded the shadow and bounce rays
     std::vector<KindResult> kinds;
 };
@@ -60,6 +67,11 @@ struct RunInfo {
     std::string lpNativeVectorWidth; // LP_NATIVE_VECTOR_WIDTH, empty when unset
     uint32_t width = 0, height = 0, repeat = 0, workgroup = 0;
     bool quick = false;
+    std::string rayOrder = "none";   // --ray-order
+    uint32_t bvhWidth = 2;           // --bvh-width
+    bool singleLevel = false;        // the BVH4 kernel (--bvh-width 4 or --single-level)
+    std::string nodes = "full";      // --nodes
+    std::string features = "triangles";  // --features
 };
 
 void printTables(std::ostream& out, const RunInfo& info, const std::vector<SceneResult>& scenes);

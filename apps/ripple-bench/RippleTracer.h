@@ -1,8 +1,10 @@
 // Ripple's side of ripple-bench: one Vulkan context and kernel set for the whole run, one core::Scene per
-// benchmark scene, and the two ways to trace a ray set (host convenience call, device-side launch).
+// benchmark scene, and the two ways to trace a ray set (host convenience call, device-side launch), each
+// through the speed levers chosen (BVH width, ray order).
 #pragma once
 
 #include "apps/ripple-bench/Timing.h"
+#include "core/bvh/Bvh4TraceKernels.h"
 #include "core/render/TraceKernels.h"
 #include "core/scene/Scene.h"
 #include "core/vk/Buffer.h"
@@ -15,9 +17,27 @@
 
 namespace ripple::bench {
 
+// Variants of Ripple's tracing under test (issue 2's levers). The defaults are the renderer's own path.
+struct Levers {
+    // 2: core::Scene's two-level BVH2 and core::TraceKernels (the renderer's path). 4: the same BVH2
+    // collapsed into a single-level BVH4 (bvh::Bvh4Mesh, bvh::Bvh4TraceKernels); ray-for-ray the same leaves.
+    uint32_t bvhWidth = 2;
+    // With width 2: the BVH2 in the BVH4 layout and kernel (two children per node), which separates the
+    // effect of width from that of the single-level kernel. Width 4 is always single-level.
+    bool singleLevel = false;
+    // Two-level kernel only: specialise it for triangles (FeatureSet), as the renderer does for a
+    // triangle-only scene; otherwise it holds every geometry kind's test. (The single-level kernels only
+    // know triangles.)
+    bool trianglesOnly = true;
+    // Single-level kernel only: child boxes quantized to 8 bits (64-byte nodes instead of 112).
+    bool compressedNodes = false;
+    // Trace each ray set sorted by bvh::mortonRayKey; results go back to input order before anyone sees them.
+    bool mortonOrder = false;
+};
+
 class RippleTracer {
 public:
-    explicit RippleTracer(const core::TraceOptions& options);
+    RippleTracer(const core::TraceOptions& options, const Levers& levers);
 
     const std::string& deviceName() const { return context_.deviceName(); }
 
@@ -25,6 +45,8 @@ public:
     // builds, upload); report().blasBuildSeconds is the BVH part of it.
     Sample build(const core::TriangleMesh& mesh);
     const core::SceneReport& report() const { return scene_->report(); }
+    // single-level only (null otherwise): the collapsed mesh build() made after the timed scene builds.
+    const bvh::Bvh4Mesh* bvh4() const { return bvh4_.get(); }
 
     // Host convenience: upload, trace, wait, download.
     std::vector<gpu::Hit> traceClosest(std::span<const gpu::Ray> rays);
@@ -34,13 +56,23 @@ public:
     // submitAndWait around the kernel, with wall and process CPU time around it and GPU time from
     // timestamps at both ends of the command buffer.
     void stage(std::span<const gpu::Ray> rays, bool anyHit);
+    double lastOrderSeconds() const { return orderSeconds_; }  // stage()'s Morton sort on the host
     Sample launch();
     std::vector<gpu::Hit> downloadHits() const;
     std::vector<uint32_t> downloadOccluded() const;
 
 private:
+    template <class Result>
+    std::vector<Result> traceOnHost(std::span<const gpu::Ray> rays);
+    void record(VkCommandBuffer cmd);
+
+    Levers levers_;
     vk::Context context_;
     core::TraceKernels kernels_;
+    bvh::Bvh4TraceKernels bvh4Kernels_;
+    std::unique_ptr<bvh::Bvh4Mesh> bvh4_;
+    std::vector<uint32_t> order_;  // Morton permutation of the staged rays; empty in input order
+    double orderSeconds_ = 0.0;
     vk::Timestamps timestamps_;
     std::unique_ptr<core::Scene> scene_;
     vk::Buffer rays_, results_;

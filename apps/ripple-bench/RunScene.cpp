@@ -5,6 +5,7 @@
 #include "apps/ripple-bench/ProceduralMeshes.h"
 #include "apps/ripple-bench/RaySets.h"
 
+#include <algorithm>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -50,6 +51,18 @@ void buildBoth(const core::TriangleMesh& mesh, const std::string& name, uint32_t
     result.rippleTrianglesSkipped = report.trianglesSkipped;
     result.rippleGpuBytes = report.gpuBytes;
     for (const std::string& message : report.messages) progress(name, "Ripple scene: " + message);
+    if (const bvh::Bvh4Mesh* bvh4 = tracers.ripple.bvh4()) {
+        result.bvh4Nodes = bvh4->nodeCount();
+        result.bvh4ChildSlotsUsed = bvh4->tree().childSlotsUsed;
+        result.bvh4Depth = bvh4->tree().depth;
+        result.bvh4CollapseSeconds = bvh4->collapseSeconds();
+        result.bvh4NodeBytes = bvh4->nodeBytes();
+        const double childrenPerNode = double(result.bvh4ChildSlotsUsed) / double(std::max<uint64_t>(1, result.bvh4Nodes));
+        progress(name, "BVH4: " + std::to_string(result.bvh4Nodes) + " nodes, " + std::to_string(childrenPerNode) +
+                           " children per node, depth " + std::to_string(result.bvh4Depth) + ", " +
+                           std::to_string(result.bvh4NodeBytes >> 10) + " KiB, collapsed in " +
+                           std::to_string(1e3 * result.bvh4CollapseSeconds) + " ms");
+    }
 
     if (tracers.embree) {
         progress(name, "building Embree scene x" + std::to_string(repeat + 1));
@@ -111,6 +124,7 @@ KindResult traceBoth(const std::string& scene, const std::string& kind, std::spa
         else host = tracers.ripple.traceClosest(rays);
     }).wall;
     tracers.ripple.stage(rays, anyHit);
+    k.rippleOrderSeconds = tracers.ripple.lastOrderSeconds();
     for (uint32_t r = 0; r < repeat; ++r) k.ripple.runs.push_back(tracers.ripple.launch());
     if constexpr (anyHit) rippleOut = tracers.ripple.downloadOccluded();
     else rippleOut = tracers.ripple.downloadHits();

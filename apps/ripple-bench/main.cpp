@@ -31,6 +31,13 @@ struct Options {
     std::string json = "ripple-bench.json";
     bool quick = false;
     bool noEmbree = false;
+    std::string rayOrder = "none";
+    uint32_t bvhWidth = 2;
+    bool singleLevel = false;
+    std::string nodes = "full";
+    // The renderer specialises its kernels for the geometry kinds a scene has (FeatureSet), so the bench
+    // measures the same by default; "all" is the unspecialised kernel the first measurements used.
+    std::string features = "triangles";
     uint32_t width = 0, height = 0;
 };
 
@@ -49,6 +56,26 @@ bool parseOptions(int argc, char** argv, Options& o, int& exitCode) {
             ->capture_default_str();
     app.add_option("--workgroup", o.workgroup, "Ripple trace kernel workgroup size (TraceOptions::workgroupSize)")
         ->check(CLI::Range(1u, 1024u))
+        ->capture_default_str();
+    app.add_option("--ray-order", o.rayOrder,
+                   "Ripple traces each ray set in input order or sorted by a Morton code of origin, direction "
+                   "octant and direction (results compared in input order)")
+        ->check(CLI::IsMember({"none", "morton"}))
+        ->capture_default_str();
+    app.add_option("--bvh-width", o.bvhWidth,
+                   "2: the renderer's two-level BVH2; 4: the same BVH2 collapsed to a single-level BVH4")
+        ->check(CLI::IsMember({2u, 4u}))
+        ->capture_default_str();
+    app.add_flag("--single-level", o.singleLevel,
+                 "With --bvh-width 2: the BVH2 traced by the single-level BVH4 kernel (the control for width)");
+    app.add_option("--nodes", o.nodes,
+                   "Single-level kernel only: full-precision child boxes or boxes quantized to 8 bits per bound")
+        ->check(CLI::IsMember({"full", "compressed"}))
+        ->capture_default_str();
+    app.add_option("--features", o.features,
+                   "Two-level kernel: all geometry kinds' tests, or specialised for triangles as the renderer "
+                   "specialises it for a triangle-only scene")
+        ->check(CLI::IsMember({"all", "triangles"}))
         ->capture_default_str();
     app.add_option("--json", o.json, "Where to write all numbers as JSON")->capture_default_str();
     app.add_flag("--quick", o.quick, "Smoke run: 256x192 rays and one timed run (unless --size/--repeat say)");
@@ -101,6 +128,11 @@ RunInfo describeRun(const Options& o, const RippleTracer& ripple) {
     info.repeat = o.repeat;
     info.workgroup = o.workgroup;
     info.quick = o.quick;
+    info.rayOrder = o.rayOrder;
+    info.bvhWidth = o.bvhWidth;
+    info.singleLevel = o.singleLevel || o.bvhWidth == 4;
+    info.nodes = o.nodes;
+    info.features = o.features;
     return info;
 }
 
@@ -114,7 +146,12 @@ int main(int argc, char** argv) {
     try {
         core::TraceOptions traceOptions;
         traceOptions.workgroupSize = options.workgroup;
-        RippleTracer ripple(traceOptions);
+        const Levers levers{.bvhWidth = options.bvhWidth,
+                            .singleLevel = options.singleLevel,
+                            .trianglesOnly = options.features == "triangles",
+                            .compressedNodes = options.nodes == "compressed",
+                            .mortonOrder = options.rayOrder == "morton"};
+        RippleTracer ripple(traceOptions, levers);
         std::cerr << "[ripple-bench] Vulkan device: " << ripple.deviceName() << "\n";
         std::unique_ptr<EmbreeTracer> embree;
         if (!options.noEmbree) embree = std::make_unique<EmbreeTracer>();

@@ -1,6 +1,7 @@
 // Compile-time checks that the C++ view of every struct in shaders/shared/*.h has the std430 layout the
 // kernels read. A failing assert here means a shared header was edited without keeping the two in step.
 #include "shaders/shared/bvh.h"
+#include "shaders/shared/bvh4.h"
 #include "shaders/shared/material.h"
 #include "shaders/shared/path.h"
 #include "shaders/shared/ray.h"
@@ -13,6 +14,13 @@ namespace ripple::gpu {
 static_assert(sizeof(vec4) == 16);
 static_assert(sizeof(BvhNode) == 64);
 static_assert(offsetof(BvhNode, rightMin) == 32);
+static_assert(sizeof(Bvh4Node) == 112);
+static_assert(offsetof(Bvh4Node, minZ) == 64);
+static_assert(offsetof(Bvh4Node, children) == 96);
+static_assert(sizeof(Bvh4CompressedNode) == 64);
+static_assert(offsetof(Bvh4CompressedNode, children) == 48);
+static_assert(sizeof(Bvh4TraceParams) == 48);
+static_assert(offsetof(Bvh4TraceParams, rayCount) == 32);
 
 static_assert(sizeof(TrianglePrim) == 48);
 static_assert(sizeof(SpherePrim) == 32);
