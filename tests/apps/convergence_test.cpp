@@ -7,7 +7,7 @@
 // (3 minutes on two loaded CPU cores with lavapipe). Its own noise is 1/2048 of a sample's variance per
 // pixel: at the 64 spp the test reaches that adds 64/2048 = 3% to the true relMSE, well inside the margins.
 #include "apps/ripple-render/Convergence.h"
-#include "tests/apps/RenderProcess.h"
+#include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>
@@ -57,18 +57,6 @@ void feed(HalfBufferEstimator& estimator, const std::vector<double>& mu, double 
         if (accumulated) estimator.addAccumulatedFrame(frame.data(), k);
         else estimator.addBatchFrame(frame.data(), 1);
     }
-}
-
-std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    std::vector<std::vector<std::string>> rows;
-    for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> cells;
-        std::stringstream cellStream(line);
-        for (std::string cell; std::getline(cellStream, cell, ',');) cells.push_back(cell);
-        rows.push_back(cells);
-    }
-    return rows;
 }
 
 }  // namespace
@@ -139,7 +127,7 @@ TEST_CASE("report points lie about 1.2 times apart") {
 TEST_CASE("the estimate tracks the true relMSE, which falls as 1/spp") {
     TempFolder dir;
     const auto report = dir / "series.csv";
-    const RenderRun run = runRender(std::string("--demo cornell --size 48x48 --spp 64 --quiet --reference '") +
+    const ProgramRun run = runRender(std::string("--demo cornell --size 48x48 --spp 64 --quiet --reference '") +
                                     RIPPLE_TEST_REFERENCES + "/cornell-48x48.pfm' --report '" + report.string() +
                                     "' -o '" + (dir / "c.pfm").string() + "'");
     REQUIRE_MESSAGE(run.exitCode == 0, run.output);

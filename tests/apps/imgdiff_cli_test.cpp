@@ -2,14 +2,13 @@
 // a white-hot heat map, and missing files, size mismatches and malformed headers end with exit code 1 and a
 // message naming the fault.
 #include "apps/common/ImageIO.h"
+#include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>
 #include <stb_image.h>
 
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -18,25 +17,7 @@ using namespace ripple::test;
 
 namespace {
 
-struct Run {
-    int exitCode = -1;  // -1: killed by a signal
-    std::string output;  // stdout and stderr together
-};
-
-Run runImgdiff(const std::string& arguments) {
-    const std::string command = std::string("'") + RIPPLE_IMGDIFF_PATH + "' " + arguments + " 2>&1";
-    Run run;
-    FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::array<char, 512> chunk;
-    size_t n;
-    while ((n = fread(chunk.data(), 1, chunk.size(), pipe)) > 0) run.output.append(chunk.data(), n);
-    const int status = pclose(pipe);
-    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+ProgramRun runImgdiff(const std::string& arguments) { return runProgram(RIPPLE_IMGDIFF_PATH, arguments); }
 
 // Built with append: GCC 12 gives a false -Wrestrict for "'" + string + "'".
 std::string quoted(const std::filesystem::path& file) {
@@ -57,7 +38,7 @@ TEST_CASE("ripple-imgdiff: equal images, zero error, JSON written") {
     TempFolder dir;
     const auto image = writeConstantPfm(dir / "a.pfm", 8, 8, 0.25f);
     const auto json = dir / "out.json";
-    const Run run = runImgdiff(quoted(image) + " " + quoted(image) + " --json " + quoted(json));
+    const ProgramRun run = runImgdiff(quoted(image) + " " + quoted(image) + " --json " + quoted(json));
     CAPTURE(run.output);
     REQUIRE(run.exitCode == 0);
     CHECK(contains(run.output, "PSNR      inf dB"));
@@ -79,7 +60,7 @@ TEST_CASE("ripple-imgdiff: black against white, heat map at the top of the colou
     for (const char* source : {"ldr-flip", "difference"}) {
         CAPTURE(source);
         const auto heat = dir / "heat.png";
-        const Run run = runImgdiff(quoted(black) + " " + quoted(white) + " --heatmap " + quoted(heat) +
+        const ProgramRun run = runImgdiff(quoted(black) + " " + quoted(white) + " --heatmap " + quoted(heat) +
                                    " --heatmap-source " + source);
         CAPTURE(run.output);
         REQUIRE(run.exitCode == 0);
@@ -110,14 +91,14 @@ TEST_CASE("ripple-imgdiff: missing files, size mismatch and malformed headers ar
         {quoted(small) + " " + quoted(small) + " --heatmap-source sideways", "sideways"},
     };
     for (const auto& [arguments, message] : cases) {
-        const Run run = runImgdiff(arguments);
+        const ProgramRun run = runImgdiff(arguments);
         CAPTURE(arguments);
         CAPTURE(run.output);
         CHECK(run.exitCode != 0);
         CHECK(run.exitCode != -1);
         CHECK(contains(run.output, message));
     }
-    const Run help = runImgdiff("--help");
+    const ProgramRun help = runImgdiff("--help");
     CHECK(help.exitCode == 0);
     CHECK(contains(help.output, "relMSE = mean((test - ref)^2 / (ref^2 + epsilon))"));
 }

@@ -2,7 +2,7 @@
 // the problem, never a crash (a crash shows as a signal); one small render through the Ripple device; and
 // the convergence options (--time, --target-error, --report) stopping and writing what they promise.
 #include "apps/common/ImageIO.h"
-#include "tests/apps/RenderProcess.h"
+#include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>
@@ -72,14 +72,14 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
         arguments = "--report '" + (dir / "out.csv").string() + "' --spp 1";
         expected = "the error estimate needs 2 samples or more";
     }
-    const RenderRun run = runRender(arguments);
+    const ProgramRun run = runRender(arguments);
     CHECK_MESSAGE(run.exitCode == 1, run.output);
     CHECK_MESSAGE(contains(run.output, "[ripple-render] ERROR: "), run.output);
     CHECK_MESSAGE(contains(run.output, expected), run.output);
 }
 
 TEST_CASE("ripple-render option errors from the parser exit non-zero") {
-    const RenderRun run = runRender("--spp 0");
+    const ProgramRun run = runRender("--spp 0");
     CHECK(run.exitCode > 0);
     CHECK(contains(run.output, "--spp"));
 }
@@ -92,7 +92,7 @@ TEST_CASE("ripple-render option errors from the parser exit non-zero") {
 TEST_CASE("ripple-render renders the Cornell demo through the Ripple device") {
     TempFolder dir;
     const auto image = dir / "cornell.png";
-    const RenderRun run = runRender("--demo cornell --size 48x48 --spp 4 --quiet -o '" + image.string() + "'");
+    const ProgramRun run = runRender("--demo cornell --size 48x48 --spp 4 --quiet -o '" + image.string() + "'");
     REQUIRE_MESSAGE(run.exitCode == 0, run.output);
     CHECK(contains(run.output, "rendered 48x48, 4 spp"));
     int w = 0, h = 0, comp = 0;
@@ -119,19 +119,6 @@ TEST_CASE("ripple-render renders the Cornell demo through the Ripple device") {
 
 namespace {
 
-// The CSV rows of a --report file (header included), split at commas.
-std::vector<std::vector<std::string>> readCsv(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    std::vector<std::vector<std::string>> rows;
-    for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> cells;
-        std::stringstream cellStream(line);
-        for (std::string cell; std::getline(cellStream, cell, ',');) cells.push_back(cell);
-        rows.push_back(cells);
-    }
-    return rows;
-}
-
 // The number after `key` in ripple-render's last line ("... in 1.23 s, estimated relMSE 4.5e-02 -> ...").
 double numberAfter(const std::string& output, const std::string& key) {
     const size_t at = output.rfind(key);
@@ -144,7 +131,7 @@ double numberAfter(const std::string& output, const std::string& key) {
 // --time stops on render time, not on the default --spp (which it does not cap unless given).
 TEST_CASE("ripple-render --time stops after the given render time") {
     TempFolder dir;
-    const RenderRun run = runRender("--demo cornell --size 16x16 --time 2 --quiet -o '" + (dir / "t.pfm").string() + "'");
+    const ProgramRun run = runRender("--demo cornell --size 16x16 --time 2 --quiet -o '" + (dir / "t.pfm").string() + "'");
     REQUIRE_MESSAGE(run.exitCode == 0, run.output);
     // The loop checks the clock after each frame of one sample: it stops in the first frame past 2 s (a frame
     // takes well under a second at 16x16 even on a loaded machine).
@@ -158,7 +145,7 @@ TEST_CASE("ripple-render --time stops after the given render time") {
 TEST_CASE("ripple-render --target-error stops when the estimate reaches it") {
     TempFolder dir;
     const auto report = dir / "series.csv";
-    const RenderRun run = runRender("--demo cornell --size 16x16 --target-error 0.04 --spp 400 --quiet --report '" +
+    const ProgramRun run = runRender("--demo cornell --size 16x16 --target-error 0.04 --spp 400 --quiet --report '" +
                                     report.string() + "' -o '" + (dir / "t.png").string() + "'");
     REQUIRE_MESSAGE(run.exitCode == 0, run.output);
     const auto rows = readCsv(report);
@@ -186,7 +173,7 @@ TEST_CASE("ripple-render --report writes the series as CSV and a plot") {
         arguments += " --reference '" + (dir / "grey.pfm").string() + "'";
         header.insert(header.end(), {"relmse", "psnr_db", "ssim", "flip_ldr", "flip_hdr"});
     }
-    const RenderRun run = runRender(arguments);
+    const ProgramRun run = runRender(arguments);
     REQUIRE_MESSAGE(run.exitCode == 0, run.output);
     const auto rows = readCsv(report);
     REQUIRE(rows.size() == 10);  // header, then spp 2 3 4 5 6 7 8 10 12 (nextReportSpp)
