@@ -30,11 +30,14 @@ const std::vector<Group>& groups() {
     return all;
 }
 
-// Table cells may not hold '|' or line breaks.
-std::string cell(std::string text) {
-    for (char& c : text)
-        if (c == '|' || c == '\n') c = c == '|' ? '/' : ' ';
-    return text;
+// A table cell: '|' escaped, line breaks as spaces.
+std::string cell(const std::string& text) {
+    std::string escaped;
+    for (char c : text) {
+        if (c == '|') escaped += "\\|";
+        else escaped += c == '\n' ? ' ' : c;
+    }
+    return escaped;
 }
 
 std::string verdict(const Row& row) {
