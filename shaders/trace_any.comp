@@ -1,5 +1,6 @@
 #version 460
-// Any-hit (occlusion) traversal of the two-level BVH: one status word per ray (see traverse.glsl).
+// Any-hit (occlusion) traversal of the two-level 4-wide BVH: one status word per ray (see traverse.glsl).
 #extension GL_GOOGLE_include_directive : require
 #define TRACE_ANY_HIT 1
+#define BVH4_COMPRESSED 1  // 8-bit child boxes: faster than full ones on the renderer's rays (README)
 #include "traverse.glsl"

@@ -1,4 +1,5 @@
-// Two-level BVH traversal shared by trace_closest.comp (TRACE_ANY_HIT 0) and trace_any.comp (1).
+// Two-level 4-wide BVH traversal (TLAS over instances, a BLAS per geometry; nodes as in shared/bvh4.h)
+// shared by trace_closest.comp (TRACE_ANY_HIT 0) and trace_any.comp (1).
 // One invocation traces one ray, in ONE flat loop whose every iteration does one unit of work (pop a
 // stack entry, or test one primitive). lavapipe silently ends a shader's loops after 65,535 iterations,
 // counted per SIMD vector over all nested loops including their exit tests; with a single loop that count
@@ -10,7 +11,7 @@
 
 #include "shared/ray.h"
 #include "shared/scene.h"
-#include "intersect.glsl"
+#include "bvh4_node.glsl"
 #include "features.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -18,7 +19,7 @@ layout(local_size_x_id = 0) in;
 layout(push_constant) uniform Push { TraceParams params; };
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneRef { SceneDesc desc; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodesRef { BvhNode nodes[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodesRef { BVH4_NODE nodes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TrianglesRef { TrianglePrim triangles[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
@@ -32,17 +33,15 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer ResumeRef {
     TraversalState states[];
 };
 
-// Stack entries: a node index of the BVH being traversed; a BLAS leaf as two words (first primitive, then
-// ENTRY_LEAF | count); an instance to enter (TLAS leaves hold one); or the sentinel that returns from a
-// BLAS to the TLAS. Node indices stay below ENTRY_LEAF (2^30 nodes per BVH).
-const uint ENTRY_INSTANCE = 0x80000000u;
-const uint ENTRY_LEAF = 0x40000000u;
-const uint ENTRY_LEAVE_BLAS = 0xFFFFFFFFu;
+// Stack entries are BVH4 child words of the BVH being traversed: an inner node, or a leaf (BVH4_LEAF_BIT),
+// which in the TLAS is one instance (its first slot) and in a BLAS a run of primitives; plus the sentinel
+// that returns from a BLAS to the TLAS, the word of an empty slot, which is never pushed as a child.
+const uint ENTRY_LEAVE_BLAS = BVH4_EMPTY_CHILD;
 const uint NO_INSTANCE = 0xFFFFFFFFu;
-#define INFINITY uintBitsToFloat(0x7f800000u)
 
 uint stack[TRAVERSAL_STACK_SIZE];
 uint stackSize;
+bool overflow;  // a push found the stack full: the answer is flagged, never silently wrong
 uint instanceSlot;
 Hit best;
 
@@ -69,10 +68,9 @@ void writeResult(uint rayIndex) {
 #endif
 }
 
-bool push(uint entry) {
-    if (stackSize >= TRAVERSAL_STACK_SIZE) return false;
-    stack[stackSize++] = entry;
-    return true;
+void push(uint entry) {
+    if (stackSize >= TRAVERSAL_STACK_SIZE) overflow = true;
+    else stack[stackSize++] = entry;
 }
 
 // Parks the traversal for the next round; false when there is no round or slot left.
@@ -102,13 +100,6 @@ void enterSpace(Ray worldRay) {
     }
     invDirection = safeReciprocal(direction);
     if (hasFeature(FEATURE_TRIANGLES)) triRay = makeTriangleRay(origin, direction);
-}
-
-// Pushes one child of a node: an inner node, a TLAS leaf (its instance) or a BLAS leaf (two words).
-bool pushChild(uint ref, uint count) {
-    if (count == 0u) return push(ref);
-    if (instanceSlot == NO_INSTANCE) return push(ENTRY_INSTANCE | ref);
-    return push(ref) && push(ENTRY_LEAF | min(count, BVH_MAX_LEAF_SIZE));
 }
 
 // Each kind's test is behind its feature bit, so a pipeline specialised for a scene holds only the tests
@@ -141,6 +132,7 @@ void testPrimitive(uint primSlot) {
 void main() {
     uint rayIndex;
     stackSize = 0u;
+    overflow = false;
     if (params.resumeIn != 0ul) {
         ResumeRef pool = ResumeRef(params.resumeIn);
         uint slot = gl_GlobalInvocationID.x;
@@ -155,7 +147,11 @@ void main() {
         if (rayIndex >= params.rayCount) return;
         instanceSlot = NO_INSTANCE;
         best = Hit(RaysRef(params.rays).rays[rayIndex].direction.w, 0.0, 0.0, NO_INSTANCE, NO_INSTANCE, HIT_MISS);
-        if (SceneRef(params.scene).desc.instanceCount > 0u) push(0u);
+        // A TLAS of one instance is a root with one leaf: the traversal starts in that instance's BLAS
+        // (its root box stands in for the instance's), saving two steps per ray.
+        uint instanceCount = SceneRef(params.scene).desc.instanceCount;
+        if (instanceCount == 1u) instanceSlot = 0u;
+        if (instanceCount > 0u) stack[stackSize++] = 0u;
     }
 
     SceneRef sceneRef = SceneRef(params.scene);
@@ -174,15 +170,13 @@ void main() {
     uint leafRemaining = 0u;
     // Loop iterations so far, counting the resume copy above and reserving the park copy below.
     uint steps = stackSize + TRAVERSAL_STACK_SIZE + 2u;
-    bool overflow = false;
+    bool budgetSpent = false;
     while (leafRemaining > 0u || stackSize > 0u) {
+        // Parking happens after the loop: its copy loop and atomics inside this one cost lavapipe 8-15% of
+        // the traversal time even when no lane parks (measured with ripple-bench).
         if (++steps > params.stepBudget) {
-            if (leafRemaining > 0u) overflow = !push(leafFirst) || !push(ENTRY_LEAF | leafRemaining);
-            if (overflow || !park(rayIndex)) {
-                best.status |= overflow ? HIT_FLAG_STACK_OVERFLOW : HIT_FLAG_RAN_OUT;
-                writeResult(rayIndex);
-            }
-            return;
+            budgetSpent = true;
+            break;
         }
 
         if (leafRemaining > 0u) {
@@ -198,33 +192,30 @@ void main() {
             instanceSlot = NO_INSTANCE;
             nodeBase = 0u;
             enterSpace(worldRay);
-        } else if ((entry & ENTRY_INSTANCE) != 0u) {
-            instanceSlot = entry & ~ENTRY_INSTANCE;
+        } else if ((entry & BVH4_LEAF_BIT) != 0u && instanceSlot == NO_INSTANCE) {
+            instanceSlot = (entry >> 3) & BVH4_MAX_LEAF_FIRST;  // TLAS leaves hold one instance
             enterSpace(worldRay);
             nodeBase = instance.blasNodeOffset;
-            overflow = !push(ENTRY_LEAVE_BLAS) || !push(0u);
-        } else if ((entry & ENTRY_LEAF) != 0u) {
-            leafRemaining = entry & ~ENTRY_LEAF;
-            leafFirst = stack[--stackSize];
+            // With nothing left in the TLAS the traversal ends with the BLAS: no way back is needed.
+            if (stackSize > 0u) push(ENTRY_LEAVE_BLAS);
+            push(0u);
+        } else if ((entry & BVH4_LEAF_BIT) != 0u) {
+            leafFirst = (entry >> 3) & BVH4_MAX_LEAF_FIRST;
+            leafRemaining = (entry & 7u) + 1u;
         } else {
-            BvhNode node = nodes.nodes[nodeBase + entry];
-            uint leftRef = floatBitsToUint(node.leftMin.w), leftCount = floatBitsToUint(node.leftMax.w);
-            uint rightRef = floatBitsToUint(node.rightMin.w), rightCount = floatBitsToUint(node.rightMax.w);
-            float leftEnter = (leftCount == 0u && leftRef == 0u) ? INFINITY
-                              : intersectBox(node.leftMin.xyz, node.leftMax.xyz, origin, invDirection, tmin, best.t);
-            float rightEnter = (rightCount == 0u && rightRef == 0u) ? INFINITY
-                               : intersectBox(node.rightMin.xyz, node.rightMax.xyz, origin, invDirection, tmin, best.t);
-            // Far child first, so the near one is popped first.
-            bool leftFirst = leftEnter <= rightEnter;
-            float farEnter = leftFirst ? rightEnter : leftEnter;
-            float nearEnter = leftFirst ? leftEnter : rightEnter;
-            if (!isinf(farEnter)) overflow = !pushChild(leftFirst ? rightRef : leftRef, leftFirst ? rightCount : leftCount);
-            if (!isinf(nearEnter)) overflow = overflow || !pushChild(leftFirst ? leftRef : rightRef, leftFirst ? leftCount : rightCount);
+            uint child[4];
+            uint entered = bvh4EnteredChildren(nodes.nodes[nodeBase + entry], origin, invDirection, tmin, best.t, child);
+            // Farthest first, so the nearest is popped next (unrolled: a nested loop would count against the cap).
+            if (entered > 3u) push(child[3]);
+            if (entered > 2u) push(child[2]);
+            if (entered > 1u) push(child[1]);
+            if (entered > 0u) push(child[0]);
         }
-        if (overflow) {
-            best.status |= HIT_FLAG_STACK_OVERFLOW;
-            break;
-        }
+        if (overflow) break;
     }
+    if (budgetSpent && leafRemaining > 0u) push(BVH4_LEAF_BIT | leafFirst << 3 | (leafRemaining - 1u));
+    if (overflow) best.status |= HIT_FLAG_STACK_OVERFLOW;
+    else if (budgetSpent && park(rayIndex)) return;
+    else if (budgetSpent) best.status |= HIT_FLAG_RAN_OUT;
     writeResult(rayIndex);
 }

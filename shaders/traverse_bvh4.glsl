@@ -10,25 +10,17 @@
 
 #include "shared/ray.h"
 #include "shared/scene.h"
-#include "shared/bvh4.h"
-#include "intersect.glsl"
+#include "bvh4_node.glsl"
 
 layout(local_size_x_id = 0) in;
 
 layout(push_constant) uniform Push { Bvh4TraceParams params; };
 
-#if BVH4_COMPRESSED
-#define NODE Bvh4CompressedNode
-#else
-#define NODE Bvh4Node
-#endif
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Nodes4Ref { NODE nodes[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Nodes4Ref { BVH4_NODE nodes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TrianglesRef { TrianglePrim triangles[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RaysRef { Ray rays[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer HitsRef { Hit hits[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer OcclusionRef { uint occluded[]; };
-
-#define INFINITY uintBitsToFloat(0x7f800000u)
 
 uint stack[BVH4_STACK_SIZE];
 uint stackSize;
@@ -37,33 +29,6 @@ bool overflow;
 void push(uint entry) {
     if (stackSize >= BVH4_STACK_SIZE) overflow = true;
     else stack[stackSize++] = entry;
-}
-
-// Orders two (distance, child) pairs nearest first; the five of a sorting network order all four.
-void order(inout float da, inout uint ca, inout float db, inout uint cb) {
-    if (db < da) {
-        float d = da; da = db; db = d;
-        uint c = ca; ca = cb; cb = c;
-    }
-}
-
-// Entry distance into child `slot`'s box, +inf when the ray misses it or the slot is empty.
-float enterChild(NODE node, uint slot, vec3 origin, vec3 invDirection, float tmin, float tFar) {
-    if (node.children[slot] == BVH4_EMPTY_CHILD) return INFINITY;
-#if BVH4_COMPRESSED
-    uint exponents = floatBitsToUint(node.frame.w);
-    vec3 scale = uintBitsToFloat(uvec3(exponents & 0xFFu, (exponents >> 8) & 0xFFu, (exponents >> 16) & 0xFFu) << 23);
-    uint shift = 8u * slot;
-    vec3 qlo = vec3(uvec3(node.quantX.x, node.quantX.z, node.quantZ.x) >> shift & 0xFFu);
-    vec3 qhi = vec3(uvec3(node.quantX.y, node.quantX.w, node.quantZ.y) >> shift & 0xFFu);
-    // q * scale is exact (8 bits times a power of two): the one rounding is the sum, as on the host.
-    vec3 lo = node.frame.xyz + qlo * scale;
-    vec3 hi = node.frame.xyz + qhi * scale;
-#else
-    vec3 lo = vec3(node.minX[slot], node.minY[slot], node.minZ[slot]);
-    vec3 hi = vec3(node.maxX[slot], node.maxY[slot], node.maxZ[slot]);
-#endif
-    return intersectBox(lo, hi, origin, invDirection, tmin, tFar);
 }
 
 void main() {
@@ -107,23 +72,13 @@ void main() {
             leafRemaining = (entry & 7u) + 1u;
             continue;
         }
-        NODE node = nodes.nodes[entry];
-        uvec4 child = node.children;
-        float d0 = enterChild(node, 0u, origin, invDirection, tmin, best.t);
-        float d1 = enterChild(node, 1u, origin, invDirection, tmin, best.t);
-        float d2 = enterChild(node, 2u, origin, invDirection, tmin, best.t);
-        float d3 = enterChild(node, 3u, origin, invDirection, tmin, best.t);
-        uint c0 = child.x, c1 = child.y, c2 = child.z, c3 = child.w;
-        order(d0, c0, d1, c1);
-        order(d2, c2, d3, c3);
-        order(d0, c0, d2, c2);
-        order(d1, c1, d3, c3);
-        order(d1, c1, d2, c2);
-        // Farthest first, so the nearest is popped next.
-        if (!isinf(d3)) push(c3);
-        if (!isinf(d2)) push(c2);
-        if (!isinf(d1)) push(c1);
-        if (!isinf(d0)) push(c0);
+        uint child[4];
+        uint entered = bvh4EnteredChildren(nodes.nodes[entry], origin, invDirection, tmin, best.t, child);
+        // Farthest first, so the nearest is popped next (unrolled: a nested loop would count against the cap).
+        if (entered > 3u) push(child[3]);
+        if (entered > 2u) push(child[2]);
+        if (entered > 1u) push(child[1]);
+        if (entered > 0u) push(child[0]);
         if (overflow) {
             best.status |= HIT_FLAG_STACK_OVERFLOW;
             break;

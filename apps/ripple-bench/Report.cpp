@@ -127,7 +127,7 @@ void printTables(std::ostream& out, const RunInfo& info, const std::vector<Scene
                   info.embreeVersion.empty() ? "nothing (--no-embree)" : ("Embree " + info.embreeVersion).c_str(),
                   info.hardwareThreads, info.width, info.height, info.repeat);
     out << format("Ripple levers: --bvh-width %u (%s), --features %s, --nodes %s, --ray-order %s.\n",
-                  info.bvhWidth, info.singleLevel ? "single-level kernel, BVH4 layout" : "two-level kernel",
+                  info.bvhWidth, info.singleLevel ? "single-level kernel, BVH4 layout" : "renderer's two-level kernel, compressed BVH4",
                   info.features.c_str(),
                   info.nodes.c_str(), info.rayOrder.c_str());
     out << "Ripple trace times: device-side launch incl. submit+wait, excluding upload/download.\n"

@@ -27,8 +27,8 @@ RippleTracer::RippleTracer(const core::TraceOptions& options, const Levers& leve
     if (levers.bvhWidth != 2 && levers.bvhWidth != 4)
         throw std::invalid_argument("BVH width must be 2 or 4, not " + std::to_string(levers.bvhWidth));
     if (levers.compressedNodes && levers.bvhWidth == 2 && !levers.singleLevel)
-        throw std::invalid_argument("compressed nodes exist only for the single-level kernel (--bvh-width 4 or "
-                                    "--single-level)");
+        throw std::invalid_argument("--nodes chooses the single-level kernel's nodes (--bvh-width 4 or "
+                                    "--single-level); the renderer's kernel always uses compressed nodes");
     if (levers.trianglesOnly) kernels_.useFeatures(gpu::FEATURE_TRIANGLES);
 }
 

@@ -19,8 +19,9 @@ namespace ripple::bench {
 
 // Variants of Ripple's tracing under test (issue 2's levers). The defaults are the renderer's own path.
 struct Levers {
-    // 2: core::Scene's two-level BVH2 and core::TraceKernels (the renderer's path). 4: the same BVH2
-    // collapsed into a single-level BVH4 (bvh::Bvh4Mesh, bvh::Bvh4TraceKernels); ray-for-ray the same leaves.
+    // 2: core::Scene and core::TraceKernels (the renderer's path: two levels, every BVH2 collapsed to a
+    // compressed BVH4). 4: the same BVH2 collapsed into a single-level BVH4 (bvh::Bvh4Mesh,
+    // bvh::Bvh4TraceKernels); ray-for-ray the same leaves.
     uint32_t bvhWidth = 2;
     // With width 2: the BVH2 in the BVH4 layout and kernel (two children per node), which separates the
     // effect of width from that of the single-level kernel. Width 4 is always single-level.

@@ -63,7 +63,8 @@ bool parseOptions(int argc, char** argv, Options& o, int& exitCode) {
         ->check(CLI::IsMember({"none", "morton"}))
         ->capture_default_str();
     app.add_option("--bvh-width", o.bvhWidth,
-                   "2: the renderer's two-level BVH2; 4: the same BVH2 collapsed to a single-level BVH4")
+                   "2: the renderer's two-level kernel (its BVH2s collapsed to compressed BVH4); 4: the BVH2 "
+                   "collapsed to a BVH4 traced by the single-level kernel")
         ->check(CLI::IsMember({2u, 4u}))
         ->capture_default_str();
     app.add_flag("--single-level", o.singleLevel,

@@ -29,10 +29,10 @@ void appendChildren(const gpu::BvhNode& node, std::vector<Child>& out) {
 }
 
 uint32_t leafWord(const Child& leaf) {
-    if (leaf.count > 8 || leaf.reference > gpu::BVH4_MAX_LEAF_FIRST)
+    if (leaf.count > 8 || uint64_t(leaf.reference) + leaf.count - 1 > gpu::BVH4_MAX_LEAF_FIRST)
         throw std::invalid_argument("collapseToBvh4: leaf of " + std::to_string(leaf.count) + " primitives at slot " +
                                     std::to_string(leaf.reference) + " does not fit a BVH4 child word (at most 8, "
-                                    "first slot below 2^28)");
+                                    "last slot below 2^28)");
     return gpu::BVH4_LEAF_BIT | (leaf.reference << 3) | (leaf.count - 1);
 }
 

@@ -1,5 +1,5 @@
-// Collapse of a binned-SAH BVH2 into the 4-wide layout of shaders/shared/bvh4.h (ripple-bench's
-// --bvh-width 4 lever). Leaves and the leaf-ordered primitive array stay exactly those of the BVH2.
+// Collapse of a binned-SAH BVH2 into the 4-wide layout of shaders/shared/bvh4.h, the layout every kernel
+// traverses. Leaves and the leaf-ordered primitive array stay exactly those of the BVH2.
 #pragma once
 
 #include "core/bvh/BinnedSahBuilder.h"
@@ -20,7 +20,7 @@ struct Bvh4 {
 // four, replaces its inner child of largest surface area by that child's two children (the child most
 // likely to be entered is the one whose node fetch is most worth saving). Boxes are copied, never
 // recomputed, so every child box holds its subtree exactly as in the BVH2. Throws std::invalid_argument
-// when a leaf does not fit a child word (more than 8 primitives, or a first slot of 2^28 or more).
+// when a leaf does not fit a child word (more than 8 primitives, or a last slot of 2^28 or more).
 // maxChildren 2 gives the BVH2 itself in this layout (one node per BVH2 node): the control that separates
 // the effect of width from that of the layout and the single-level kernel.
 Bvh4 collapseToBvh4(const Bvh& bvh2, uint32_t maxChildren = 4);

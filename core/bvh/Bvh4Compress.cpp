@@ -52,10 +52,10 @@ Aabb dequantizedBox(const gpu::Bvh4CompressedNode& node, int slot) {
     return box;
 }
 
-std::vector<gpu::Bvh4CompressedNode> compressBvh4(const Bvh4& tree) {
-    std::vector<gpu::Bvh4CompressedNode> out(tree.nodes.size());
-    for (size_t n = 0; n < tree.nodes.size(); ++n) {
-        const gpu::Bvh4Node& full = tree.nodes[n];
+std::vector<gpu::Bvh4CompressedNode> compressBvh4(std::span<const gpu::Bvh4Node> nodes) {
+    std::vector<gpu::Bvh4CompressedNode> out(nodes.size());
+    for (size_t n = 0; n < nodes.size(); ++n) {
+        const gpu::Bvh4Node& full = nodes[n];
         Aabb boxes[4], frame;
         for (int i = 0; i < 4; ++i) {
             if (full.children[i] == gpu::BVH4_EMPTY_CHILD) continue;

@@ -1,6 +1,7 @@
 // The BVH4 speed lever's GPU side: one triangle mesh uploaded as a collapsed 4-wide BVH (Bvh4Mesh) and the
 // closest-hit and any-hit kernels that trace it (shaders/trace_*_bvh4.comp). Single level, triangles only:
-// what ripple-bench traces. The renderer keeps the two-level BVH2 of core/render/TraceKernels.
+// what ripple-bench traces with --bvh-width 4 or --single-level. The renderer's two-level kernels over the
+// same node layout are core/render/TraceKernels.
 #pragma once
 
 #include "core/bvh/Bvh4Collapse.h"

@@ -2,6 +2,8 @@
 // Scene), TLAS built, primitives, shading attributes, materials and lights flattened and uploaded.
 #include "core/scene/Scene.h"
 
+#include "core/bvh/Bvh4Collapse.h"
+#include "core/bvh/Bvh4Compress.h"
 #include "core/render/FeatureSet.h"
 #include "core/scene/ShadingTables.h"
 
@@ -67,7 +69,7 @@ struct UsedGeometry {
 
 // Everything the kernels read, before upload.
 struct FlatScene {
-    std::vector<gpu::BvhNode> nodes;
+    std::vector<gpu::Bvh4Node> nodes;  // compressed at upload
     std::vector<gpu::TrianglePrim> triangles;
     std::vector<gpu::SpherePrim> spheres;
     std::vector<gpu::CylinderPrim> cylinders;
@@ -172,7 +174,8 @@ uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, F
     case GeometryKind::Cylinders: g.primOffset = static_cast<uint32_t>(flat.cylinders.size()); break;
     case GeometryKind::Cones: g.primOffset = static_cast<uint32_t>(flat.cones.size()); break;
     }
-    flat.nodes.insert(flat.nodes.end(), p.blas.nodes.begin(), p.blas.nodes.end());
+    const bvh::Bvh4 blas = bvh::collapseToBvh4(p.blas);
+    flat.nodes.insert(flat.nodes.end(), blas.nodes.begin(), blas.nodes.end());
     gpu::GeometryRecord record{};
     record.kind = static_cast<uint32_t>(g.kind);
     record.slotOffset = static_cast<uint32_t>(flat.primSlots.size());
@@ -300,9 +303,10 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     report_.tlasBuildSeconds = secondsSince(tlasStart);
     bounds_ = tlas.bounds;
 
-    // 3. Flatten: TLAS nodes first, then each BLAS; primitives in leaf order; shading data per geometry.
+    // 3. Flatten: TLAS nodes first, then each BLAS, every BVH collapsed to 4 wide (the kernels' layout);
+    //    primitives in leaf order; shading data per geometry.
     FlatScene flat;
-    flat.nodes = tlas.nodes;
+    flat.nodes = bvh::collapseToBvh4(tlas).nodes;
     std::vector<uint32_t> geometryRecord(used.size());
     for (size_t g = 0; g < used.size(); ++g)
         if (!used[g].prepared->validPrims.empty()) geometryRecord[g] = flattenGeometry(description, used[g], flat, report_);
@@ -363,7 +367,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         return buffer.address();
     };
     gpu::SceneDesc desc{};
-    desc.nodes = upload(nodes_, flat.nodes, "scene BVH nodes");
+    desc.nodes = upload(nodes_, bvh::compressBvh4(flat.nodes), "scene BVH4 nodes");
     desc.triangles = upload(triangles_, flat.triangles, "scene triangles");
     desc.spheres = upload(spheres_, flat.spheres, "scene spheres");
     desc.cylinders = upload(cylinders_, flat.cylinders, "scene cylinders");

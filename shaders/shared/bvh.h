@@ -1,4 +1,5 @@
-// BVH node layout shared by the builder (core/bvh) and the traversal kernels (shaders/traverse.glsl).
+// Binary BVH node layout the builder produces (core/bvh/BinnedSahBuilder); every BVH is collapsed to the
+// 4-wide layout of bvh4.h (core/bvh/Bvh4Collapse) before the kernels see it.
 #ifndef RIPPLE_SHARED_BVH_H
 #define RIPPLE_SHARED_BVH_H
 #include "common.h"

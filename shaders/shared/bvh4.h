@@ -1,5 +1,6 @@
-// 4-wide BVH node layout for the ripple-bench speed lever (core/bvh/Bvh4Collapse, shaders/traverse_bvh4.glsl):
-// a binned-SAH BVH2 collapsed so that one node fetch tests four boxes. Single-level triangle meshes only.
+// 4-wide BVH node layout of every BVH the kernels traverse (core/bvh/Bvh4Collapse; shaders/bvh4_node.glsl):
+// a binned-SAH BVH2 collapsed so that one node fetch tests four boxes. The renderer's TLAS and BLASes
+// (shaders/traverse.glsl) and ripple-bench's single-level kernel (shaders/traverse_bvh4.glsl) use it.
 #ifndef RIPPLE_SHARED_BVH4_H
 #define RIPPLE_SHARED_BVH4_H
 #include "common.h"
@@ -15,7 +16,8 @@ RIPPLE_GPU_BEGIN
 // The four child boxes as structure of arrays (component i of each vec4 belongs to child i), so a node is
 // seven 16-byte loads. children[i] is one word:
 //   BVH4_EMPTY_CHILD            no child in this slot (its box is ignored)
-//   BVH4_LEAF_BIT | first << 3 | (count - 1)   a leaf of `count` (1..8) triangles from leaf slot `first`
+//   BVH4_LEAF_BIT | first << 3 | (count - 1)   a leaf of `count` (1..8) primitives from leaf slot `first`
+//                               (in a TLAS: the one instance at slot `first`)
 //   anything else               the index of an inner node
 // The same word is what the traversal pushes on its stack, so a leaf costs one stack entry, not two.
 struct Bvh4Node {
@@ -43,7 +45,8 @@ struct Bvh4CompressedNode {
 
 RIPPLE_CONST uint BVH4_EMPTY_CHILD = 0xFFFFFFFFu;
 RIPPLE_CONST uint BVH4_LEAF_BIT = 0x80000000u;
-// Leaf slots addressable in a child word: 28 bits (first << 3 below the leaf bit).
+// Leaf slots addressable in a child word: 28 bits (first << 3 below the leaf bit). A leaf's last slot stays
+// at or below this, so no leaf word equals BVH4_EMPTY_CHILD (the renderer's return-to-TLAS entry).
 RIPPLE_CONST uint BVH4_MAX_LEAF_FIRST = 0x0FFFFFFFu;
 // Each node visit pops one entry and pushes at most four, so the stack never holds more than three entries
 // per level below the root, plus the one being expanded. Collapsing never deepens the tree.

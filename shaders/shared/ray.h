@@ -27,9 +27,10 @@ struct Hit {
     uint status;
 };
 
-// Traversal stack depth: one TLAS path, the sentinel and the entry instance, one BLAS path with two words
-// per deferred leaf.
-RIPPLE_CONST uint TRAVERSAL_STACK_SIZE = 4u * BVH_MAX_DEPTH + 4u;
+// Traversal stack depth (BVH4, shared/bvh4.h): expanding a node pops one entry and pushes at most four, so
+// a BVH of depth D leaves at most 3(D - 1) + 1 entries; one TLAS path, the sentinel and one BLAS path
+// need at most 3(Dt + Db) - 4 <= 6 BVH_MAX_DEPTH (collapsing never deepens a tree).
+RIPPLE_CONST uint TRAVERSAL_STACK_SIZE = 6u * BVH_MAX_DEPTH;
 
 // A traversal that spent its step budget: enough to continue exactly where it stopped.
 struct TraversalState {

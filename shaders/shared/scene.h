@@ -101,7 +101,7 @@ struct GeometryRecord {
 // Everything the kernels need to find the scene. All BVHs live in one node array: the TLAS first, then
 // each BLAS at its instance's blasNodeOffset.
 struct SceneDesc {
-    uint64_t nodes;           // BvhNode[]
+    uint64_t nodes;           // Bvh4CompressedNode[] (shared/bvh4.h)
     uint64_t triangles;       // TrianglePrim[]
     uint64_t spheres;         // SpherePrim[]
     uint64_t cylinders;       // CylinderPrim[]

@@ -1,5 +1,5 @@
 // The speed levers of ripple-bench (issue 2): the BVH2 -> BVH4 collapse, the single-level BVH4 kernels
-// against the renderer's two-level BVH2 kernels, and Morton ray ordering.
+// against the renderer's two-level kernels, and Morton ray ordering.
 #include "core/bvh/Bvh4Compress.h"
 #include "core/bvh/Bvh4TraceKernels.h"
 #include "core/bvh/RayOrder.h"
@@ -10,6 +10,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -124,6 +125,26 @@ TEST_CASE("BVH4 collapse keeps every primitive once and every child box holds it
                          doctest::Contains("maxChildren"), std::invalid_argument);
 }
 
+// The renderer's traversal uses the all-ones word (an empty slot) as its return-to-TLAS entry, so no leaf
+// word may equal it: a leaf's last slot must fit the 28 bits.
+TEST_CASE("BVH4 leaf words: the last addressable slot, never the empty-slot word") {
+    auto oneLeaf = [](uint32_t first, uint32_t count) {
+        bvh::Bvh bvh2;
+        gpu::BvhNode root{};
+        root.leftMin = gpu::vec4(0.0f, 0.0f, 0.0f, std::bit_cast<float>(first));
+        root.leftMax = gpu::vec4(1.0f, 1.0f, 1.0f, std::bit_cast<float>(count));
+        bvh2.nodes.push_back(root);  // right child: count 0, reference 0, i.e. empty
+        return bvh2;
+    };
+    const bvh::Bvh4 last = bvh::collapseToBvh4(oneLeaf(gpu::BVH4_MAX_LEAF_FIRST, 1));
+    REQUIRE(last.nodes.size() == 1);
+    CHECK(last.nodes[0].children.x == 0xFFFFFFF8u);
+    CHECK(last.nodes[0].children.y == gpu::BVH4_EMPTY_CHILD);
+    CHECK(bvh::collapseToBvh4(oneLeaf(gpu::BVH4_MAX_LEAF_FIRST - 7, 8)).nodes[0].children.x == 0xFFFFFFC7u);
+    CHECK_THROWS_WITH_AS(bvh::collapseToBvh4(oneLeaf(gpu::BVH4_MAX_LEAF_FIRST, 2)), doctest::Contains("last slot"),
+                         std::invalid_argument);
+}
+
 TEST_CASE("compressed BVH4 child boxes hold the full ones, within one quantization step") {
     // Off the origin, so the rounding of frame + q * scale matters.
     core::TriangleMesh mesh = test::randomTriangleSoup(4000, 31, 0.5f);
@@ -158,7 +179,7 @@ TEST_CASE("compressed BVH4 child boxes hold the full ones, within one quantizati
     CHECK(loose == 0);
 }
 
-TEST_CASE("BVH4 and single-level BVH2 kernels give the renderer's BVH2 hits on random rays") {
+TEST_CASE("BVH4 and single-level BVH2 kernels give the renderer's hits on random rays") {
     test::ValidationGuard guard;
     const core::TriangleMesh mesh = test::randomTriangleSoup(3000, 7);
     const core::SceneDescription description = test::sceneOf(mesh);
