@@ -1,6 +1,6 @@
-# GLSL compute shaders -> SPIR-V (glslc, with depfiles so editing an included header rebuilds) ->
-# validated by spirv-val -> embedded as uint32_t arrays in generated headers. Nothing is loaded from disk
-# at run time.
+# GLSL compute shaders -> SPIR-V (glslc, its depfile naming the generated header, so that editing an
+# included file rebuilds the shaders that include it and nothing else) -> validated by spirv-val ->
+# embedded as uint32_t arrays in generated headers. Nothing is loaded from disk at run time.
 find_program(GLSLC glslc REQUIRED)
 find_program(SPIRV_VAL spirv-val REQUIRED)
 
@@ -18,7 +18,7 @@ function(ripple_add_shaders target)
     add_custom_command(
       OUTPUT "${header}"
       COMMAND ${GLSLC} --target-env=vulkan1.2 -O -Werror -I "${CMAKE_CURRENT_SOURCE_DIR}"
-              -MD -MF "${spv}.d" -o "${spv}" "${abs_source}"
+              -MD -MF "${spv}.d" -MT "${header}" -o "${spv}" "${abs_source}"
       COMMAND ${SPIRV_VAL} --target-env vulkan1.2 "${spv}"
       COMMAND ${CMAKE_COMMAND} -DINPUT=${spv} -DOUTPUT=${header} -DNAME=${name}
               -P "${PROJECT_SOURCE_DIR}/cmake/SpirvToHeader.cmake"
