@@ -126,10 +126,10 @@ void printTables(std::ostream& out, const RunInfo& info, const std::vector<Scene
                   info.vkDevice.c_str(),
                   info.embreeVersion.empty() ? "nothing (--no-embree)" : ("Embree " + info.embreeVersion).c_str(),
                   info.hardwareThreads, info.width, info.height, info.repeat);
-    out << format("Ripple levers: --bvh-width %u (%s), --features %s, --nodes %s, --ray-order %s.\n",
+    out << format("Ripple levers: --bvh-width %u (%s), --features %s, --nodes %s, --traversal %s, --ray-order %s.\n",
                   info.bvhWidth, info.singleLevel ? "single-level kernel, BVH4 layout" : "renderer's two-level kernel, compressed BVH4",
                   info.features.c_str(),
-                  info.nodes.c_str(), info.rayOrder.c_str());
+                  info.nodes.c_str(), info.traversal.c_str(), info.rayOrder.c_str());
     out << "Ripple trace times: device-side launch incl. submit+wait, excluding upload/download.\n"
         << (info.embreeVersion.empty() ? "Secondary rays start from Ripple's primary hits (--no-embree).\n\n"
                                        : "Secondary rays start from Embree's primary hits (the reference).\n\n");
@@ -195,6 +195,7 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
     j.value("bvhWidth", uint64_t(info.bvhWidth));
     j.value("singleLevel", info.singleLevel);
     j.value("nodes", info.nodes);
+    j.value("traversal", info.traversal);
     j.value("features", info.features);
     j.value("rayOrder", info.rayOrder);
     j.value("rippleTiming", std::string("device-side launch incl. submit+wait, excluding upload/download"));

@@ -71,6 +71,7 @@ struct RunInfo {
     uint32_t bvhWidth = 2;           // --bvh-width
     bool singleLevel = false;        // the BVH4 kernel (--bvh-width 4 or --single-level)
     std::string nodes = "full";      // --nodes
+    std::string traversal = "lanes";  // --traversal
     std::string features = "triangles";  // --features
 };
 

@@ -22,13 +22,17 @@ RippleTracer::RippleTracer(const core::TraceOptions& options, const Levers& leve
     : levers_(levers),
       context_(quietContext()),
       kernels_(context_, options),
-      bvh4Kernels_(context_, options.workgroupSize, options.stepBudget),
+      bvh4Kernels_(context_, options.workgroupSize, options.stepBudget,
+                   levers.packetTraversal ? bvh::Bvh4Traversal::Packet : bvh::Bvh4Traversal::Lanes),
       timestamps_(context_, 2) {
     if (levers.bvhWidth != 2 && levers.bvhWidth != 4)
         throw std::invalid_argument("BVH width must be 2 or 4, not " + std::to_string(levers.bvhWidth));
     if (levers.compressedNodes && levers.bvhWidth == 2 && !levers.singleLevel)
         throw std::invalid_argument("--nodes chooses the single-level kernel's nodes (--bvh-width 4 or "
                                     "--single-level); the renderer's kernel always uses compressed nodes");
+    if (levers.packetTraversal && levers.bvhWidth == 2 && !levers.singleLevel)
+        throw std::invalid_argument("--traversal packet is the single-level kernel's (--bvh-width 4 or "
+                                    "--single-level); the renderer's kernel traverses one ray per lane");
     if (levers.trianglesOnly) kernels_.useFeatures(gpu::FEATURE_TRIANGLES);
 }
 

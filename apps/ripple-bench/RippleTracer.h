@@ -32,6 +32,9 @@ struct Levers {
     bool trianglesOnly = true;
     // Single-level kernel only: child boxes quantized to 8 bits (64-byte nodes instead of 112).
     bool compressedNodes = false;
+    // Single-level kernel only: the lanes of a subgroup walk one stack over the union of their rays' paths
+    // and fetch each node once for all (bvh::Bvh4Traversal::Packet) instead of one ray per lane.
+    bool packetTraversal = false;
     // Trace each ray set sorted by bvh::mortonRayKey; results go back to input order before anyone sees them.
     bool mortonOrder = false;
 };

@@ -35,6 +35,7 @@ struct Options {
     uint32_t bvhWidth = 2;
     bool singleLevel = false;
     std::string nodes = "full";
+    std::string traversal = "lanes";
     // The renderer specialises its kernels for the geometry kinds a scene has (FeatureSet), so the bench
     // measures the same by default; "all" is the unspecialised kernel the first measurements used.
     std::string features = "triangles";
@@ -72,6 +73,11 @@ bool parseOptions(int argc, char** argv, Options& o, int& exitCode) {
     app.add_option("--nodes", o.nodes,
                    "Single-level kernel only: full-precision child boxes or boxes quantized to 8 bits per bound")
         ->check(CLI::IsMember({"full", "compressed"}))
+        ->capture_default_str();
+    app.add_option("--traversal", o.traversal,
+                   "Single-level kernel only: one ray per lane, or the lanes of a subgroup walking one stack "
+                   "together with each node fetched once for all (subgroup packets)")
+        ->check(CLI::IsMember({"lanes", "packet"}))
         ->capture_default_str();
     app.add_option("--features", o.features,
                    "Two-level kernel: all geometry kinds' tests, or specialised for triangles as the renderer "
@@ -133,6 +139,7 @@ RunInfo describeRun(const Options& o, const RippleTracer& ripple) {
     info.bvhWidth = o.bvhWidth;
     info.singleLevel = o.singleLevel || o.bvhWidth == 4;
     info.nodes = o.nodes;
+    info.traversal = o.traversal;
     info.features = o.features;
     return info;
 }
@@ -151,6 +158,7 @@ int main(int argc, char** argv) {
                             .singleLevel = options.singleLevel,
                             .trianglesOnly = options.features == "triangles",
                             .compressedNodes = options.nodes == "compressed",
+                            .packetTraversal = options.traversal == "packet",
                             .mortonOrder = options.rayOrder == "morton"};
         RippleTracer ripple(traceOptions, levers);
         std::cerr << "[ripple-bench] Vulkan device: " << ripple.deviceName() << "\n";

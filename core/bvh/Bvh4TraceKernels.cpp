@@ -5,9 +5,13 @@
 #include "shaders/shared/scene.h"
 #include "core/bvh/Bvh4Compress.h"
 #include "shaders/trace_any_bvh4.spv.h"
+#include "shaders/trace_any_bvh4p.spv.h"
 #include "shaders/trace_any_bvh4q.spv.h"
+#include "shaders/trace_any_bvh4qp.spv.h"
 #include "shaders/trace_closest_bvh4.spv.h"
+#include "shaders/trace_closest_bvh4p.spv.h"
 #include "shaders/trace_closest_bvh4q.spv.h"
+#include "shaders/trace_closest_bvh4qp.spv.h"
 
 #include <algorithm>
 #include <bit>
@@ -36,6 +40,28 @@ vk::Buffer uploadNonEmpty(const vk::Context& context, const std::vector<T>& item
     vk::Buffer buffer(context, std::max<VkDeviceSize>(16, items.size() * sizeof(T)), name);
     if (!items.empty()) buffer.upload(std::span<const T>(items));
     return buffer;
+}
+
+// The packet kernels' needs (traverse_bvh4_packet.glsl): groups of 4 lanes share a load, and every lane
+// must take part in each subgroup operation, so no workgroup may end in a partial subgroup.
+void checkPacketSupport(const vk::Context& context, uint32_t workgroupSize) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup};
+    vkGetPhysicalDeviceProperties2(context.physicalDevice(), &properties);
+    const VkSubgroupFeatureFlags needed =
+        VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT;
+    if ((subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0 ||
+        (subgroup.supportedOperations & needed) != needed)
+        throw std::invalid_argument("Bvh4TraceKernels: packet traversal needs subgroup ballot, arithmetic and "
+                                    "vote operations in compute shaders, which " + context.deviceName() +
+                                    " lacks");
+    if (subgroup.subgroupSize < 4)
+        throw std::invalid_argument("Bvh4TraceKernels: packet traversal needs subgroups of at least 4 lanes, not " +
+                                    std::to_string(subgroup.subgroupSize));
+    if (workgroupSize % subgroup.subgroupSize != 0)
+        throw std::invalid_argument("Bvh4TraceKernels: packet traversal needs a workgroup size that is a multiple "
+                                    "of the subgroup size " + std::to_string(subgroup.subgroupSize) + ", not " +
+                                    std::to_string(workgroupSize));
 }
 
 }  // namespace
@@ -82,13 +108,24 @@ Bvh4Mesh::Bvh4Mesh(const vk::Context& context, const core::TriangleMesh& mesh, c
     triangles_ = uploadNonEmpty(context, triangles, "BVH4 triangles");
 }
 
-Bvh4TraceKernels::Bvh4TraceKernels(const vk::Context& context, uint32_t workgroupSize, uint32_t stepBudget)
+Bvh4TraceKernels::Bvh4TraceKernels(const vk::Context& context, uint32_t workgroupSize, uint32_t stepBudget,
+                                   Bvh4Traversal traversal)
     : context_(context), workgroupSize_(workgroupSize), stepBudget_(stepBudget) {
     if (stepBudget < 1 || stepBudget > core::kMaxStepBudget)
         throw std::invalid_argument("Bvh4TraceKernels: stepBudget must be in [1, " +
                                     std::to_string(core::kMaxStepBudget) + "], not " + std::to_string(stepBudget));
     const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, workgroupSize}};
     const auto bytes = static_cast<uint32_t>(sizeof(gpu::Bvh4TraceParams));
+    if (traversal == Bvh4Traversal::Packet) {
+        checkPacketSupport(context, workgroupSize);
+        closest_ = vk::ComputePipeline(context, shaders::trace_closest_bvh4p, "trace_closest_bvh4p", bytes, constants);
+        any_ = vk::ComputePipeline(context, shaders::trace_any_bvh4p, "trace_any_bvh4p", bytes, constants);
+        closestCompressed_ =
+            vk::ComputePipeline(context, shaders::trace_closest_bvh4qp, "trace_closest_bvh4qp", bytes, constants);
+        anyCompressed_ =
+            vk::ComputePipeline(context, shaders::trace_any_bvh4qp, "trace_any_bvh4qp", bytes, constants);
+        return;
+    }
     closest_ = vk::ComputePipeline(context, shaders::trace_closest_bvh4, "trace_closest_bvh4", bytes, constants);
     any_ = vk::ComputePipeline(context, shaders::trace_any_bvh4, "trace_any_bvh4", bytes, constants);
     closestCompressed_ =
@@ -118,14 +155,22 @@ void Bvh4TraceKernels::dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& 
     }
 }
 
+const vk::ComputePipeline& Bvh4TraceKernels::closestPipeline(const Bvh4Mesh& mesh) const {
+    return mesh.compressed() ? closestCompressed_ : closest_;
+}
+
+const vk::ComputePipeline& Bvh4TraceKernels::anyPipeline(const Bvh4Mesh& mesh) const {
+    return mesh.compressed() ? anyCompressed_ : any_;
+}
+
 void Bvh4TraceKernels::traceClosest(VkCommandBuffer cmd, const Bvh4Mesh& mesh, const vk::Buffer& rays,
                                     const vk::Buffer& hits, uint32_t rayCount) {
-    dispatch(cmd, mesh.compressed() ? closestCompressed_ : closest_, mesh, rays, hits, sizeof(gpu::Hit), rayCount);
+    dispatch(cmd, closestPipeline(mesh), mesh, rays, hits, sizeof(gpu::Hit), rayCount);
 }
 
 void Bvh4TraceKernels::traceAny(VkCommandBuffer cmd, const Bvh4Mesh& mesh, const vk::Buffer& rays,
                                 const vk::Buffer& occluded, uint32_t rayCount) {
-    dispatch(cmd, mesh.compressed() ? anyCompressed_ : any_, mesh, rays, occluded, sizeof(uint32_t), rayCount);
+    dispatch(cmd, anyPipeline(mesh), mesh, rays, occluded, sizeof(uint32_t), rayCount);
 }
 
 template <class Result>
@@ -144,11 +189,11 @@ std::vector<Result> Bvh4TraceKernels::traceOnHost(const vk::ComputePipeline& pip
 }
 
 std::vector<gpu::Hit> Bvh4TraceKernels::traceClosest(const Bvh4Mesh& mesh, std::span<const gpu::Ray> rays) {
-    return traceOnHost<gpu::Hit>(mesh.compressed() ? closestCompressed_ : closest_, mesh, rays);
+    return traceOnHost<gpu::Hit>(closestPipeline(mesh), mesh, rays);
 }
 
 std::vector<uint32_t> Bvh4TraceKernels::traceAny(const Bvh4Mesh& mesh, std::span<const gpu::Ray> rays) {
-    return traceOnHost<uint32_t>(mesh.compressed() ? anyCompressed_ : any_, mesh, rays);
+    return traceOnHost<uint32_t>(anyPipeline(mesh), mesh, rays);
 }
 
 }  // namespace ripple::bvh

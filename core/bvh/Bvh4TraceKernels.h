@@ -44,11 +44,20 @@ private:
     vk::Buffer nodes_, triangles_;
 };
 
+// How the lanes of a subgroup walk the tree. Lanes: each lane its own ray, stack and node fetches
+// (traverse_bvh4.glsl). Packet: the subgroup walks one stack over the union of its rays' paths, each node
+// fetched once for all lanes (traverse_bvh4_packet.glsl); the same hits, more box and triangle tests.
+enum class Bvh4Traversal { Lanes, Packet };
+
 class Bvh4TraceKernels {
 public:
-    // stepBudget: node visits plus triangle tests per ray before it is flagged HIT_FLAG_RAN_OUT; the same
-    // bounds as core::TraceOptions::stepBudget (lavapipe's silent loop cap).
-    Bvh4TraceKernels(const vk::Context& context, uint32_t workgroupSize = 64, uint32_t stepBudget = 30000);
+    // stepBudget: node visits plus triangle tests per ray (per subgroup with Packet) before the ray is
+    // flagged HIT_FLAG_RAN_OUT; the same bounds as core::TraceOptions::stepBudget (lavapipe's silent loop
+    // cap). Packet needs subgroups of at least 4 lanes with ballot, arithmetic and vote operations in
+    // compute shaders, and a workgroup size that is a multiple of the subgroup size; otherwise it throws
+    // std::invalid_argument saying which.
+    Bvh4TraceKernels(const vk::Context& context, uint32_t workgroupSize = 64, uint32_t stepBudget = 30000,
+                     Bvh4Traversal traversal = Bvh4Traversal::Lanes);
 
     void traceClosest(VkCommandBuffer cmd, const Bvh4Mesh& mesh, const vk::Buffer& rays, const vk::Buffer& hits,
                       uint32_t rayCount);
@@ -66,8 +75,12 @@ private:
     std::vector<Result> traceOnHost(const vk::ComputePipeline& pipeline, const Bvh4Mesh& mesh,
                                     std::span<const gpu::Ray> rays);
 
+    const vk::ComputePipeline& closestPipeline(const Bvh4Mesh& mesh) const;
+    const vk::ComputePipeline& anyPipeline(const Bvh4Mesh& mesh) const;
+
     const vk::Context& context_;
     uint32_t workgroupSize_, stepBudget_;
+    // Of the chosen traversal only.
     vk::ComputePipeline closest_, any_, closestCompressed_, anyCompressed_;
 };
 

@@ -1,5 +1,5 @@
 // The speed levers of ripple-bench (issue 2): the BVH2 -> BVH4 collapse, the single-level BVH4 kernels
-// against the renderer's two-level kernels, and Morton ray ordering.
+// against the renderer's two-level kernels, subgroup packet traversal, and Morton ray ordering.
 #include "core/bvh/Bvh4Compress.h"
 #include "core/bvh/Bvh4TraceKernels.h"
 #include "core/bvh/RayOrder.h"
@@ -229,6 +229,71 @@ TEST_CASE("BVH4 traversal that spends its step budget is flagged, never wrong") 
     bad.positions[4].y = std::numeric_limits<float>::quiet_NaN();
     CHECK_THROWS_WITH_AS(bvh::Bvh4Mesh(testContext(), bad), doctest::Contains("vertex 4 of triangle 1 is NaN"),
                          std::invalid_argument);
+}
+
+TEST_CASE("BVH4 subgroup packet traversal gives the per-lane traversal's hits on random rays") {
+    test::ValidationGuard guard;
+    const core::TriangleMesh mesh = test::randomTriangleSoup(3000, 21);
+    // Coherent rays toward the mesh, incoherent random ones, and a count that ends in a partial subgroup
+    // and workgroup (the lanes past the end must ride along without writing).
+    std::vector<gpu::Ray> rays = test::raysTowardPoints(test::sceneOf(mesh), 4096, 22);
+    const auto random = test::randomRays(2048 + 37, 23, glm::vec3(-1), glm::vec3(1));
+    rays.insert(rays.end(), random.begin(), random.end());
+
+    bvh::Bvh4TraceKernels lanes(testContext());
+    bvh::Bvh4TraceKernels packet(testContext(), 64, 30000, bvh::Bvh4Traversal::Packet);
+    for (uint32_t width : {4u, 2u}) {
+        for (bool compressed : {false, true}) {
+            CAPTURE(width);
+            CAPTURE(compressed);
+            const bvh::Bvh4Mesh wide(testContext(), mesh, {.maxChildren = width, .compressed = compressed});
+            const auto expectedClosest = lanes.traceClosest(wide, rays);
+            const auto expectedAny = lanes.traceAny(wide, rays);
+            checkSameHits(expectedClosest, packet.traceClosest(wide, rays), "packet traversal");
+            const auto occluded = packet.traceAny(wide, rays);
+            CHECK(occluded == expectedAny);
+            CHECK(std::count(occluded.begin(), occluded.end(), gpu::HIT_FOUND) > std::ptrdiff_t(rays.size() / 4));
+        }
+    }
+    const bvh::Bvh4Mesh empty(testContext(), core::TriangleMesh{});
+    for (const gpu::Hit& h : packet.traceClosest(empty, std::span(rays).first(13))) CHECK(h.status == gpu::HIT_MISS);
+}
+
+TEST_CASE("BVH4 packet traversal that spends its step budget is flagged, never wrong") {
+    test::ValidationGuard guard;
+    const core::TriangleMesh mesh = test::randomTriangleSoup(3000, 11);
+    const auto rays = test::raysTowardPoints(test::sceneOf(mesh), 2048, 12);
+    const bvh::Bvh4Mesh wide(testContext(), mesh, {});
+    const auto full = bvh::Bvh4TraceKernels(testContext()).traceClosest(wide, rays);
+    // The budget counts the packet's steps, the union of its rays' paths, so how many steps a ray needs
+    // depends on the subgroup size: a sweep of budgets must flag fewer rays as it grows, every ray at 20,
+    // none at 30000 (the full run above), and some but not all at one budget between.
+    size_t previous = rays.size();
+    bool someButNotAll = false;
+    for (uint32_t budget : {20u, 60u, 120u, 240u, 480u}) {
+        CAPTURE(budget);
+        const auto cut =
+            bvh::Bvh4TraceKernels(testContext(), 64, budget, bvh::Bvh4Traversal::Packet).traceClosest(wide, rays);
+        size_t flagged = 0, wrong = 0;
+        for (size_t i = 0; i < rays.size(); ++i) {
+            if (cut[i].status & gpu::HIT_FLAG_RAN_OUT) { ++flagged; continue; }
+            wrong += cut[i].status != full[i].status || cut[i].primId != full[i].primId || cut[i].t != full[i].t;
+        }
+        CHECK(wrong == 0);
+        CHECK(flagged <= previous);
+        if (budget == 20u) CHECK(flagged == rays.size());
+        CHECK(flagged % 4 == 0);  // a closest-hit packet that runs out flags all its lanes (4 | any subgroup size)
+        someButNotAll |= flagged > 0 && flagged < rays.size();
+        previous = flagged;
+    }
+    CHECK(someButNotAll);
+    const auto packetFull =
+        bvh::Bvh4TraceKernels(testContext(), 64, 30000, bvh::Bvh4Traversal::Packet).traceClosest(wide, rays);
+    CHECK(std::none_of(packetFull.begin(), packetFull.end(),
+                       [](const gpu::Hit& h) { return (h.status & gpu::HIT_FLAG_RAN_OUT) != 0; }));
+    // 6 lanes fill no subgroup of 4 or more exactly.
+    CHECK_THROWS_WITH_AS(bvh::Bvh4TraceKernels(testContext(), 6, 30000, bvh::Bvh4Traversal::Packet),
+                         doctest::Contains("packet traversal needs"), std::invalid_argument);
 }
 
 TEST_CASE("Morton ray order is a permutation that sorts the keys, and results map back") {

@@ -1,0 +1,7 @@
+#version 460
+// Any-hit (occlusion) subgroup packet traversal of a single-level 4-wide triangle BVH with 8-bit quantized
+// child boxes: one status word per ray (see traverse_bvh4_packet.glsl).
+#extension GL_GOOGLE_include_directive : require
+#define TRACE_ANY_HIT 1
+#define BVH4_COMPRESSED 1
+#include "traverse_bvh4_packet.glsl"

@@ -1,0 +1,7 @@
+#version 460
+// Closest-hit subgroup packet traversal of a single-level 4-wide triangle BVH with 8-bit quantized child
+// boxes: one Hit per ray (see traverse_bvh4_packet.glsl).
+#extension GL_GOOGLE_include_directive : require
+#define TRACE_ANY_HIT 0
+#define BVH4_COMPRESSED 1
+#include "traverse_bvh4_packet.glsl"
