@@ -2,6 +2,7 @@
 #include "core/bvh/Bvh4Collapse.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <stdexcept>
 #include <string>
@@ -17,14 +18,26 @@ struct Child {
     bool inner() const { return count == 0; }
 };
 
+// A node's children while it is being widened: at most 4 (below 4, one inner child gives way to its two).
+struct Children {
+    std::array<Child, 4> items;
+    size_t size = 0;
+    Child* begin() { return items.data(); }
+    Child* end() { return items.data() + size; }
+    void erase(Child* at) {
+        std::move(at + 1, end(), at);
+        --size;
+    }
+};
+
 // The BVH2 children of a node, leaving out the empty one a single-leaf BVH has.
-void appendChildren(const gpu::BvhNode& node, std::vector<Child>& out) {
+void appendChildren(const gpu::BvhNode& node, Children& out) {
     const gpu::vec4* sides[2][2] = {{&node.leftMin, &node.leftMax}, {&node.rightMin, &node.rightMax}};
     for (const auto& side : sides) {
         const Child c{Aabb{glm::vec3(*side[0]), glm::vec3(*side[1])}, std::bit_cast<uint32_t>(side[0]->w),
                       std::bit_cast<uint32_t>(side[1]->w)};
         if (c.count == 0 && c.reference == 0) continue;
-        out.push_back(c);
+        out.items[out.size++] = c;
     }
 }
 
@@ -48,9 +61,9 @@ public:
         out_.nodes.emplace_back();
         out_.depth = std::max(out_.depth, depth);
 
-        std::vector<Child> children;
+        Children children;
         appendChildren(bvh2_.nodes[node2], children);
-        while (children.size() < maxChildren_) {
+        while (children.size < maxChildren_) {
             auto widest = children.end();
             for (auto it = children.begin(); it != children.end(); ++it)
                 if (it->inner() && (widest == children.end() || it->box.halfArea() > widest->box.halfArea()))
@@ -63,8 +76,8 @@ public:
 
         gpu::Bvh4Node node{};
         node.children = gpu::uvec4(gpu::BVH4_EMPTY_CHILD);
-        for (size_t i = 0; i < children.size(); ++i) {
-            const Child& c = children[i];
+        for (size_t i = 0; i < children.size; ++i) {
+            const Child& c = children.items[i];
             const auto slot = static_cast<int>(i);
             node.minX[slot] = c.box.lo.x, node.maxX[slot] = c.box.hi.x;
             node.minY[slot] = c.box.lo.y, node.maxY[slot] = c.box.hi.y;
@@ -77,7 +90,7 @@ public:
                 ++out_.leafCount;
             }
         }
-        out_.childSlotsUsed += static_cast<uint32_t>(children.size());
+        out_.childSlotsUsed += static_cast<uint32_t>(children.size);
         out_.nodes[index] = node;  // after the recursion: emplace_back may have moved the vector
         return index;
     }

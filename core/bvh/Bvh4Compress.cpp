@@ -1,6 +1,8 @@
 // Quantization of BVH4 nodes into their own frame (see Bvh4Compress.h and Bvh4CompressedNode).
 #include "core/bvh/Bvh4Compress.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -52,9 +54,10 @@ Aabb dequantizedBox(const gpu::Bvh4CompressedNode& node, int slot) {
     return box;
 }
 
+// Each node is quantized on its own, so the nodes are spread over the cores.
 std::vector<gpu::Bvh4CompressedNode> compressBvh4(std::span<const gpu::Bvh4Node> nodes) {
     std::vector<gpu::Bvh4CompressedNode> out(nodes.size());
-    for (size_t n = 0; n < nodes.size(); ++n) {
+    tbb::parallel_for(size_t(0), nodes.size(), [&](size_t n) {
         const gpu::Bvh4Node& full = nodes[n];
         Aabb boxes[4], frame;
         for (int i = 0; i < 4; ++i) {
@@ -65,7 +68,7 @@ std::vector<gpu::Bvh4CompressedNode> compressBvh4(std::span<const gpu::Bvh4Node>
         gpu::Bvh4CompressedNode& c = out[n];
         c = {};
         c.children = full.children;
-        if (frame.empty()) continue;
+        if (frame.empty()) return;
         uint32_t exponents = 0;
         float scale[3];
         for (int axis = 0; axis < 3; ++axis) {
@@ -83,7 +86,7 @@ std::vector<gpu::Bvh4CompressedNode> compressBvh4(std::span<const gpu::Bvh4Node>
                 *hi[axis] |= quantizeHi(boxes[i].hi[axis], frame.lo[axis], scale[axis]) << (8 * i);
             }
         }
-    }
+    });
     return out;
 }
 
