@@ -19,7 +19,10 @@ void note(PreparedGeometry& g, uint64_t count, const std::string& what) {
 }
 
 std::shared_ptr<const PreparedGeometry> finish(std::shared_ptr<PreparedGeometry> g, const std::vector<bvh::Aabb>& boxes) {
-    if (!g->validPrims.empty()) g->blas = bvh::buildBinnedSah(boxes, g->buildOptions);
+    if (g->validPrims.empty()) return g;
+    g->blas = bvh::buildBinnedSah(boxes, g->buildOptions);
+    g->blas4 = bvh::collapseToBvh4(g->blas);
+    g->blas.nodes = {};
     return g;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/bvh/BinnedSahBuilder.h"
+#include "core/bvh/Bvh4Collapse.h"
 #include "core/scene/SceneDescription.h"
 
 #include <memory>
@@ -16,7 +17,9 @@ struct PreparedGeometry {
     GeometryIdentity identity;
     bvh::BuildOptions buildOptions;     // the BLAS is only reused under the same options
     std::vector<uint32_t> validPrims;   // input indices of the kept primitives
-    bvh::Bvh blas;                      // over validPrims; blas.primOrder indexes validPrims
+    bvh::Bvh blas;                      // over validPrims; blas.primOrder indexes validPrims. Its BVH2
+                                        // nodes are dropped once collapsed: only blas4 is traced
+    bvh::Bvh4 blas4;                    // blas collapsed 4 wide (the kernels' layout), reused with it
     uint64_t inputPrimCount = 0;
     uint64_t positionCount = 0;         // positions (or centers) it was validated against
     uint64_t skipped = 0;

@@ -174,8 +174,7 @@ uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, F
     case GeometryKind::Cylinders: g.primOffset = static_cast<uint32_t>(flat.cylinders.size()); break;
     case GeometryKind::Cones: g.primOffset = static_cast<uint32_t>(flat.cones.size()); break;
     }
-    const bvh::Bvh4 blas = bvh::collapseToBvh4(p.blas);
-    flat.nodes.insert(flat.nodes.end(), blas.nodes.begin(), blas.nodes.end());
+    flat.nodes.insert(flat.nodes.end(), p.blas4.nodes.begin(), p.blas4.nodes.end());
     gpu::GeometryRecord record{};
     record.kind = static_cast<uint32_t>(g.kind);
     record.slotOffset = static_cast<uint32_t>(flat.primSlots.size());
