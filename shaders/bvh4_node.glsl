@@ -39,21 +39,30 @@ void bvh4Order(inout float da, inout uint ca, inout float db, inout uint cb) {
     }
 }
 
-// The children of `node` the ray enters before tFar, nearest first in child[0..count): the caller pushes
-// them in reverse so the nearest is popped next.
-uint bvh4EnteredChildren(BVH4_NODE node, vec3 origin, vec3 invDirection, float tmin, float tFar, out uint child[4]) {
-    float d0 = bvh4EnterChild(node, 0u, origin, invDirection, tmin, tFar);
-    float d1 = bvh4EnterChild(node, 1u, origin, invDirection, tmin, tFar);
-    float d2 = bvh4EnterChild(node, 2u, origin, invDirection, tmin, tFar);
-    float d3 = bvh4EnterChild(node, 3u, origin, invDirection, tmin, tFar);
-    uint c0 = node.children.x, c1 = node.children.y, c2 = node.children.z, c3 = node.children.w;
+// Sorts a node's four (entry distance, child) pairs nearest first: the five comparators of a sorting
+// network. Missed children (+inf) end up last, so the entered ones are a prefix.
+void bvh4SortNearestFirst(inout vec4 d, inout uvec4 c) {
+    float d0 = d.x, d1 = d.y, d2 = d.z, d3 = d.w;
+    uint c0 = c.x, c1 = c.y, c2 = c.z, c3 = c.w;
     bvh4Order(d0, c0, d1, c1);
     bvh4Order(d2, c2, d3, c3);
     bvh4Order(d0, c0, d2, c2);
     bvh4Order(d1, c1, d3, c3);
     bvh4Order(d1, c1, d2, c2);
-    child[0] = c0, child[1] = c1, child[2] = c2, child[3] = c3;
-    // Missed children sorted last (+inf), so the entered ones are a prefix.
-    return uint(!isinf(d0)) + uint(!isinf(d1)) + uint(!isinf(d2)) + uint(!isinf(d3));
+    d = vec4(d0, d1, d2, d3);
+    c = uvec4(c0, c1, c2, c3);
+}
+
+// The children of `node` the ray enters before tFar, nearest first in child[0..count): the caller pushes
+// them in reverse so the nearest is popped next.
+uint bvh4EnteredChildren(BVH4_NODE node, vec3 origin, vec3 invDirection, float tmin, float tFar, out uint child[4]) {
+    vec4 d = vec4(bvh4EnterChild(node, 0u, origin, invDirection, tmin, tFar),
+                  bvh4EnterChild(node, 1u, origin, invDirection, tmin, tFar),
+                  bvh4EnterChild(node, 2u, origin, invDirection, tmin, tFar),
+                  bvh4EnterChild(node, 3u, origin, invDirection, tmin, tFar));
+    uvec4 c = node.children;
+    bvh4SortNearestFirst(d, c);
+    child[0] = c.x, child[1] = c.y, child[2] = c.z, child[3] = c.w;
+    return uint(!isinf(d.x)) + uint(!isinf(d.y)) + uint(!isinf(d.z)) + uint(!isinf(d.w));
 }
 #endif

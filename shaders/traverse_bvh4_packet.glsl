@@ -121,18 +121,13 @@ void main() {
             if ((entry & BVH4_LEAF_BIT) == 0u) {
                 BVH4_NODE node = loadNode(entry);
                 vec4 d = packetEnterChildren(node, live, origin, invDirection, tmin, best.t);
-                float d0 = d.x, d1 = d.y, d2 = d.z, d3 = d.w;
-                uint c0 = node.children.x, c1 = node.children.y, c2 = node.children.z, c3 = node.children.w;
-                bvh4Order(d0, c0, d1, c1);
-                bvh4Order(d2, c2, d3, c3);
-                bvh4Order(d0, c0, d2, c2);
-                bvh4Order(d1, c1, d3, c3);
-                bvh4Order(d1, c1, d2, c2);
+                uvec4 c = node.children;
+                bvh4SortNearestFirst(d, c);
                 // Farthest first, so the nearest is popped next; children no lane enters sort last (+inf).
-                if (!isinf(d3)) push(c3);
-                if (!isinf(d2)) push(c2);
-                if (!isinf(d1)) push(c1);
-                if (!isinf(d0)) push(c0);
+                if (!isinf(d.w)) push(c.w);
+                if (!isinf(d.z)) push(c.z);
+                if (!isinf(d.y)) push(c.y);
+                if (!isinf(d.x)) push(c.x);
                 if (overflow) {
                     if (live) best.status |= HIT_FLAG_STACK_OVERFLOW;
                     break;

@@ -1,12 +1,12 @@
 // ripple-bench: builds Ripple's and Embree's BVHs over the same meshes, traces the same primary, shadow and
 // diffuse-bounce rays with both, and reports speed (per wall second and per CPU second) and agreement.
+#include "apps/common/ImageSize.h"
 #include "apps/ripple-bench/Report.h"
 #include "apps/ripple-bench/RunScene.h"
 
 #include <CLI/CLI.hpp>
 #include <tbb/info.h>
 
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -95,10 +95,17 @@ bool parseOptions(int argc, char** argv, Options& o, int& exitCode) {
     }
     if (o.quick && size->count() == 0) o.size = "256x192";
     if (o.quick && repeat->count() == 0) o.repeat = 1;
-    char tail = 0;
-    if (std::sscanf(o.size.c_str(), "%ux%u%c", &o.width, &o.height, &tail) != 2 || o.width == 0 || o.height == 0 ||
-        uint64_t(o.width) * o.height > (1u << 26)) {
-        std::cerr << "ripple-bench: --size wants WxH with at most 2^26 rays, got \"" << o.size << "\"\n";
+    try {
+        const glm::uvec2 rays = ripple::apps::parseImageSize(o.size);
+        o.width = rays.x;
+        o.height = rays.y;
+    } catch (const std::exception& e) {
+        std::cerr << "ripple-bench: " << e.what() << "\n";
+        exitCode = 2;
+        return false;
+    }
+    if (uint64_t(o.width) * o.height > (1u << 26)) {
+        std::cerr << "ripple-bench: --size " << o.size << " is more than 2^26 primary rays\n";
         exitCode = 2;
         return false;
     }

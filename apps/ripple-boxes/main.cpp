@@ -3,6 +3,7 @@
 // --compare renders natively, through the compositing device and on one rank, and measures the difference.
 #include "apps/common/AnariParams.h"
 #include "apps/common/ImageIO.h"
+#include "apps/common/ImageSize.h"
 #include "apps/ripple-boxes/BoxesScene.h"
 #include "mpi/Communicator.h"
 #include "mpi/Runtime.h"
@@ -49,15 +50,6 @@ void onStatus(const void* user, ANARIDevice, ANARIObject, ANARIDataType, ANARISt
     if (severity <= ANARI_SEVERITY_ERROR) ++log->errors;
     std::fprintf(stderr, "[ripple-boxes] rank %d %s: %s\n", log->rank,
                  severity <= ANARI_SEVERITY_ERROR ? "ERROR" : "WARNING", message ? message : "(no message)");
-}
-
-glm::uvec2 parseSize(const std::string& text) {
-    unsigned width = 0, height = 0;
-    char tail = 0;
-    if (std::sscanf(text.c_str(), "%ux%u%c", &width, &height, &tail) != 2 || width == 0 || height == 0 ||
-        width > 16384 || height > 16384)
-        throw std::runtime_error("--size '" + text + "' is not WIDTHxHEIGHT with sides of 1 to 16384 pixels");
-    return {width, height};
 }
 
 // What one rank measured in --bench mode; gathered on rank 0 as plain bytes.
@@ -210,7 +202,7 @@ void printDifference(const char* what, const Difference& d) {
 }
 
 int runCompare(const Options& options, const mpi::Communicator& ranks) {
-    const glm::uvec2 size = parseSize(options.size);
+    const glm::uvec2 size = parseImageSize(options.size);
     const std::vector<float> native = renderWay(options, size, ranks, Way::Native);
     const std::vector<float> composited = renderWay(options, size, ranks, Way::Composited);
     if (ranks.rank() != 0) return 0;
@@ -275,7 +267,7 @@ ANARIFrame makeFrame(Session& s, const Options& options, glm::uvec2 size, ANARIW
 }
 
 int run(const Options& options, const mpi::Communicator& ranks) {
-    const glm::uvec2 size = parseSize(options.size);
+    const glm::uvec2 size = parseImageSize(options.size);
     const auto rank = uint32_t(ranks.rank()), rankCount = uint32_t(ranks.size());
     const bool pfm = std::filesystem::path(options.output).extension() == ".pfm";
 

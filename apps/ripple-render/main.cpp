@@ -6,6 +6,7 @@
 #include "apps/common/DemoScene.h"
 #include "apps/common/GltfScene.h"
 #include "apps/common/ImageIO.h"
+#include "apps/common/ImageSize.h"
 #include "apps/common/ScenePartition.h"
 #include "apps/ripple-render/Convergence.h"
 #include "apps/ripple-render/ErrorPlot.h"
@@ -20,7 +21,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <regex>
 #include <stdexcept>
 #include <string>
 
@@ -69,16 +69,6 @@ void onStatus(const void* user, ANARIDevice, ANARIObject, ANARIDataType, ANARISt
     } else if (severity <= ANARI_SEVERITY_PERFORMANCE_WARNING && !log->quiet) {
         std::fprintf(stderr, "[ripple-render] WARNING: %s\n", message ? message : "(no message)");
     }
-}
-
-glm::uvec2 parseSize(const std::string& text) {
-    static const std::regex pattern(R"((\d{1,5})x(\d{1,5}))");
-    std::smatch m;
-    if (!std::regex_match(text, m, pattern)) throw std::runtime_error("--size '" + text + "' is not WIDTHxHEIGHT");
-    const glm::uvec2 size(std::stoul(m[1]), std::stoul(m[2]));
-    if (size.x == 0 || size.y == 0 || size.x > 16384 || size.y > 16384)
-        throw std::runtime_error("--size " + text + ": each side must be 1 to 16384 pixels");
-    return size;
 }
 
 // Samples per frame: the smallest divisor of spp that needs at most 16 frames, so the progress line moves
@@ -145,7 +135,7 @@ struct Session {
 int render(const Options& options, const mpi::Communicator& ranks) {
     const PartitionKind partition = parsePartitionKind(options.partition);
     const bool root = ranks.rank() == 0;
-    const glm::uvec2 size = parseSize(options.size);
+    const glm::uvec2 size = parseImageSize(options.size);
     const bool pfm = std::filesystem::path(options.output).extension() == ".pfm";
     const std::filesystem::path reportFile = options.report;
     const std::filesystem::path plotFile = std::filesystem::path(options.report).replace_extension(".png");

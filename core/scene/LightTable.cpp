@@ -20,15 +20,6 @@ constexpr float kPi = glm::pi<float>();
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
 
-// The same test core::Scene applies before it traces an instance.
-bool affineAndInvertible(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
-    return std::abs(glm::determinant(glm::dmat3(glm::mat3(m)))) > 1e-30;
-}
-
 // Cosines of the spot profile's edges: none beyond openingAngle / 2, all within openingAngle / 2 - falloff.
 glm::vec2 spotCosines(const Light& light) {
     const float outer = std::clamp(0.5f * light.openingAngle, 0.0f, kPi);

@@ -29,14 +29,6 @@ bool sameOptions(const bvh::BuildOptions& a, const bvh::BuildOptions& b) {
            a.parallelThreshold == b.parallelThreshold;
 }
 
-bool affineAndInvertible(const glm::mat4& m) {
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            if (!std::isfinite(m[c][r])) return false;
-    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
-    return std::abs(glm::determinant(glm::dmat3(glm::mat3(m)))) > 1e-30;
-}
-
 // Rows of the affine part of a column-major matrix, as the kernels read them.
 void storeRows(const glm::dmat4& m, gpu::vec4 rows[3]) {
     for (int r = 0; r < 3; ++r)

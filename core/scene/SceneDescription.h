@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -145,6 +146,16 @@ struct Material {
     int32_t emissiveTexture = kNoTexture;  // rgb multiplies emissive; such surfaces are not lights
     int32_t opacityTexture = kNoTexture;
 };
+
+// Whether an instance transform can be traced: finite, affine (last row 0 0 0 1) and invertible. Instances
+// that fail it are skipped and reported (Scene), and their emitters are no lights (LightTable).
+inline bool affineAndInvertible(const glm::mat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!std::isfinite(m[c][r])) return false;
+    if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return false;
+    return std::abs(glm::determinant(glm::dmat3(glm::mat3(m)))) > 1e-30;
+}
 
 struct InstanceDescription {
     GeometryRef geometry;
