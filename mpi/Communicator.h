@@ -41,6 +41,9 @@ public:
     // Element-wise minimum / maximum over ranks, in place.
     void min(std::span<float> values) const;
     void max(std::span<float> values) const;
+    // Element-wise minimum and maximum over ranks of `values`, in one reduction (a check that the ranks
+    // agree costs one collective whatever the number of fields).
+    void minMax(std::span<const uint64_t> values, std::span<uint64_t> lowest, std::span<uint64_t> highest) const;
     // Every rank's bytes, indexed by rank (on every rank).
     std::vector<std::vector<uint8_t>> allgather(std::span<const uint8_t> bytes) const;
     // Every rank's bytes on rank 0 (indexed by rank); empty on the others.

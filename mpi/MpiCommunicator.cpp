@@ -93,6 +93,27 @@ void Communicator::max(std::span<float> values) const {
     RIPPLE_MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, values.data(), countOf(values.size()), MPI_FLOAT, MPI_MAX, handle_->comm));
 }
 
+void Communicator::minMax(std::span<const uint64_t> values, std::span<uint64_t> lowest,
+                          std::span<uint64_t> highest) const {
+    if (lowest.size() != values.size() || highest.size() != values.size())
+        throw MpiError("minMax: " + std::to_string(values.size()) + " values for " + std::to_string(lowest.size()) +
+                       " and " + std::to_string(highest.size()) + " results");
+    // The maximum of ~v is ~(the minimum of v): both extremes come out of one MPI_MAX.
+    const size_t n = values.size();
+    std::vector<uint64_t> both(2 * n);
+    for (size_t i = 0; i < n; ++i) {
+        both[i] = values[i];
+        both[n + i] = ~values[i];
+    }
+    if (distributed() && n > 0)
+        RIPPLE_MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, both.data(), countOf(both.size()), MPI_UINT64_T, MPI_MAX,
+                                       handle_->comm));
+    for (size_t i = 0; i < n; ++i) {
+        highest[i] = both[i];
+        lowest[i] = ~both[n + i];
+    }
+}
+
 std::vector<std::vector<uint8_t>> Communicator::allgather(std::span<const uint8_t> bytes) const {
     if (!distributed()) return {std::vector<uint8_t>(bytes.begin(), bytes.end())};
     const int mine = countOf(bytes.size());

@@ -17,6 +17,12 @@ uint64_t Communicator::sum(uint64_t value) const { return value; }
 uint64_t Communicator::max(uint64_t value) const { return value; }
 void Communicator::min(std::span<float>) const {}
 void Communicator::max(std::span<float>) const {}
+void Communicator::minMax(std::span<const uint64_t> values, std::span<uint64_t> lowest,
+                          std::span<uint64_t> highest) const {
+    if (lowest.size() != values.size() || highest.size() != values.size())
+        throw MpiError("minMax: result spans do not match the values");
+    for (size_t i = 0; i < values.size(); ++i) lowest[i] = highest[i] = values[i];
+}
 std::vector<std::vector<uint8_t>> Communicator::allgather(std::span<const uint8_t> bytes) const {
     return {std::vector<uint8_t>(bytes.begin(), bytes.end())};
 }

@@ -1,61 +1,103 @@
-// Agreement across ranks (see DataParallelFrame.h): every rank gathers every rank's identity, so all of
-// them reach the same verdict and either all render or none does (no rank waits for a collective the
-// others skipped).
+// Data-parallel distribution of a frame (see DataParallelFrame.h). Agreement costs one allreduce of the
+// fingerprint's minimum and maximum; only when they differ are the fingerprints gathered, to name the rank
+// and field. Every rank reaches the same verdict, so either all render or none does (no rank waits for a
+// collective the others skipped).
 #include "anari/device/frame/DataParallelFrame.h"
 
+#include "anari/anari_type_traits.hpp"
 #include "anari/device/scene/SceneSync.h"
+#include "mpi/FrameGather.h"
 #include "mpi/LightGather.h"
 
+#include <algorithm>
 #include <cstring>
-#include <type_traits>
-#include <vector>
 
 namespace ripple::device {
+namespace {
 
-static_assert(std::is_trivially_copyable_v<FrameIdentity>);
+std::string sizeText(uint64_t size) { return std::to_string(size >> 32) + "x" + std::to_string(size & 0xffffffffu); }
 
-std::string ranksDisagree(const mpi::Communicator& ranks, const FrameIdentity& mine) {
-    FrameIdentity zeroed;
-    std::memset(static_cast<void*>(&zeroed), 0, sizeof(zeroed));  // padding compares equal
-    zeroed.frameIndex = mine.frameIndex;
-    zeroed.worldIndex = mine.worldIndex;
-    zeroed.size = mine.size;
-    zeroed.renderable = mine.renderable;
-    zeroed.pixelSamples = mine.pixelSamples;
-    zeroed.maxPathLength = mine.maxPathLength;
-    zeroed.camera = mine.camera;
-    const auto bytes = std::span(reinterpret_cast<const uint8_t*>(&zeroed), sizeof(zeroed));
-    const std::vector<std::vector<uint8_t>> all = ranks.allgather(bytes);
-    std::vector<FrameIdentity> ids(all.size());
-    for (size_t r = 0; r < all.size(); ++r) {
-        if (all[r].size() != sizeof(FrameIdentity)) return "rank " + std::to_string(r) + " sent a malformed frame identity";
-        std::memcpy(static_cast<void*>(&ids[r]), all[r].data(), sizeof(FrameIdentity));
-    }
-    for (size_t r = 0; r < ids.size(); ++r)
-        if (!ids[r].renderable) return "rank " + std::to_string(r) + " cannot render this frame (see its messages)";
-    const FrameIdentity& root = ids[0];
-    for (size_t r = 1; r < ids.size(); ++r) {
-        const FrameIdentity& other = ids[r];
+std::string channelsText(uint64_t channels) {
+    const auto color = ANARIDataType(channels >> 32);
+    std::string text = color == ANARI_UNKNOWN ? "no color" : std::string("color ") + ripple_anari::typeName(color);
+    const char* const names[] = {"depth", "albedo", "normal", "primitiveId", "objectId", "instanceId"};
+    const core::FrameChannels one[] = {{.depth = true},       {.albedo = true},   {.normal = true},
+                                       {.primitiveId = true}, {.objectId = true}, {.instanceId = true}};
+    for (size_t i = 0; i < 6; ++i)
+        if (uint32_t(channels) & core::channelFeatures(one[i])) text += std::string(", ") + names[i];
+    return text;
+}
+
+}  // namespace
+
+DataParallelFrame::DataParallelFrame(const mpi::Communicator& ranks) : ring_(ranks) {}
+
+std::string describeDisagreement(const std::vector<FrameFingerprint>& ranks) {
+    using F = FrameFingerprint;
+    for (size_t r = 0; r < ranks.size(); ++r)
+        if (!ranks[r].fields[F::Renderable])
+            return "rank " + std::to_string(r) + " cannot render this frame (see its messages)";
+    const auto& root = ranks.front().fields;
+    for (size_t r = 1; r < ranks.size(); ++r) {
+        const auto& other = ranks[r].fields;
         const std::string rank = "rank " + std::to_string(r);
-        if (other.frameIndex != root.frameIndex)
-            return rank + " renders its frame #" + std::to_string(other.frameIndex) + ", rank 0 its frame #" +
-                   std::to_string(root.frameIndex) + ": every rank must create the same frames in the same order";
-        if (other.worldIndex != root.worldIndex)
-            return rank + " renders its world #" + std::to_string(other.worldIndex) + ", rank 0 its world #" +
-                   std::to_string(root.worldIndex) + ": every rank must create the same worlds in the same order";
-        if (other.size != root.size)
-            return rank + "'s frame is " + std::to_string(other.size.x) + "x" + std::to_string(other.size.y) +
-                   ", rank 0's " + std::to_string(root.size.x) + "x" + std::to_string(root.size.y);
-        if (std::memcmp(&other.camera, &root.camera, sizeof(core::Camera)) != 0)
+        const auto differs = [&](F::Field f) { return other[f] != root[f]; };
+        if (differs(F::FrameIndex))
+            return rank + " renders its frame #" + std::to_string(other[F::FrameIndex]) + ", rank 0 its frame #" +
+                   std::to_string(root[F::FrameIndex]) + ": every rank must create the same frames in the same order";
+        if (differs(F::WorldIndex))
+            return rank + " renders its world #" + std::to_string(other[F::WorldIndex]) + ", rank 0 its world #" +
+                   std::to_string(root[F::WorldIndex]) + ": every rank must create the same worlds in the same order";
+        if (differs(F::Size))
+            return rank + "'s frame is " + sizeText(other[F::Size]) + ", rank 0's " + sizeText(root[F::Size]);
+        if (differs(F::Channels))
+            return rank + "'s frame has " + channelsText(other[F::Channels]) + ", rank 0's " +
+                   channelsText(root[F::Channels]) + ": every rank must enable the same channels";
+        if (differs(F::PixelSamples))
+            return rank + "'s renderer has pixelSamples " + std::to_string(other[F::PixelSamples]) + ", rank 0's " +
+                   std::to_string(root[F::PixelSamples]);
+        if (differs(F::MaxPathLength))
+            return rank + "'s renderer has maxPathLength " + std::to_string(other[F::MaxPathLength]) + ", rank 0's " +
+                   std::to_string(root[F::MaxPathLength]);
+        if (differs(F::Renderer))
+            return rank + "'s renderer differs from rank 0's (subtype or parameters): every rank must set the same renderer";
+        if (differs(F::Camera))
             return rank + "'s camera differs from rank 0's: every rank must set the same camera";
-        if (other.pixelSamples != root.pixelSamples || other.maxPathLength != root.maxPathLength)
-            return rank + "'s renderer differs from rank 0's (pixelSamples, maxPathLength)";
     }
     return {};
 }
 
-const core::Scene& sceneWithSharedEmitters(const mpi::Communicator& ranks, SceneSync& sync,
-                                           const vk::Context& context, bool& rebuilt) {
+std::string DataParallelFrame::disagreement(const FrameFingerprint& mine) {
+    const mpi::Communicator& ranks = ring_.communicator();
+    std::array<uint64_t, FrameFingerprint::kFieldCount> lowest{}, highest{};
+    ranks.minMax(mine.fields, lowest, highest);
+    if (lowest == highest && lowest[FrameFingerprint::Renderable] == 1) return {};
+    // Some field differs, or no rank can render: gather the fingerprints to say which rank and what.
+    const auto bytes = std::span(reinterpret_cast<const uint8_t*>(mine.fields.data()), sizeof(mine.fields));
+    const std::vector<std::vector<uint8_t>> all = ranks.allgather(bytes);
+    std::vector<FrameFingerprint> fingerprints(all.size());
+    for (size_t r = 0; r < all.size(); ++r) {
+        if (all[r].size() != sizeof(mine.fields)) return "rank " + std::to_string(r) + " sent a malformed frame fingerprint";
+        std::memcpy(fingerprints[r].fields.data(), all[r].data(), sizeof(mine.fields));
+    }
+    const std::string why = describeDisagreement(fingerprints);
+    return why.empty() ? "the ranks' frames differ" : why;
+}
+
+bool DataParallelFrame::shareLights(SceneSync& sync, World& world, bool restart) {
+    const mpi::Communicator& ranks = ring_.communicator();
+    bvh::Aabb bounds = worldBounds(world);
+    ranks.min(std::span<float>(&bounds.lo.x, 3));
+    ranks.max(std::span<float>(&bounds.hi.x, 3));
+    const float radius = bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.hi - bounds.lo);
+    const glm::vec3 largest = glm::max(glm::abs(bounds.lo), glm::abs(bounds.hi));
+    const float magnitude = bounds.empty() ? 0.0f : std::max(largest.x, std::max(largest.y, largest.z));
+    const bool lightsChanged = sync.setLights(mpi::gatherLights(ranks, sync.localLights()), radius, magnitude);
+    return ranks.max((lightsChanged || restart) ? 1 : 0) > 0;
+}
+
+const core::Scene& DataParallelFrame::scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) {
+    const mpi::Communicator& ranks = ring_.communicator();
     const core::Scene* scene = &sync.scene(context, rebuilt);
     if (ranks.max(rebuilt ? 1 : 0) == 0) return *scene;  // no emitter can have changed anywhere
     if (sync.setForeignTriangleLights(mpi::gatherForeignLightRecords(ranks, scene->triangleLights()))) {
@@ -64,6 +106,15 @@ const core::Scene& sceneWithSharedEmitters(const mpi::Communicator& ranks, Scene
         rebuilt = true;
     }
     return *scene;
+}
+
+void DataParallelFrame::gather(glm::uvec2 size, size_t bytesPerPixel, void* pixels) {
+    mpi::gatherFrame(ring_.communicator(), size, bytesPerPixel, pixels);
+}
+
+void DataParallelFrame::failed(const std::string& message) {
+    ring_.communicator().abort(message);
+    std::abort();  // abort() returns only for one rank, which this distribution never has
 }
 
 }  // namespace ripple::device

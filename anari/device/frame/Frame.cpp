@@ -1,10 +1,7 @@
 // Frame parameters, the asynchronous render on a worker thread, and channel mapping (see Frame.h).
 #include "anari/device/frame/Frame.h"
 
-#include "anari/device/frame/DataParallelFrame.h"
 #include "anari/device/object/DeviceState.h"
-#include "mpi/FrameGather.h"
-#include "mpi/LightGather.h"
 #include "core/vk/Context.h"
 
 #include <algorithm>
@@ -51,7 +48,8 @@ void Frame::commit() {
     camera_ = ObjectRef<Camera>(dynamic_cast<Camera*>(getObject("camera", ANARI_CAMERA)));
     renderer_ = ObjectRef<Renderer>(dynamic_cast<Renderer*>(getObject("renderer", ANARI_RENDERER)));
 
-    // 16384 is far beyond what lavapipe renders interactively, and keeps width * height * 16 in range.
+    // 16384 is far beyond what lavapipe renders interactively; whether a size fits in memory is checked at
+    // render (FrameMemory.h), once the channels and the device are known.
     size_ = get<glm::uvec2>("size", glm::uvec2(0));
     if (size_.x == 0 || size_.y == 0 || size_.x > 16384 || size_.y > 16384)
         invalidate(has("size") ? "parameter 'size' must be between 1x1 and 16384x16384"
@@ -91,29 +89,47 @@ void Frame::commit() {
     channels_.primitiveId = pullTypedChannel("channel.primitiveId", ANARI_UINT32);
     channels_.objectId = pullTypedChannel("channel.objectId", ANARI_UINT32);
     channels_.instanceId = pullTypedChannel("channel.instanceId", ANARI_UINT32);
+
+    // KHR_FRAME_COMPLETION_CALLBACK: called once per render, when its results can be mapped.
+    completion_ = nullptr;
+    if (const Parameter* callback = findParameter("frameCompletionCallback")) {
+        if (callback->type == ANARI_FRAME_COMPLETION_CALLBACK)
+            std::memcpy(&completion_, callback->bytes.data(), sizeof(completion_));
+        else
+            reportError(std::string("parameter 'frameCompletionCallback' is ") + ripple_anari::typeName(callback->type) +
+                        "; expected ANARI_FRAME_COMPLETION_CALLBACK. No callback");
+    }
+    completionUserData_ = nullptr;
+    if (const Parameter* user = findParameter("frameCompletionCallbackUserData")) {
+        if (user->type == ANARI_VOID_POINTER)
+            std::memcpy(&completionUserData_, user->bytes.data(), sizeof(completionUserData_));
+        else
+            reportError(std::string("parameter 'frameCompletionCallbackUserData' is ") +
+                        ripple_anari::typeName(user->type) + "; expected ANARI_VOID_POINTER. Passing NULL");
+    }
 }
 
-// Collective: false (reported on every rank) unless all ranks can render the same frame together.
-bool Frame::prepareDistributed(bool renderable, bool& restart) {
-    FrameIdentity mine;
-    mine.frameIndex = globalIndex_;
-    mine.worldIndex = world_ ? world_->globalIndex() : ~0ull;
-    mine.size = size_;
-    mine.renderable = renderable;
-    if (renderable) {
-        mine.camera = camera_->camera(float(size_.x) / float(size_.y));
-        mine.pixelSamples = renderer_->settings().pixelSamples;
-        mine.maxPathLength = renderer_->settings().maxPathLength;
-    }
-    restart = false;
-    if (const std::string why = ranksDisagree(state().communicator(), mine); !why.empty()) {
-        reportError("cannot render (data-parallel): " + why);
-        return false;
-    }
-    return true;
+FrameFingerprint Frame::fingerprint(bool renderable) const {
+    using F = FrameFingerprint;
+    FrameFingerprint mine;
+    mine.fields[F::FrameIndex] = globalIndex_;
+    mine.fields[F::WorldIndex] = world_ ? world_->globalIndex() : ~0ull;
+    mine.fields[F::Size] = uint64_t(size_.x) << 32 | size_.y;
+    mine.fields[F::Channels] = uint64_t(uint32_t(colorType_)) << 32 | core::channelFeatures(channels_);
+    if (!renderable) return mine;  // camera and renderer may be missing: Renderable stays 0
+    mine.fields[F::Renderable] = 1;
+    const core::RenderSettings& settings = renderer_->settings();
+    mine.fields[F::PixelSamples] = settings.pixelSamples;
+    mine.fields[F::MaxPathLength] = settings.maxPathLength;
+    const std::string& rendererType = renderer_->subtype();
+    mine.fields[F::Renderer] = fingerprintHash(&settings, sizeof(settings), fingerprintHash(rendererType.data(), rendererType.size()));
+    const core::Camera camera = camera_->camera(float(size_.x) / float(size_.y));
+    const std::string& cameraType = camera_->subtype();
+    mine.fields[F::Camera] = fingerprintHash(&camera, sizeof(camera), fingerprintHash(cameraType.data(), cameraType.size()));
+    return mine;
 }
 
-std::string Frame::whyNotRenderable() const {
+std::string Frame::whyNotRenderable() {
     if (!isValid()) return "the frame's parameters are invalid (reported at commit)";
     if (!world_) return "no usable 'world'";
     if (!camera_) return "no usable 'camera'";
@@ -121,20 +137,25 @@ std::string Frame::whyNotRenderable() const {
     if (!world_->isValid()) return "its world is invalid";
     if (!camera_->isValid()) return "its camera is invalid";
     if (!renderer_->isValid()) return "its renderer is invalid";
+    const uint32_t channelBits = core::channelFeatures(channels_);
+    if (acceptedMemory_ && size_ == acceptedSize_ && colorType_ == acceptedColorType_ && channelBits == acceptedChannels_)
+        return {};
+    // The buffers of the size rendered so far go when the frame resizes: they count as available.
+    AvailableMemory available = availableMemory(state().vulkan());
+    if (acceptedMemory_) {
+        available.hostBytes += available.unified ? acceptedMemory_->total() : acceptedMemory_->hostBytes;
+        available.deviceBytes += acceptedMemory_->deviceBytes;
+    }
+    const std::optional<FrameMemory> needed = estimateFrameMemory(size_, colorType_, channels_);
+    if (std::string why = whyFrameDoesNotFit(size_, needed, available); !why.empty()) return why;
+    acceptedMemory_ = needed;
+    acceptedSize_ = size_;
+    acceptedColorType_ = colorType_;
+    acceptedChannels_ = channelBits;
     return {};
 }
 
-void Frame::renderFrame() {
-    waitForWorker();
-    discarded_ = false;
-    const bool distributed = state().communicator().distributed();
-    bool restart = false;
-    if (distributed && !prepareDistributed(whyNotRenderable().empty(), restart)) return;
-    if (const std::string why = whyNotRenderable(); !why.empty()) {
-        reportError("cannot render: " + why);
-        return;
-    }
-
+Frame::Job Frame::makeJob() const {
     Job job;
     job.size = size_;
     job.colorType = colorType_;
@@ -142,24 +163,32 @@ void Frame::renderFrame() {
     job.channels = channels_;
     job.camera = camera_->camera(float(size_.x) / float(size_.y));
     job.settings = renderer_->settings();
+    job.completion = completion_;
+    job.completionUserData = completionUserData_;
+    return job;
+}
+
+void Frame::renderFrame() {
+    waitForWorker();
+    discarded_ = false;
+    if (!distribution_) distribution_ = makeFrameDistribution(state().communicator());
+    // Collective where data-parallel: every rank learns whether all can render the same frame, so that
+    // either all render or none does.
+    const std::string why = whyNotRenderable();
+    if (!why.empty()) reportError("cannot render: " + why);
+    if (const std::string disagreement = distribution_->disagreement(fingerprint(why.empty())); !disagreement.empty()) {
+        reportError("cannot render (data-parallel): " + disagreement);
+        return;
+    }
+    if (!why.empty()) return;
+
+    Job job = makeJob();
     // Scene sync runs here, on the application's thread: the objects are only ever read on it.
     const bool sceneChanged = sync_.update(*world_);
     const bool cameraChanged = camera_.get() != renderedCamera_ || camera_->lastCommitted() != renderedCameraStamp_;
     const bool rendererChanged =
         renderer_.get() != renderedRenderer_ || renderer_->lastCommitted() != renderedRendererStamp_;
-    job.restartAccumulation = sceneChanged || cameraChanged || rendererChanged;
-    if (distributed) {  // lights of every rank, the world's radius, and a restart anywhere restarts all
-        const mpi::Communicator& ranks = state().communicator();
-        bvh::Aabb bounds = worldBounds(*world_);
-        ranks.min(std::span<float>(&bounds.lo.x, 3));
-        ranks.max(std::span<float>(&bounds.hi.x, 3));
-        const float radius = bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.hi - bounds.lo);
-        const glm::vec3 largest = glm::max(glm::abs(bounds.lo), glm::abs(bounds.hi));
-        const float magnitude = bounds.empty() ? 0.0f : std::max(largest.x, std::max(largest.y, largest.z));
-        restart = sync_.setLights(mpi::gatherLights(ranks, sync_.localLights()), radius, magnitude) ||
-                  job.restartAccumulation;
-        job.restartAccumulation = ranks.max(restart ? 1 : 0) > 0;
-    }
+    job.restartAccumulation = distribution_->shareLights(sync_, *world_, sceneChanged || cameraChanged || rendererChanged);
     renderedCamera_ = camera_.get();
     renderedCameraStamp_ = camera_->lastCommitted();
     renderedRenderer_ = renderer_.get();
@@ -167,7 +196,7 @@ void Frame::renderFrame() {
 
     finished_ = false;
     state().beginWork();
-    if (distributed) return run(job);
+    if (!distribution_->rendersOnWorker()) return run(job);
     try {
         worker_ = std::thread([this, job] { run(job); });
     } catch (...) {
@@ -180,82 +209,87 @@ void Frame::renderFrame() {
 void Frame::run(const Job& job) {
     const auto start = std::chrono::steady_clock::now();
     try {
-        std::lock_guard gpu(gpuMutex());
-        vk::Context& context = state().vulkan();
-        const uint64_t validationBefore = context.validationMessageCount();
-        if (!tracer_) {
-            core::PathTracerOptions options;
-            if (state().communicator().distributed()) {
-                ring_ = std::make_unique<mpi::RingExchange>(state().communicator());
-                options.exchange = ring_.get();
-            }
-            tracer_ = std::make_unique<core::PathTracer>(context, core::TraceOptions{}, options);
-        }
-
-        bool rebuilt = false;
-        const core::Scene& scene =
-            ring_ ? sceneWithSharedEmitters(ring_->communicator(), sync_, context, rebuilt) : sync_.scene(context, rebuilt);
-        if (rebuilt)
-            for (const std::string& message : scene.report().messages) reportWarning("scene: " + message);
-
-        // Resizing clears the accumulation as well.
-        if (tracer_->size() != job.size || core::channelFeatures(tracerChannels_) != core::channelFeatures(job.channels)) {
-            tracer_->resize(job.size, job.channels);
-            tracerChannels_ = job.channels;
-        } else if (job.restartAccumulation)
-            tracer_->resetAccumulation();
-
-        if (!discarded_) {
-            if (ring_) ring_->resetStats();
-            const core::FrameStats stats = tracer_->render(scene, job.camera, job.settings);
-            Results results;
-            results.size = job.size;
-            results.colorType = job.colorType;
-            const size_t pixels = size_t(job.size.x) * job.size.y;
-            if (job.colorType != ANARI_UNKNOWN) {
-                results.color.resize(pixels * (job.colorType == ANARI_FLOAT32_VEC4 ? 16 : 4));
-                tracer_->readColor(colorFormatOf(job.colorType), results.color.data());
-            }
-            if (job.depth) {
-                results.depth.resize(pixels);
-                tracer_->readDepth(results.depth.data());
-            }
-            readSurfaceChannels(job, pixels, results);
-            if (ring_) {  // rank 0 assembles every rank's pixel bands; the others keep an undefined frame
-                const mpi::Communicator& ranks = ring_->communicator();
-                if (!results.color.empty())
-                    mpi::gatherFrame(ranks, job.size, results.color.size() / pixels, results.color.data());
-                if (!results.depth.empty()) mpi::gatherFrame(ranks, job.size, sizeof(float), results.depth.data());
-            }
-            results.numSamples = tracer_->accumulatedSamples();
-            const double rays = double(stats.raysTraced + stats.shadowRays);
-            results.raysPerSecond = stats.seconds > 0.0 ? float(rays / stats.seconds) : 0.0f;
-            results.sceneBuilds = sync_.builds();
-            results.blasBuilt = scene.report().blasBuilt;
-            results.blasReused = scene.report().blasReused;
-            results.sceneBytes = scene.report().gpuBytes;
-            if (ring_) {
-                results.raysSent = ring_->stats().raysSent;
-                results.bytesSent = ring_->stats().bytesSent;
-            }
-            results.duration = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
-            std::lock_guard lock(resultsMutex_);
-            results_ = std::move(results);
-        }
-        // Validation runs inside the device, where the application cannot see it: say so through the
-        // status callback, as an error, so tests fail on it.
-        if (context.validationMessageCount() != validationBefore)
-            reportError("Vulkan validation: " + context.lastValidationMessage());
+        renderJob(job, start);
     } catch (const std::exception& error) {
         reportError(std::string("rendering failed: ") + error.what());
-        // The other ranks wait in the exchange for this one: end them all, with the message, never hang.
-        if (ring_) ring_->communicator().abort(std::string("rendering failed: ") + error.what());
+        distribution_->failed(std::string("rendering failed: ") + error.what());
     } catch (...) {
         reportError("rendering failed: unknown exception");
-        if (ring_) ring_->communicator().abort("rendering failed: unknown exception");
+        distribution_->failed("rendering failed: unknown exception");
     }
     finished_ = true;
+    // After the results are in place (anariFrameReady answers 1 and the frame maps inside the callback), and
+    // before endWork, so that the device outlives the callback.
+    if (job.completion && !discarded_) {
+        try {
+            job.completion(job.completionUserData, state().handle(), reinterpret_cast<ANARIFrame>(handle()));
+        } catch (...) {
+            reportError("the frame completion callback threw an exception");
+        }
+    }
     state().endWork();
+}
+
+void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_point& start) {
+    std::lock_guard gpu(gpuMutex());
+    vk::Context& context = state().vulkan();
+    const uint64_t validationBefore = context.validationMessageCount();
+    core::RayExchange* exchange = distribution_->exchange();
+    if (!tracer_) {
+        core::PathTracerOptions options;
+        options.exchange = exchange;
+        tracer_ = std::make_unique<core::PathTracer>(context, core::TraceOptions{}, options);
+    }
+
+    bool rebuilt = false;
+    const core::Scene& scene = distribution_->scene(sync_, context, rebuilt);
+    if (rebuilt)
+        for (const std::string& message : scene.report().messages) reportWarning("scene: " + message);
+
+    // Resizing clears the accumulation as well.
+    if (tracer_->size() != job.size || core::channelFeatures(tracerChannels_) != core::channelFeatures(job.channels)) {
+        tracer_->resize(job.size, job.channels);
+        tracerChannels_ = job.channels;
+    } else if (job.restartAccumulation)
+        tracer_->resetAccumulation();
+
+    if (!discarded_) {
+        if (exchange) exchange->resetStats();
+        const core::FrameStats stats = tracer_->render(scene, job.camera, job.settings);
+        Results results;
+        results.size = job.size;
+        results.colorType = job.colorType;
+        const size_t pixels = size_t(job.size.x) * job.size.y;
+        if (job.colorType != ANARI_UNKNOWN) {
+            results.color.resize(pixels * (job.colorType == ANARI_FLOAT32_VEC4 ? 16 : 4));
+            tracer_->readColor(colorFormatOf(job.colorType), results.color.data());
+        }
+        if (job.depth) {
+            results.depth.resize(pixels);
+            tracer_->readDepth(results.depth.data());
+        }
+        readSurfaceChannels(job, pixels, results);
+        if (!results.color.empty()) distribution_->gather(job.size, results.color.size() / pixels, results.color.data());
+        if (!results.depth.empty()) distribution_->gather(job.size, sizeof(float), results.depth.data());
+        results.numSamples = tracer_->accumulatedSamples();
+        const double rays = double(stats.raysTraced + stats.shadowRays);
+        results.raysPerSecond = stats.seconds > 0.0 ? float(rays / stats.seconds) : 0.0f;
+        results.sceneBuilds = sync_.builds();
+        results.blasBuilt = scene.report().blasBuilt;
+        results.blasReused = scene.report().blasReused;
+        results.sceneBytes = scene.report().gpuBytes;
+        if (exchange) {
+            results.raysSent = exchange->stats().raysSent;
+            results.bytesSent = exchange->stats().bytesSent;
+        }
+        results.duration = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
+        std::lock_guard lock(resultsMutex_);
+        results_ = std::move(results);
+    }
+    // Validation runs inside the device, where the application cannot see it: say so through the status
+    // callback, as an error, so tests fail on it.
+    if (context.validationMessageCount() != validationBefore)
+        reportError("Vulkan validation: " + context.lastValidationMessage());
 }
 
 void Frame::readSurfaceChannels(const Job& job, size_t pixels, Results& results) {
@@ -279,10 +313,13 @@ void Frame::readSurfaceChannels(const Job& job, size_t pixels, Results& results)
 }
 
 void Frame::waitForWorker() {
-    if (worker_.joinable()) worker_.join();
+    // The completion callback runs on the worker and may map the frame or ask whether it is ready: the
+    // render is over by then, and a thread cannot join itself.
+    if (worker_.joinable() && worker_.get_id() != std::this_thread::get_id()) worker_.join();
 }
 
 bool Frame::ready(bool wait) {
+    if (worker_.joinable() && worker_.get_id() == std::this_thread::get_id()) return finished_;
     if (wait || finished_) waitForWorker();
     return !worker_.joinable();
 }

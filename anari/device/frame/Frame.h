@@ -1,16 +1,19 @@
 // ANARI frame: renders a world through a camera with a renderer into the requested channels. renderFrame()
 // syncs the scene on the calling thread, then returns while a worker thread runs core::PathTracer; frames
-// accumulate samples until the world, camera, renderer or size change.
+// accumulate samples until the world, camera, renderer or size change. Whether it renders alone or
+// data-parallel is its FrameDistribution's business.
 #pragma once
 
 #include "anari/device/camera/Camera.h"
+#include "anari/device/frame/FrameDistribution.h"
+#include "anari/device/frame/FrameMemory.h"
 #include "anari/device/renderer/Renderer.h"
 #include "anari/device/scene/SceneSync.h"
 #include "anari/device/world/World.h"
 #include "core/render/PathTracer.h"
-#include "mpi/RingExchange.h"
 
 #include <atomic>
+#include <chrono>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -49,6 +52,8 @@ private:
         bool restartAccumulation = false;
         core::Camera camera;
         core::RenderSettings settings;
+        ANARIFrameCompletionCallback completion = nullptr;  // KHR_FRAME_COMPLETION_CALLBACK
+        const void* completionUserData = nullptr;
     };
     // What the worker hands back (guarded by resultsMutex_).
     struct Results {
@@ -70,9 +75,12 @@ private:
         uint64_t sceneBytes = 0;               // GPU memory of this rank's part of the scene
     };
 
-    // Why this frame cannot render now, or empty when it can.
-    std::string whyNotRenderable() const;
+    // Why this frame cannot render now, or empty when it can; includes the memory check of a new size.
+    std::string whyNotRenderable();
+    FrameFingerprint fingerprint(bool renderable) const;
+    Job makeJob() const;
     void run(const Job& job);
+    void renderJob(const Job& job, const std::chrono::steady_clock::time_point& start);
     // Worker: copies the albedo, normal and id channels the job asked for out of the tracer.
     void readSurfaceChannels(const Job& job, size_t pixels, Results& results);
     void waitForWorker();
@@ -85,6 +93,8 @@ private:
     ObjectRef<World> world_;
     ObjectRef<Camera> camera_;
     ObjectRef<Renderer> renderer_;
+    ANARIFrameCompletionCallback completion_ = nullptr;
+    const void* completionUserData_ = nullptr;
 
     // What the accumulation so far was rendered with: a change to any of them starts it over.
     const Object* renderedCamera_ = nullptr;
@@ -92,11 +102,15 @@ private:
     const Object* renderedRenderer_ = nullptr;
     uint64_t renderedRendererStamp_ = 0;
 
-    // Data-parallel ANARI: the N-th frame created on each rank is the same frame; with more than one rank
-    // the frame renders on the calling thread (MPI is called from one thread at a time).
+    // The memory of the last size and channels that fitted, released when the frame resizes.
+    std::optional<FrameMemory> acceptedMemory_;
+    glm::uvec2 acceptedSize_{0, 0};
+    ANARIDataType acceptedColorType_ = ANARI_UNKNOWN;
+    uint32_t acceptedChannels_ = 0;
+
+    // Data-parallel ANARI: the N-th frame created on each rank is the same frame.
     uint64_t globalIndex_ = 0;
-    std::unique_ptr<mpi::RingExchange> ring_;
-    bool prepareDistributed(bool renderable, bool& restart);
+    std::unique_ptr<FrameDistribution> distribution_;  // made at the first render (the communicator is known then)
     SceneSync sync_;                            // used by the API thread, then the worker, never both at once
     std::unique_ptr<core::PathTracer> tracer_;  // worker only
     core::FrameChannels tracerChannels_;        // worker only: what the tracer's buffers were sized for
