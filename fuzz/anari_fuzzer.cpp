@@ -284,7 +284,8 @@ private:
     void mapArray(Input& in) {
         Slot* s = live(in);
         if (!s || s->subtype) return;
-        void* p = anariMapArray(device_, s->handle);
+        const auto array = reinterpret_cast<ANARIArray>(s->handle);
+        void* p = anariMapArray(device_, array);
         TRACE("mapArray %p -> %p\n", (void*)s->handle, p);
         const size_t size = ripple_anari::sizeOf(s->elementType);
         // Handles are written only when every element can be a live one: a half-written object array
@@ -294,7 +295,7 @@ private:
             if (fillElements(in, staged.data(), s->elementType, s->elements, size))
                 std::memcpy(p, staged.data(), staged.size());
         }
-        anariUnmapArray(device_, s->handle);
+        anariUnmapArray(device_, array);
     }
 
     // A parameter of the object's subtype (mostly) or another name, in its listed type (mostly) or another.

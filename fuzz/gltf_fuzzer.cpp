@@ -2,6 +2,7 @@
 // this process's own (the importer reads paths; GLB or JSON is told by the magic, not the name).
 //
 // The importer's contract is "GltfError on anything malformed": any other exception escapes and is a finding.
+// RIPPLE_FUZZ_VERBOSE=1 prints what each input gave (counts, warnings, the error) while reproducing a case.
 #include "apps/common/GltfScene.h"
 
 #include <unistd.h>
@@ -11,14 +12,17 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 namespace {
 
 std::filesystem::path gFile;
+bool gVerbose = false;
 
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    gVerbose = std::getenv("RIPPLE_FUZZ_VERBOSE") != nullptr;
     // A folder per process: parallel fuzzing jobs must not overwrite each other's input.
     std::string pattern = (std::filesystem::temp_directory_path() / "ripple-fuzz-gltf-XXXXXX").string();
     if (!mkdtemp(pattern.data())) {
@@ -45,9 +49,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         const ripple::apps::GltfScene scene = ripple::apps::loadGltf(gFile, options);
         // Touch what a renderer reads first, so results that are inconsistent show up under the sanitizers.
-        volatile uint64_t drawn = scene.trianglesDrawn() + scene.trianglesStored();
-        (void)drawn;
-    } catch (const ripple::apps::GltfError&) {
+        const uint64_t drawn = scene.trianglesDrawn(), stored = scene.trianglesStored();
+        if (gVerbose) {
+            std::fprintf(stderr, "gltf: %llu triangles stored, %llu drawn, %zu materials, %zu textures, %zu cameras, "
+                         "%zu lights\n", (unsigned long long)stored, (unsigned long long)drawn, scene.materials.size(),
+                         scene.textures.size(), scene.cameras.size(), scene.lights.size());
+            for (const std::string& w : scene.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
+        }
+    } catch (const ripple::apps::GltfError& e) {
+        if (gVerbose) std::fprintf(stderr, "gltf: %s\n", e.what());
     }
     return 0;
 }
