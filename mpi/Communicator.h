@@ -53,6 +53,10 @@ public:
     // Sends to rank + 1 and receives from rank - 1 (cyclically): one hop of a ring.
     std::vector<uint8_t> ringShift(std::span<const uint8_t> bytes) const;
     void barrier() const;
+    // A barrier for places that must not hang (destructors, the device's last release): when a peer has not
+    // entered it within `seconds`, every rank is ended with `message` (MPI offers no way to leave a
+    // collective a peer never enters). Returns at once with one rank.
+    void barrierOrAbort(double seconds, const std::string& message) const;
     // Ends every rank of the communicator (MPI_Abort) after printing `message` to stderr; returns only
     // with one rank, where it throws MpiError instead.
     void abort(const std::string& message) const;

@@ -6,6 +6,8 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <cstdlib>
 #include <iostream>
 #include <limits>
@@ -203,6 +205,20 @@ std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) con
 
 void Communicator::barrier() const {
     if (distributed() && mpiActive()) RIPPLE_MPI_CHECK(MPI_Barrier(handle_->comm));
+}
+
+void Communicator::barrierOrAbort(double seconds, const std::string& message) const {
+    if (!distributed() || !mpiActive()) return;
+    MPI_Request request = MPI_REQUEST_NULL;
+    RIPPLE_MPI_CHECK(MPI_Ibarrier(handle_->comm, &request));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    for (int done = 0;;) {
+        RIPPLE_MPI_CHECK(MPI_Test(&request, &done, MPI_STATUS_IGNORE));
+        if (done) return;
+        if (std::chrono::steady_clock::now() > deadline)
+            abort(message + " (a rank did not reach it within " + std::to_string(seconds) + " s)");
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
 }
 
 void Communicator::abort(const std::string& message) const {

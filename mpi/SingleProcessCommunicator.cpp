@@ -37,6 +37,7 @@ std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) con
     return std::vector<uint8_t>(bytes.begin(), bytes.end());
 }
 void Communicator::barrier() const {}
+void Communicator::barrierOrAbort(double, const std::string&) const {}
 void Communicator::abort(const std::string& message) const { throw MpiError(message); }
 
 }  // namespace ripple::mpi

@@ -1,4 +1,4 @@
-// ripple-render: renders a glTF file or a built-in demo scene to a PNG (or PFM) through any ANARI library,
+// ripple-render: renders a glTF file or a built-in demo scene to a PNG (or JPEG, PFM) through any ANARI library,
 // using only standard ANARI objects and parameters. Frames accumulate samples batch by batch; after each the
 // float color channel feeds a no-reference error estimate (Convergence.h), reported as it falls.
 #include "apps/common/AnariParams.h"
@@ -10,16 +10,23 @@
 #include "apps/common/ScenePartition.h"
 #include "apps/ripple-render/Convergence.h"
 #include "apps/ripple-render/ErrorPlot.h"
+#include "apps/ripple-render/OutputImage.h"
 #include "apps/ripple-render/Progress.h"
+#include "apps/ripple-render/RankAgreement.h"
 #include "apps/ripple-render/RankStats.h"
 #include "mpi/Communicator.h"
 #include "mpi/Runtime.h"
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -120,7 +127,9 @@ void addFrameToEstimator(ANARIDevice device, ANARIFrame frame, glm::uvec2 size, 
     anariUnmapFrame(device, frame, "channel.color");
 }
 
-// The library, its device and the objects of one render, released in reverse order whatever happens.
+// The library, its device and the objects of one render, released in reverse order. It lives in main(),
+// outside the error handler: under mpirun a failing rank must end every rank before its device is
+// released, since that release is collective and the other ranks would never join it.
 struct Session {
     ANARILibrary library = nullptr;
     ANARIDevice device = nullptr;
@@ -132,69 +141,120 @@ struct Session {
     }
 };
 
-int render(const Options& options, const mpi::Communicator& ranks) {
-    const PartitionKind partition = parsePartitionKind(options.partition);
-    const bool root = ranks.rank() == 0;
-    const glm::uvec2 size = parseImageSize(options.size);
-    const bool pfm = std::filesystem::path(options.output).extension() == ".pfm";
-    const std::filesystem::path reportFile = options.report;
-    const std::filesystem::path plotFile = std::filesystem::path(options.report).replace_extension(".png");
+// What the options ask for, checked before any library is loaded so that bad input fails fast.
+struct RenderPlan {
+    PartitionKind partition = PartitionKind::RoundRobin;
+    bool root = true;
+    glm::uvec2 size{0, 0};
+    OutputFormat format = OutputFormat::Png;
+    std::filesystem::path reportFile, plotFile;
+    std::optional<LinearImage> reference;
+    std::string demo;                   // the demo scene, or empty for a file
+    std::optional<GltfScene> gltf;
+};
+
+// The host memory ripple-render's own buffers for a w x h image take: the estimator's sums (RGBA doubles:
+// the previous total and the two halves), one batch's sum while a frame is added, the mean image written
+// at the end, and the reference when given (RGB floats).
+uint64_t appBytes(glm::uvec2 size, bool reference) {
+    const uint64_t pixels = uint64_t(size.x) * size.y;  // two 32-bit factors: no overflow
+    return pixels * (3 * 32 + 32 + 16 + (reference ? 12 : 0));
+}
+
+// MemAvailable of /proc/meminfo, capped by RIPPLE_MEMORY_LIMIT (bytes) as the device caps it.
+uint64_t availableHostBytes() {
+    uint64_t available = std::numeric_limits<uint64_t>::max();
+    std::ifstream meminfo("/proc/meminfo");
+    for (std::string key; meminfo >> key;) {
+        uint64_t kib = 0;
+        if (key == "MemAvailable:" && meminfo >> kib) {
+            available = kib * 1024;
+            break;
+        }
+        meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    if (const char* limit = std::getenv("RIPPLE_MEMORY_LIMIT"); limit && *limit)
+        available = std::min<uint64_t>(available, std::strtoull(limit, nullptr, 10));
+    return available;
+}
+
+RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) {
+    RenderPlan plan;
+    plan.partition = parsePartitionKind(options.partition);
+    plan.root = ranks.rank() == 0;
+    plan.size = parseImageSize(options.size);
+    plan.format = outputFormatOf(options.output);
+    plan.reportFile = options.report;
+    plan.plotFile = std::filesystem::path(options.report).replace_extension(".png");
     if (!options.report.empty()) {
-        if (reportFile == plotFile)
+        if (plan.reportFile == plan.plotFile)
             throw std::runtime_error("--report " + options.report + ": give a .csv file (the plot goes beside it as .png)");
-        if (reportFile.has_parent_path() && !std::filesystem::is_directory(reportFile.parent_path()))
+        if (plan.reportFile.has_parent_path() && !std::filesystem::is_directory(plan.reportFile.parent_path()))
             throw std::runtime_error("--report " + options.report + ": no such folder");
-        if (std::filesystem::weakly_canonical(plotFile) == std::filesystem::weakly_canonical(options.output))
-            throw std::runtime_error("--report " + options.report + ": its plot " + plotFile.string() +
+        if (std::filesystem::weakly_canonical(plan.plotFile) == std::filesystem::weakly_canonical(options.output))
+            throw std::runtime_error("--report " + options.report + ": its plot " + plan.plotFile.string() +
                                      " would overwrite the output image");
         if (options.sppGiven && options.spp < 2)
             throw std::runtime_error("--report with --spp 1: the error estimate needs 2 samples or more");
     }
-    // Read before any library is loaded, so that a bad reference fails fast.
-    std::optional<LinearImage> reference;
+    // Only rank 0 writes: it finds out now, not after the render, that it cannot.
+    if (plan.root) checkOutputWritable(options.output);
+    if (const uint64_t needed = appBytes(plan.size, !options.reference.empty()), available = availableHostBytes();
+        needed > available)
+        throw std::runtime_error("--size " + std::to_string(plan.size.x) + "x" + std::to_string(plan.size.y) +
+                                 ": ripple-render's image buffers need " + std::to_string(needed) + " bytes but only " +
+                                 std::to_string(available) + " are available; use a smaller size");
     if (!options.reference.empty()) {
-        reference = readLinearImage(options.reference);
-        if (reference->width != size.x || reference->height != size.y)
-            throw std::runtime_error("--reference " + options.reference + " is " + std::to_string(reference->width) +
-                                     "x" + std::to_string(reference->height) + " but the render is " + options.size);
+        plan.reference = readLinearImage(options.reference);
+        if (plan.reference->width != plan.size.x || plan.reference->height != plan.size.y)
+            throw std::runtime_error("--reference " + options.reference + " is " + std::to_string(plan.reference->width) +
+                                     "x" + std::to_string(plan.reference->height) + " but the render is " + options.size);
     }
     if (!options.scene.empty() && !options.demo.empty())
         throw std::runtime_error("give either a scene file or --demo, not both");
-    const std::string demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
-    if (!demo.empty()) checkDemoSceneName(demo);
+    plan.demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
+    if (!plan.demo.empty()) checkDemoSceneName(plan.demo);
+    if (ranks.distributed() && !plan.demo.empty())
+        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
 
-    // The file is read before any library is loaded, so a bad file fails fast and alone.
-    std::optional<GltfScene> gltf;
+    // The file is read before any library is loaded, so a bad file fails fast.
     if (!options.scene.empty()) {
-        gltf = loadGltf(options.scene);
-        if (!options.quiet && root)
-            for (const std::string& warning : gltf->warnings) std::fprintf(stderr, "[ripple-render] WARNING: %s\n", warning.c_str());
+        plan.gltf = loadGltf(options.scene);
+        if (!options.quiet && plan.root)
+            for (const std::string& warning : plan.gltf->warnings)
+                std::fprintf(stderr, "[ripple-render] WARNING: %s\n", warning.c_str());
     }
+    return plan;
+}
 
-    StatusLog log{options.quiet, 0};
-    Session s;
+void openDevice(const Options& options, StatusLog& log, Session& s) {
     s.library = anariLoadLibrary(options.library.c_str(), onStatus, &log);
     if (!s.library)
         throw std::runtime_error("cannot load the ANARI library '" + options.library + "' (libanari_library_" +
                                  options.library + ".so)");
     s.device = anariNewDevice(s.library, "default");
     if (!s.device) throw std::runtime_error("the ANARI library '" + options.library + "' created no device");
+}
 
-    // Under mpirun each rank imports only its share of the file, so that no rank holds the whole scene;
-    // the lights become ANARI lights on rank 0 alone (the device gathers every rank's lights).
-    if (ranks.distributed() && !gltf)
-        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
-    if (gltf && ranks.distributed() && partition == PartitionKind::RoundRobin && gltf->instances.size() < size_t(ranks.size()) &&
-        root)
+// The scene on the device: under mpirun each rank imports only its share of the file, so that no rank holds
+// the whole scene; the lights become ANARI lights on rank 0 alone (the device gathers every rank's lights).
+AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session& s,
+                      RankStats& stats) {
+    std::optional<GltfScene>& gltf = plan.gltf;
+    if (gltf && ranks.distributed() && plan.partition == PartitionKind::RoundRobin &&
+        gltf->instances.size() < size_t(ranks.size()) && plan.root)
         std::fprintf(stderr, "[ripple-render] WARNING: %zu mesh instance(s) for %d ranks: some ranks hold nothing and one "
                      "holds whole meshes; --partition spatial splits meshes\n", gltf->instances.size(), ranks.size());
-    if (gltf) gltf = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()), partition);
-    RankStats stats;
+    if (gltf) gltf = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()), plan.partition);
     stats.triangles = gltf ? gltf->trianglesDrawn() : 0;
-    AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf, root) : buildDemoScene(s.device, demo);
+    AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf, plan.root) : buildDemoScene(s.device, plan.demo);
     s.objects.push_back(scene.world);
+    return scene;
+}
 
-    // Bounds as the device computed them; the scene's own where the device does not answer.
+// The camera: the scene's (--camera), or one framing the bounds as the device computed them (the scene's
+// own where the device does not answer).
+ANARICamera makeCamera(const Options& options, const AnariWorld& scene, glm::uvec2 size, Session& s) {
     float box[6];
     glm::vec3 lo = scene.boundsMin, hi = scene.boundsMax;
     if (anariGetProperty(s.device, scene.world, "bounds", ANARI_FLOAT32_BOX3, box, sizeof box, ANARI_WAIT)) {
@@ -214,46 +274,67 @@ int render(const Options& options, const mpi::Communicator& ranks) {
     }
     ANARICamera camera = newAnariCamera(s.device, view, aspect);
     s.objects.push_back(camera);
+    return camera;
+}
 
-    const uint32_t batch = options.reporting() ? 1 : samplesPerFrame(options.spp);
+struct FrameSetup {
+    ANARIFrame frame = nullptr;
+    uint32_t batch = 1;                 // samples per frame
+    bool accumulationExtension = false;
+};
+
+FrameSetup makeFrame(const Options& options, const AnariWorld& scene, ANARICamera camera, glm::uvec2 size, Session& s) {
+    FrameSetup setup;
+    setup.batch = options.reporting() ? 1 : samplesPerFrame(options.spp);
     ANARIRenderer renderer = anariNewRenderer(s.device, "default");
     if (!renderer) throw std::runtime_error("the device has no 'default' renderer");
     s.objects.push_back(renderer);
-    anari::set(s.device, renderer, "pixelSamples", int32_t(batch));
+    anari::set(s.device, renderer, "pixelSamples", int32_t(setup.batch));
     anari::set(s.device, renderer, "maxPathLength", int32_t(options.maxPathLength));
     anari::set(s.device, renderer, "background", scene.background);
     anari::set(s.device, renderer, "ambientRadiance", options.ambient.value_or(scene.ambientRadiance));
     anariCommitParameters(s.device, renderer);
 
-    ANARIFrame frame = anariNewFrame(s.device);
-    if (!frame) throw std::runtime_error("the device created no frame");
-    s.objects.push_back(frame);
+    setup.frame = anariNewFrame(s.device);
+    if (!setup.frame) throw std::runtime_error("the device created no frame");
+    s.objects.push_back(setup.frame);
     const ANARIDataType colorType = ANARI_FLOAT32_VEC4;  // the estimate needs the linear average
-    anari::set(s.device, frame, "size", size);
-    anariSetParameter(s.device, frame, "channel.color", ANARI_DATA_TYPE, &colorType);
-    const bool accumulationExtension = deviceHasExtension(s.device, "ANARI_KHR_FRAME_ACCUMULATION");
-    if (accumulationExtension) anari::set(s.device, frame, "accumulation", true);
-    anari::setObject(s.device, frame, "world", ANARI_WORLD, scene.world);
-    anari::setObject(s.device, frame, "renderer", ANARI_RENDERER, renderer);
-    anari::setObject(s.device, frame, "camera", ANARI_CAMERA, camera);
-    anariCommitParameters(s.device, frame);
+    anari::set(s.device, setup.frame, "size", size);
+    anariSetParameter(s.device, setup.frame, "channel.color", ANARI_DATA_TYPE, &colorType);
+    setup.accumulationExtension = deviceHasExtension(s.device, "ANARI_KHR_FRAME_ACCUMULATION");
+    if (setup.accumulationExtension) anari::set(s.device, setup.frame, "accumulation", true);
+    anari::setObject(s.device, setup.frame, "world", ANARI_WORLD, scene.world);
+    anari::setObject(s.device, setup.frame, "renderer", ANARI_RENDERER, renderer);
+    anari::setObject(s.device, setup.frame, "camera", ANARI_CAMERA, camera);
+    anariCommitParameters(s.device, setup.frame);
+    return setup;
+}
 
-    // Stops: --time, --target-error, whichever comes first (and --spp when given); with neither, --spp. The
-    // largest --spp bounds a target that is never reached.
+struct RenderOutcome {
+    HalfBufferEstimator estimator;
+    std::vector<ConvergencePoint> series;
+    uint32_t frames = 0;
+    double seconds = 0.0;
+};
+
+// Frames until a stop: --time, --target-error, whichever comes first (and --spp when given); with neither,
+// --spp. The largest --spp bounds a target that is never reached. Only rank 0 holds the image
+// (data-parallel ANARI): it decides when to stop, and tells the others.
+RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const FrameSetup& setup,
+                           const mpi::Communicator& ranks, Session& s, RankStats& stats) {
+    RenderOutcome out{HalfBufferEstimator(plan.size.x, plan.size.y), {}, 0, 0.0};
     const bool stopOnSpp = options.sppGiven || (!options.seconds && !options.targetError);
     const uint32_t sppLimit = stopOnSpp ? options.spp : kMaxSpp;
-    const bool printPoints = options.reporting() && !options.quiet && root;
-    Progress progress(options.spp, !options.reporting() && !options.quiet && root);
-    HalfBufferEstimator estimator(size.x, size.y);
-    std::vector<ConvergencePoint> series;
+    const bool printPoints = options.reporting() && !options.quiet && plan.root;
+    Progress progress(options.spp, !options.reporting() && !options.quiet && plan.root);
     RenderClock clock;
     uint32_t nextReport = 2;  // the first spp with a batch in each half
     bool reportsRays = true;  // until the device says it has no such property (only Ripple has it)
-    uint32_t frames = 0;
+    const ANARIFrame frame = setup.frame;
     for (bool stop = false; !stop;) {
         anariRenderFrame(s.device, frame);
         anariFrameReady(s.device, frame, ANARI_WAIT);
-        ++frames;
+        ++out.frames;
         float raysPerSecond = 0.0f;
         if (reportsRays)
             reportsRays = anariGetProperty(s.device, frame, "ripple.raysPerSecond", ANARI_FLOAT32, &raysPerSecond,
@@ -266,22 +347,23 @@ int render(const Options& options, const mpi::Communicator& ranks) {
             stats.bytesSent += bytes;
             ++stats.frames;
         }
-        // Only rank 0 holds the image (data-parallel ANARI): it decides when to stop, and tells the others.
-        if (root) {
-            addFrameToEstimator(s.device, frame, size, frames, batch, accumulationExtension, estimator);
-            const uint32_t spp = estimator.samples();
+        if (plan.root) {
+            addFrameToEstimator(s.device, frame, plan.size, out.frames, setup.batch, setup.accumulationExtension,
+                                out.estimator);
+            const uint32_t spp = out.estimator.samples();
             progress.update(spp, reportsRays ? raysPerSecond : 0.0f);
-            const double estimate = options.targetError || spp >= nextReport ? estimator.estimatedRelMse() : 0.0;
+            const double estimate =
+                options.targetError || spp >= nextReport ? out.estimator.estimatedRelMse() : 0.0;
             // --time leaves at least two frames, so that there is an estimate.
-            stop = spp >= sppLimit || (options.seconds && frames >= 2 && clock.seconds() >= *options.seconds) ||
+            stop = spp >= sppLimit || (options.seconds && out.frames >= 2 && clock.seconds() >= *options.seconds) ||
                    (options.targetError && spp >= kMinSamplesForTarget && estimate <= *options.targetError);
             if (options.reporting() && (spp >= nextReport || stop)) {
                 clock.pause();  // metrics and printing are not render time
-                ConvergencePoint point{clock.seconds(), spp, estimator.estimatedRelMse(), std::nullopt};
-                if (reference) point.reference = compareToReference(estimator.meanImage(), *reference);
+                ConvergencePoint point{clock.seconds(), spp, out.estimator.estimatedRelMse(), std::nullopt};
+                if (plan.reference) point.reference = compareToReference(out.estimator.meanImage(), *plan.reference);
                 if (printPoints) std::printf("%s\n", formatConvergencePoint(point).c_str());
                 std::fflush(stdout);
-                series.push_back(point);
+                out.series.push_back(point);
                 nextReport = nextReportSpp(spp);
                 clock.resume();
             }
@@ -289,35 +371,72 @@ int render(const Options& options, const mpi::Communicator& ranks) {
         if (ranks.distributed()) stop = ranks.max(uint64_t(stop ? 1 : 0)) > 0;
     }
     progress.finish();
-    const double seconds = clock.seconds();
-    if (options.stats) {
-        anariGetProperty(s.device, frame, "ripple.sceneBytes", ANARI_UINT64, &stats.sceneBytes, sizeof stats.sceneBytes,
-                         ANARI_WAIT);
-        printRankStats(ranks, stats);
-    }
-    if (!root) return log.errors > 0 ? 1 : 0;
+    out.seconds = clock.seconds();
+    return out;
+}
 
-    const std::vector<float> image = estimator.meanRgbaBottomUp();
-    if (pfm) writePfmBottomUp(options.output, size.x, size.y, image.data());
-    else writePngFromLinearBottomUp(options.output, size.x, size.y, image.data());
+void writeResults(const Options& options, const RenderPlan& plan, const RenderOutcome& out, uint32_t batch) {
+    const std::vector<float> image = out.estimator.meanRgbaBottomUp();
+    writeOutputImage(options.output, plan.format, plan.size.x, plan.size.y, image.data());
     if (!options.report.empty()) {
-        writeConvergenceCsv(reportFile, series);
+        writeConvergenceCsv(plan.reportFile, out.series);
         const std::string sceneName =
-            options.scene.empty() ? "demo " + demo : std::filesystem::path(options.scene).filename().string();
-        writeErrorPlot(plotFile, series, sceneName + ", " + options.size + ": relMSE against render time");
+            options.scene.empty() ? "demo " + plan.demo : std::filesystem::path(options.scene).filename().string();
+        writeErrorPlot(plan.plotFile, out.series, sceneName + ", " + options.size + ": relMSE against render time");
     }
-
-    const double finalEstimate = estimator.estimatedRelMse();
+    const double finalEstimate = out.estimator.estimatedRelMse();
     char estimateText[48] = "n/a (one frame)";
     if (!std::isnan(finalEstimate)) std::snprintf(estimateText, sizeof estimateText, "%.3e", finalEstimate);
-    std::printf("rendered %ux%u, %u spp (%u frames of %u) in %.2f s, estimated relMSE %s -> %s\n", size.x, size.y,
-                estimator.samples(), frames, batch, seconds, estimateText, options.output.c_str());
-    if (!options.report.empty()) std::printf("report: %s, plot: %s\n", reportFile.c_str(), plotFile.c_str());
+    std::printf("rendered %ux%u, %u spp (%u frames of %u) in %.2f s, estimated relMSE %s -> %s\n", plan.size.x,
+                plan.size.y, out.estimator.samples(), out.frames, batch, out.seconds, estimateText, options.output.c_str());
+    if (!options.report.empty()) std::printf("report: %s, plot: %s\n", plan.reportFile.c_str(), plan.plotFile.c_str());
+}
+
+int render(const Options& options, const mpi::Communicator& ranks, Session& s) {
+    RenderPlan plan = checkOptions(options, ranks);
+    StatusLog log{options.quiet, 0};
+    openDevice(options, log, s);
+    RankStats stats;
+    const AnariWorld scene = buildScene(plan, ranks, s, stats);
+    const ANARICamera camera = makeCamera(options, scene, plan.size, s);
+    const FrameSetup setup = makeFrame(options, scene, camera, plan.size, s);
+    const RenderOutcome out = renderFrames(options, plan, setup, ranks, s, stats);
+    if (options.stats) {
+        anariGetProperty(s.device, setup.frame, "ripple.sceneBytes", ANARI_UINT64, &stats.sceneBytes,
+                         sizeof stats.sceneBytes, ANARI_WAIT);
+        printRankStats(ranks, stats);
+    }
+    if (!plan.root) return log.errors > 0 ? 1 : 0;
+    writeResults(options, plan, out, setup.batch);
     if (log.errors > 0) {
         std::fprintf(stderr, "[ripple-render] ERROR: the device reported %d error(s); the image may be wrong\n", log.errors);
         return 1;
     }
     return 0;
+}
+
+// Under mpirun: the options every rank must share, and whether its command line parsed (exit code + 1, 0
+// when it did), so that ranks whose command lines differ all stop with one message.
+std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome) {
+    const auto number = [](double value) {
+        uint64_t bits = 0;
+        std::memcpy(&bits, &value, sizeof bits);
+        return bits;
+    };
+    const std::string scene = options.scene.empty() ? "--demo " + options.demo : "file " + options.scene;
+    return {{"command lines (some ranks could not parse theirs)", uint64_t(parseOutcome), false},
+            {"scenes (a file, or --demo)", optionHash(scene), false},
+            {"--spp", options.spp, true},
+            {"--size", optionHash(options.size), false},
+            {"--time", options.seconds ? number(*options.seconds) : 0, false},
+            {"--target-error", options.targetError ? number(*options.targetError) : 0, false},
+            {"--max-path-length", options.maxPathLength, true},
+            {"--camera", options.camera ? uint64_t(int64_t(*options.camera) + 2) : 0, false},
+            {"--ambient", options.ambient ? number(*options.ambient) : 0, false},
+            {"--partition", optionHash(options.partition), false},
+            {"--library", optionHash(options.library), false},
+            {"--reference", optionHash(options.reference), false},
+            {"--report", optionHash(options.report), false}};
 }
 
 }  // namespace
@@ -335,7 +454,7 @@ int main(int argc, char** argv) {
     std::string demoNames;
     for (const std::string& n : ripple::apps::demoSceneNames()) demoNames += (demoNames.empty() ? "" : ", ") + n;
     app.add_option("--demo", options.demo, "built-in scene: " + demoNames + " (default: default)");
-    app.add_option("-o,--output", options.output, "output image: .png (8-bit sRGB) or .pfm (linear float)")->capture_default_str();
+    app.add_option("-o,--output", options.output, "output image: .png or .jpg/.jpeg (8-bit sRGB) or .pfm (linear float)")->capture_default_str();
     app.add_option("--size", options.size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--spp", options.spp, "samples per pixel (with --time or --target-error: a cap, when given)")
         ->check(CLI::Range(1u, ripple::apps::kMaxSpp))->capture_default_str();
@@ -359,18 +478,33 @@ int main(int argc, char** argv) {
                    "(the triangles of one k-d region per rank)")
         ->capture_default_str();
     app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame");
+    int parseOutcome = 0;  // 0: parsed; else the parser's exit code + 1
+    std::optional<CLI::ParseError> parseError;
     try {
         app.parse(argc, argv);
         options.sppGiven = app.count("--spp") > 0;
     } catch (const CLI::ParseError& e) {
-        // Every rank parses the same arguments and reaches the same verdict; one rank speaks.
-        return ranks.rank() == 0 ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 1);
+        parseError = e;
+        parseOutcome = e.get_exit_code() + 1;
+    }
+    if (ranks.distributed()) {
+        const std::string why = ripple::apps::optionsDisagreement(ranks, ripple::apps::agreedOptions(options, parseOutcome));
+        if (!why.empty()) {
+            if (ranks.rank() == 0) std::fprintf(stderr, "[ripple-render] ERROR: %s\n", why.c_str());
+            return 1;
+        }
+    }
+    if (parseError) {
+        // Every rank parsed the same arguments and reached the same verdict; one rank speaks.
+        return ranks.rank() == 0 ? app.exit(*parseError) : (parseError->get_exit_code() == 0 ? 0 : 1);
     }
 
+    ripple::apps::Session session;
     try {
-        return ripple::apps::render(options, ranks);
+        return ripple::apps::render(options, ranks, session);
     } catch (const std::exception& e) {
-        // Other ranks may wait for this one in a collective call: end them all, never hang.
+        // Other ranks may wait for this one in a collective call (the device's release among them): end
+        // them all, before this rank's session is released, never hang.
         if (ranks.distributed()) ranks.abort(std::string("ripple-render: ") + e.what());
         std::fprintf(stderr, "[ripple-render] ERROR: %s\n", e.what());
         return 1;

@@ -29,7 +29,8 @@ std::optional<uint64_t> mulAdd(uint64_t a, uint64_t b, uint64_t c = 0) {
 
 std::string gib(uint64_t bytes) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(1ull << 30));
+    if (bytes < (1ull << 30)) std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / double(1ull << 20));
+    else std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(1ull << 30));
     return text;
 }
 

@@ -1,0 +1,24 @@
+// ripple-render's output file: its format from the extension (PNG, JPEG or PFM; any other is refused
+// with the list), a check that it can be written before anything renders, and the writer.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+
+namespace ripple::apps {
+
+enum class OutputFormat { Png, Jpeg, Pfm };
+
+// Throws std::runtime_error naming the file and the supported extensions when there is none of them.
+OutputFormat outputFormatOf(const std::filesystem::path& file);
+
+// Throws std::runtime_error with the operating system's reason when `file` cannot be created or
+// overwritten (missing or read-only folder, a folder of that name...). Leaves no file behind that was
+// not there before.
+void checkOutputWritable(const std::filesystem::path& file);
+
+// Linear RGBA pixels, bottom row first: PNG and JPEG as 8-bit sRGB (JPEG without alpha), PFM as floats.
+void writeOutputImage(const std::filesystem::path& file, OutputFormat format, uint32_t width, uint32_t height,
+                      const float* rgba);
+
+}  // namespace ripple::apps
