@@ -230,8 +230,7 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
 void openDevice(const Options& options, StatusLog& log, Session& s) {
     s.library = anariLoadLibrary(options.library.c_str(), onStatus, &log);
     if (!s.library)
-        throw std::runtime_error("cannot load the ANARI library '" + options.library + "' (libanari_library_" +
-                                 options.library + ".so)");
+        throw std::runtime_error("cannot load the ANARI library '" + options.library + "' (the loader's reason is above)");
     s.device = anariNewDevice(s.library, "default");
     if (!s.device) throw std::runtime_error("the ANARI library '" + options.library + "' created no device");
 }

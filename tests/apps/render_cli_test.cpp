@@ -8,6 +8,12 @@
 #include <doctest/doctest.h>
 #include <stb_image.h>
 
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -72,10 +78,99 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
         arguments = "--report '" + (dir / "out.csv").string() + "' --spp 1";
         expected = "the error estimate needs 2 samples or more";
     }
+    // The output is checked before anything renders, with the operating system's reason.
+    SUBCASE("output in a missing folder") {
+        arguments = "--size 8x8 -o '" + (dir / "absent" / "x.png").string() + "'";
+        expected = "x.png: cannot write the image there: No such file or directory";
+    }
+    SUBCASE("output under a file, not a folder") {
+        arguments = "--size 8x8 -o '" + (writeText(dir / "plain", "x\n") / "x.png").string() + "'";
+        expected = "x.png: cannot write the image there: Not a directory";
+    }
+    SUBCASE("output that is a folder") {
+        std::filesystem::create_directory(dir / "folder.png");
+        arguments = "--size 8x8 -o '" + (dir / "folder.png").string() + "'";
+        expected = "folder.png: cannot write the image there: Is a directory";
+    }
+    if (geteuid() != 0) {  // root writes into read-only folders
+        SUBCASE("output in a read-only folder") {
+            std::filesystem::create_directory(dir / "locked");
+            std::filesystem::permissions(dir / "locked", std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+            arguments = "--size 8x8 -o '" + (dir / "locked" / "x.png").string() + "'";
+            expected = "x.png: cannot write the image there: Permission denied";
+        }
+    }
+    SUBCASE("output of an unknown format") {
+        arguments = "--size 8x8 -o '" + (dir / "x.bmp").string() + "'";
+        expected = "unsupported image format '.bmp' (supported: .png, .jpg, .jpeg, .pfm)";
+    }
+    SUBCASE("library that is not a shared object") {
+        writeText(dir / "libanari_library_text.so", "not a library\n");
+        arguments = "--library 'text," + (dir / "").string() + "' --demo default";
+        expected = "cannot load the ANARI library 'text,";
+    }
+    SUBCASE("shared object without the ANARI entry point") {
+        // Any shared library will do: the C library exports no anari_library_c_new_library.
+        Dl_info libc{};
+        REQUIRE(dladdr(reinterpret_cast<void*>(&std::printf), &libc) != 0);
+        std::filesystem::create_symlink(libc.dli_fname, dir / "libanari_library_c.so");
+        arguments = "--library 'c," + (dir / "").string() + "' --demo default";
+        expected = "does not export anari_library_c_new_library";
+    }
     const ProgramRun run = runRender(arguments);
     CHECK_MESSAGE(run.exitCode == 1, run.output);
     CHECK_MESSAGE(contains(run.output, "[ripple-render] ERROR: "), run.output);
     CHECK_MESSAGE(contains(run.output, expected), run.output);
+    for (const char* leftover : {"absent", "locked/x.png"}) CHECK_FALSE(std::filesystem::exists(dir / leftover));
+}
+
+// -o x.jpg writes a JPEG (never PNG bytes under a .jpg name), of the render's size.
+TEST_CASE("ripple-render writes JPEG for .jpg and .jpeg") {
+    TempFolder dir;
+    for (const char* name : {"out.jpg", "out.JPEG"}) {
+        const auto image = dir / name;
+        const ProgramRun run = runRender("--demo cornell --size 24x16 --spp 2 --quiet -o '" + image.string() + "'");
+        REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+        std::ifstream in(image, std::ios::binary);
+        unsigned char magic[3] = {};
+        in.read(reinterpret_cast<char*>(magic), 3);
+        CHECK_MESSAGE((magic[0] == 0xFF && magic[1] == 0xD8 && magic[2] == 0xFF), name);  // JPEG's SOI marker
+        int w = 0, h = 0, comp = 0;
+        CHECK(stbi_info(image.string().c_str(), &w, &h, &comp) == 1);
+        CHECK(w == 24);
+        CHECK(h == 16);
+        CHECK(comp == 3);
+    }
+}
+
+// A frame too large for memory is refused before anything is allocated, with its size and the bytes it
+// needs. RIPPLE_MEMORY_LIMIT caps the memory both ripple-render and the device take as available, so that
+// the refusal does not depend on this machine's memory: 1024x1024 passes ripple-render's own check (144
+// bytes a pixel: 151 MB) but not the device's (its buffers of paths in flight alone take more than 200 MB);
+// 16384x16384 fails ripple-render's own check (38.7 GB).
+TEST_CASE("ripple-render refuses a frame too large for memory, naming size and bytes") {
+    TempFolder dir;
+    const std::string output = " --quiet -o '" + (dir / "big.png").string() + "'";
+    SUBCASE("the device's frame buffers") {
+        const ProgramRun run = runProgram(RIPPLE_RENDER_PATH, "--demo cornell --size 1024x1024" + output,
+                                          "RIPPLE_MEMORY_LIMIT=200000000");
+        CHECK_MESSAGE(run.exitCode == 1, run.output);
+        CHECK_MESSAGE(contains(run.output, "cannot render: a 1024x1024 frame with its channels needs "), run.output);
+        CHECK_MESSAGE(contains(run.output, " but only 200000000 bytes (190.7 MiB) are available"), run.output);
+        const size_t at = run.output.find("frame with its channels needs ");
+        REQUIRE(at != std::string::npos);
+        const uint64_t needed = std::stoull(run.output.substr(at + 29));
+        CHECK(needed > 200000000u);
+        CHECK(needed >= 1024u * 1024u * (16 + 16 + 4 + 16 + 16));  // accumulation, radiance, counts, color, host copy
+    }
+    SUBCASE("ripple-render's own buffers") {
+        const ProgramRun run = runProgram(RIPPLE_RENDER_PATH, "--demo cornell --size 16384x16384" + output,
+                                          "RIPPLE_MEMORY_LIMIT=8000000000");
+        CHECK_MESSAGE(run.exitCode == 1, run.output);
+        CHECK_MESSAGE(contains(run.output, "--size 16384x16384: ripple-render's image buffers need 38654705664 bytes but "
+                                           "only 8000000000 are available"), run.output);
+    }
+    CHECK_FALSE(std::filesystem::exists(dir / "big.png"));
 }
 
 TEST_CASE("ripple-render option errors from the parser exit non-zero") {
