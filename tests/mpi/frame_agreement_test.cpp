@@ -1,0 +1,101 @@
+// Data-parallel ANARI through the public API under mpirun: ranks whose frame, renderer or camera differ
+// (ANARI.md section 5) are told so on every rank, naming what differs, and none renders; ranks that agree
+// again render together afterwards (nobody was left waiting in a collective).
+#include "mpi/Communicator.h"
+#include "tests/anari/RenderSession.h"
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+using ripple::test::RenderSession;
+
+namespace {
+
+struct Scene {
+    ANARIWorld world;
+    ANARICamera camera;
+    ANARIRenderer renderer;
+};
+
+Scene floorScene(RenderSession& s) {
+    Scene scene;
+    scene.world = s.world({s.surface(s.floor(), s.matte({0.8f, 0.8f, 0.8f}))}, {s.directional({0, -1, 0}, 2.0f)});
+    scene.camera = s.perspective({0, 3, 6}, {0, 0, 0});
+    scene.renderer = s.renderer(1, 2);
+    return scene;
+}
+
+// Renders `frame` once; true when the device rendered it (it holds samples).
+bool rendered(RenderSession& s, ANARIFrame frame) {
+    anariRenderFrame(s.device, frame);
+    REQUIRE(anariFrameReady(s.device, frame, ANARI_WAIT) == 1);
+    uint32_t samples = 0;
+    anariGetProperty(s.device, frame, "numSamples", ANARI_UINT32, &samples, sizeof samples, ANARI_WAIT);
+    return samples > 0;
+}
+
+}  // namespace
+
+TEST_CASE("ranks that disagree on frame, renderer or camera are told what differs, and none renders") {
+    const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();
+    REQUIRE(ranks.size() == 2);  // rank 1 is the one that differs
+    const bool odd = ranks.rank() == 1;
+    RenderSession s;
+    const Scene scene = floorScene(s);
+    ANARIFrame frame = s.frame(scene.world, scene.camera, scene.renderer, {16, 16}, ANARI_FLOAT32_VEC4);
+    std::string expected;
+    SUBCASE("channels") {
+        if (odd) {
+            const ANARIDataType depth = ANARI_FLOAT32;
+            s.setRaw(frame, "channel.depth", ANARI_DATA_TYPE, &depth);
+            s.commit(frame);
+        }
+        expected = "rank 1's frame has color ANARI_FLOAT32_VEC4, depth, rank 0's color ANARI_FLOAT32_VEC4: every rank must enable "
+                   "the same channels";
+    }
+    SUBCASE("size") {
+        if (odd) {
+            s.set(frame, "size", glm::uvec2(16, 8));
+            s.commit(frame);
+        }
+        expected = "rank 1's frame is 16x8, rank 0's 16x16";
+    }
+    SUBCASE("pixelSamples") {
+        if (odd) {
+            s.setInt(scene.renderer, "pixelSamples", 3);
+            s.commit(scene.renderer);
+        }
+        expected = "rank 1's renderer has pixelSamples 3, rank 0's 1";
+    }
+    SUBCASE("another renderer parameter") {
+        if (odd) {
+            s.set(scene.renderer, "ambientRadiance", 0.5f);
+            s.commit(scene.renderer);
+        }
+        expected = "rank 1's renderer differs from rank 0's (subtype or parameters)";
+    }
+    SUBCASE("camera") {
+        if (odd) {
+            s.set(scene.camera, "fovy", 0.5f);
+            s.commit(scene.camera);
+        }
+        expected = "rank 1's camera differs from rank 0's";
+    }
+    SUBCASE("whether a rank can render at all") {
+        if (odd) {
+            s.setObject(frame, "camera", ANARI_CAMERA, nullptr);
+            s.commit(frame);
+        }
+        expected = "rank 1 cannot render this frame";
+    }
+    CHECK_FALSE(rendered(s, frame));
+    CHECK_MESSAGE(s.log.count({"cannot render (data-parallel): ", expected.c_str()}) == 1, s.log.dump());
+
+    // Agreeing again, the ranks render together.
+    s.log.clear();
+    ANARIFrame agreed = s.frame(scene.world, s.perspective({0, 3, 6}, {0, 0, 0}), s.renderer(1, 2), {16, 16},
+                                ANARI_FLOAT32_VEC4);
+    CHECK(rendered(s, agreed));
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+}
