@@ -1,13 +1,18 @@
-// Reads a .gltf or .glb into a tinygltf::Model. The GLB container is checked here before tinygltf sees it
-// (its own checks let a chunk header run a few bytes past the data), and images stored in buffer views are
-// decoded only after their range has been checked against the buffer.
+// Reads a .gltf or .glb into a tinygltf::Model. Before tinygltf sees the file: the GLB container (its own
+// checks let a chunk header run a few bytes past the data), the JSON's nesting depth, the raw JSON's indices
+// and offsets, and every URI. Images stored in buffer views are decoded only after their range is checked.
 #include "apps/common/GltfFile.h"
+
+#include "apps/common/GltfJson.h"
+#include "apps/common/GltfJsonChecks.h"
+#include "apps/common/GltfUris.h"
 
 #include <stb_image.h>
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
+#include <optional>
+#include <string_view>
 
 namespace ripple::apps::gltf {
 
@@ -23,22 +28,8 @@ uint32_t readLittle32(const std::string& bytes, size_t at) {
     return v;  // glTF is little-endian, as is every machine Ripple builds for
 }
 
-std::string readWholeFile(const std::filesystem::path& file, uint64_t maxBytes) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec)) throw GltfError(file.string() + ": no such file");
-    const uint64_t size = std::filesystem::file_size(file, ec);
-    if (ec) throw GltfError(file.string() + ": cannot read its size: " + ec.message());
-    if (size > maxBytes)
-        throw GltfError(file.string() + ": " + std::to_string(size) + " bytes is larger than the limit of " +
-                        std::to_string(maxBytes));
-    std::ifstream in(file, std::ios::binary);
-    std::string bytes(size, '\0');
-    if (!in.read(bytes.data(), std::streamsize(size))) throw GltfError(file.string() + ": read failed");
-    return bytes;
-}
-
-// Walks the GLB header and chunks; every length must stay inside the file.
-void checkGlbContainer(const std::string& bytes, const std::string& name) {
+// Walks the GLB header and chunks; every length must stay inside the file. Returns the JSON chunk.
+std::string_view checkGlbContainer(const std::string& bytes, const std::string& name) {
     if (bytes.size() < 12)
         throw GltfError(name + ": " + std::to_string(bytes.size()) + " bytes is too short for a GLB header");
     if (readLittle32(bytes, 0) != kGlbMagic)
@@ -50,6 +41,7 @@ void checkGlbContainer(const std::string& bytes, const std::string& name) {
         throw GltfError(name + ": the GLB header declares " + std::to_string(length) + " bytes but the file has " +
                         std::to_string(bytes.size()) + " (truncated?)");
     uint64_t at = 12;
+    std::string_view json;
     for (int chunk = 0; at < length; ++chunk) {
         if (length - at < 8)
             throw GltfError(name + ": GLB chunk " + std::to_string(chunk) + " header at byte " + std::to_string(at) +
@@ -61,10 +53,12 @@ void checkGlbContainer(const std::string& bytes, const std::string& name) {
                             " bytes at byte " + std::to_string(at) + " runs past the end of the file (" +
                             std::to_string(length) + " bytes; truncated?)");
         if (chunk == 0 && type != kChunkJson) throw GltfError(name + ": the first GLB chunk is not JSON");
+        if (chunk == 0) json = std::string_view(bytes).substr(size_t(at) + 8, size_t(chunkLength));
         if (chunk == 1 && type != kChunkBin) throw GltfError(name + ": the second GLB chunk is not BIN");
         at += 8 + chunkLength;
     }
     if (at == 12) throw GltfError(name + ": the GLB file has no JSON chunk");
+    return json;
 }
 
 // Shared with tinygltf's image callback.
@@ -143,30 +137,49 @@ void decodeBufferViewImages(tinygltf::Model& model, ImageDecoding& ctx, const st
 void parseFile(const std::filesystem::path& file, const GltfLoadOptions& options, tinygltf::Model& model,
                std::vector<std::string>& warnings) {
     const std::string name = file.string();
-    const std::string bytes = readWholeFile(file, options.maxFileBytes);
+    std::string bytes, readError;
+    if (!readRegularFile(file, options.maxFileBytes, false, bytes, readError)) throw GltfError(name + ": " + readError);
     const bool binary = (bytes.size() >= 4 && readLittle32(bytes, 0) == kGlbMagic) || file.extension() == ".glb";
-    if (binary) checkGlbContainer(bytes, name);
+    const std::string_view json = binary ? checkGlbContainer(bytes, name) : std::string_view(bytes);
+
+    // Before any parser: tinygltf's recurses once per level and a few kilobytes of brackets overflow the stack.
+    if (const uint32_t depth = jsonNestingDepth(json); depth > options.maxJsonDepth)
+        throw GltfError(name + ": JSON nested " + std::to_string(depth) + " levels deep, over the limit of " +
+                        std::to_string(options.maxJsonDepth) + " (arrays and objects)");
+    ConfinedUris uris(file, options, name);
+    std::string syntaxError;
+    const std::optional<JsonValue> root = parseJson(json, syntaxError);
+    if (root) {
+        checkGltfJson(*root, name);
+        for (const char* collection : {"buffers", "images"})
+            if (const JsonValue* items = root->find(collection))
+                for (size_t i = 0; i < items->items.size(); ++i)
+                    if (const JsonValue* uri = items->items[i].find("uri"))
+                        uris.approve(uri->text(), std::string(collection) + "[" + std::to_string(i) + "].uri");
+    }  // else tinygltf reports the syntax error in its words below; with no URI approved it can open no file
 
     ImageDecoding ctx{&options, &warnings, {}};
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(onImage, &ctx);
+    loader.SetFsCallbacks(uris.callbacks());
     std::string error, warning;
-    const std::string baseDir = file.parent_path().string();
     bool ok = false;
     try {
         ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
                                                   reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                  unsigned(bytes.size()), baseDir)
+                                                  unsigned(bytes.size()), uris.baseDir())
                     : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), unsigned(bytes.size()),
-                                                 baseDir);
+                                                 uris.baseDir());
     } catch (const std::exception& e) {  // tinygltf throws from a few unchecked container accesses
         throw GltfError(name + ": " + e.what());
     }
+    uris.throwIfRefused();
     auto trim = [](std::string s) {
         while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
         return s;
     };
     if (!ok) throw GltfError(name + ": " + (error.empty() ? "tinygltf could not parse it" : trim(error)));
+    if (!root) throw GltfError(name + ": JSON parse error at " + syntaxError);
     if (!warning.empty()) warnings.push_back(trim(warning));
     if (options.decodeImages) decodeBufferViewImages(model, ctx, name);
 }

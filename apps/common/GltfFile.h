@@ -1,5 +1,6 @@
-// The first stage of the glTF importer: the file read whole, its GLB container checked, and tinygltf's parse,
-// with images decoded to RGBA8 from ranges this code has checked. Internal to GltfScene.cpp.
+// The first stage of the glTF importer: the file read whole, its GLB container and raw JSON checked, and
+// tinygltf's parse confined to approved files, with images decoded to RGBA8 from ranges this code has
+// checked. Internal to GltfScene.cpp.
 #pragma once
 
 #include "apps/common/GltfScene.h"
@@ -12,8 +13,8 @@
 
 namespace ripple::apps::gltf {
 
-// Parses `file` into `model`. Throws GltfError naming the file on a container or JSON problem; images that
-// cannot be decoded add a warning and stay empty.
+// Parses `file` into `model`. Throws GltfError naming the file on a container, JSON or URI problem; images
+// that cannot be decoded add a warning and stay empty.
 void parseFile(const std::filesystem::path& file, const GltfLoadOptions& options, tinygltf::Model& model,
                std::vector<std::string>& warnings);
 

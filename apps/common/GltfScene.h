@@ -134,9 +134,15 @@ struct GltfScene {
 
 struct GltfLoadOptions {
     bool decodeImages = true;           // false: images stay empty (geometry-only readers)
-    uint64_t maxFileBytes = uint64_t(2) << 30;
+    // Per file: the scene file and each buffer or image file it names. Larger files are refused unread.
+    uint64_t maxFileBytes = uint64_t(1) << 30;
     uint32_t maxNodeDepth = 1024;       // deeper hierarchies are rejected rather than overflow the stack
     uint64_t maxImagePixels = uint64_t(1) << 27; // per image; larger ones are rejected, not allocated
+    // JSON nesting (arrays and objects) allowed, checked before any parser sees the file: parsers recurse.
+    uint32_t maxJsonDepth = 512;
+    // The folder that buffer and image URIs may not leave (after `..` and symlinks are resolved). Empty: the
+    // scene file's own folder. A wider folder is for trusted input only (docs/gltf-security.md).
+    std::filesystem::path resourceRoot;
 };
 
 // Reads the default scene (scene 0 where none is named; every root node where the file has no scenes).

@@ -32,6 +32,10 @@ GltfSource& GltfSource::replace(const std::string& from, const std::string& to) 
     return *this;
 }
 
+GltfSource& GltfSource::externalBuffer(const std::string& uri) {
+    return replace(R"("buffers":[{"byteLength":48)", R"("buffers":[{"byteLength":48,"uri":")" + uri + "\"");
+}
+
 GltfSource triangleSource() {
     GltfSource s;
     s.json = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],

@@ -29,6 +29,9 @@ struct GltfSource {
 
     // Replaces the first occurrence of `from` in the JSON; fails the test when it is absent.
     GltfSource& replace(const std::string& from, const std::string& to);
+    // Makes buffer 0 the file `uri` names (as written in the JSON string, so no quotes or backslashes);
+    // the caller writes `bin` there.
+    GltfSource& externalBuffer(const std::string& uri);
     // Overwrites bin bytes at `offset` with the raw bytes of `value`.
     template <typename T>
     GltfSource& poke(size_t offset, const T& value) {

@@ -5,20 +5,23 @@
 
 #include <doctest/doctest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <limits>
 #include <random>
 
 using ripple::apps::GltfError;
+using ripple::apps::GltfLoadOptions;
 using ripple::apps::loadGltf;
 using namespace ripple::test;
 
 namespace {
 
 // The message of the GltfError loading `file` throws; fails the test when it loads or throws anything else.
-std::string loadError(const std::filesystem::path& file) {
+std::string loadError(const std::filesystem::path& file, const GltfLoadOptions& options = {}) {
     try {
-        loadGltf(file);
+        loadGltf(file, options);
     } catch (const GltfError& e) {
         const std::string message = e.what();
         CHECK_MESSAGE(message.find(file.filename().string()) != std::string::npos, "message does not name the file: " << message);
@@ -120,10 +123,6 @@ TEST_CASE("accessors that do not fit or have the wrong type") {
         s.replace(R"("count":3,"type":"VEC3")", R"("count":100000000,"type":"VEC3")");
         expected = "accessor 0 (POSITION): 100000000 elements of 12 bytes at offset 0 run past buffer view 0";
     }
-    SUBCASE("stride below the element size") {
-        s.replace(R"({"buffer":0,"byteOffset":0,"byteLength":36})", R"({"buffer":0,"byteOffset":0,"byteLength":36,"byteStride":4})");
-        expected = "byte stride 4 of buffer view 0 is below the element size 12";
-    }
     SUBCASE("wrong component type for POSITION") {
         s.replace(R"("componentType":5126,"count":3,"type":"VEC3")", R"("componentType":5123,"count":3,"type":"VEC3")");
         expected = "accessor 0 (POSITION) has component type uint16, which glTF does not allow here";
@@ -135,10 +134,6 @@ TEST_CASE("accessors that do not fit or have the wrong type") {
     SUBCASE("float indices") {
         s.replace(R"("componentType":5125,"count":3,"type":"SCALAR")", R"("componentType":5126,"count":3,"type":"SCALAR")");
         expected = "accessor 1 (indices) has component type float32, expected uint8, uint16 or uint32";
-    }
-    SUBCASE("accessor that does not exist") {
-        s.replace(R"({"POSITION":0})", R"({"POSITION":0,"TEXCOORD_0":9})");
-        expected = "accessor 9 (TEXCOORD_0) does not exist (the file has 2 accessors)";
     }
     SUBCASE("attribute count differs from POSITION") {
         s.replace(R"({"POSITION":0})", R"({"POSITION":0,"NORMAL":2})");
@@ -175,7 +170,9 @@ TEST_CASE("indices and positions with bad values") {
     CHECK_MESSAGE(contains(message, expected), message);
 }
 
-TEST_CASE("node graphs that are not trees, and dangling references") {
+// Dangling indices (a child, mesh, material, scene or accessor that does not exist) are caught on the raw JSON:
+// see "indices, offsets and values ..." below.
+TEST_CASE("node graphs that are not trees") {
     TempFolder dir;
     GltfSource s = triangleSource();
     std::string expected;
@@ -198,34 +195,14 @@ TEST_CASE("node graphs that are not trees, and dangling references") {
         s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[)" + chain + R"({"mesh":0}])");
         expected = "node hierarchy deeper than 1024 levels";
     }
-    SUBCASE("child that does not exist") {
-        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0,"children":[7]}])");
-        expected = "node 7 does not exist (the file has 1 nodes)";
-    }
-    SUBCASE("mesh that does not exist") {
-        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":5}])");
-        expected = "node 0: mesh 5 does not exist";
-    }
-    SUBCASE("material that does not exist") {
-        s.replace(R"("indices":1})", R"("indices":1,"material":3})");
-        expected = "mesh 0 primitive 0: material 3 does not exist";
-    }
     SUBCASE("required extension the importer lacks") {
         s.replace(R"("scene":0,)", R"("extensionsRequired":["KHR_draco_mesh_compression"],"extensionsUsed":["KHR_draco_mesh_compression"],"scene":0,)");
         expected = "requires extension KHR_draco_mesh_compression, which this importer does not support";
-    }
-    SUBCASE("scene that does not exist") {
-        s.replace(R"("scene":0)", R"("scene":4)");
-        expected = "scene 4 does not exist";
     }
     SUBCASE("world transform beyond single precision") {
         s.replace(R"("scenes":[{"nodes":[0]}])", R"("scenes":[{"nodes":[1]}])");
         s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0,"scale":[1e30,1,1]},{"scale":[1e30,1,1],"children":[0]}])");
         expected = "node 0: world transform is not finite in single precision";
-    }
-    SUBCASE("indices accessor index out of range (tinygltf's own check)") {
-        s.replace(R"("indices":1)", R"("indices":9)");
-        expected = "primitive indices accessor out of bounds";
     }
     const std::string message = loadError(writeGlb(dir / "nodes.glb", s));
     CHECK_MESSAGE(contains(message, expected), message);
@@ -258,4 +235,294 @@ TEST_CASE("random corruption never crashes: each of 400 seeded mutations loads o
     }
     CHECK(loaded + rejected == 400);
     CHECK(rejected > 0);
+}
+
+namespace {
+
+// A scene folder dir/scene holding scene.gltf (buffer 0 is the file the test names) and tri.bin, and the
+// same triangle bytes outside it, in dir/secret.bin, for URIs that try to climb out.
+struct UriFixture {
+    TempFolder dir;
+    std::filesystem::path folder = dir / "scene";
+    GltfSource source = triangleSource();
+
+    UriFixture() {
+        std::filesystem::create_directories(folder);
+        writeBytes(folder / "tri.bin", source.bin);
+        writeBytes(dir / "secret.bin", source.bin);
+    }
+    std::filesystem::path gltf(const std::string& uri) const {
+        GltfSource s = source;
+        return writeText(folder / "scene.gltf", s.externalBuffer(uri).json);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("buffer URIs are confined to the scene's folder") {
+    UriFixture f;
+    std::string uri, expected;
+    GltfLoadOptions options;
+    SUBCASE("../ climbing out") {
+        uri = "../secret.bin";
+        expected = "outside the folder";
+    }
+    SUBCASE("../ climbing out after a detour") {
+        std::filesystem::create_directories(f.folder / "sub");
+        uri = "sub/../../secret.bin";
+        expected = "outside the folder";
+    }
+    SUBCASE("absolute path") {
+        uri = (f.dir / "secret.bin").string();
+        expected = "is an absolute path";
+    }
+    SUBCASE("absolute path spelt with escapes") {
+        uri = "%2Fdev%2Fzero";
+        expected = "is an absolute path";
+    }
+    SUBCASE("/dev/zero") {
+        uri = "/dev/zero";
+        expected = "is an absolute path";
+    }
+    SUBCASE("symlink pointing out of the folder") {
+        std::filesystem::create_symlink("../secret.bin", f.folder / "link.bin");
+        uri = "link.bin";
+        expected = "outside the folder";
+    }
+    SUBCASE("symlink to /dev/zero inside a root widened to /") {
+        std::filesystem::create_symlink("/dev/zero", f.folder / "zero.bin");
+        uri = "zero.bin";
+        options.resourceRoot = "/";
+        expected = "is not a regular file (a character device)";
+    }
+    SUBCASE("FIFO") {
+        REQUIRE(::mkfifo((f.folder / "pipe.bin").c_str(), 0600) == 0);
+        uri = "pipe.bin";
+        expected = "is not a regular file (a FIFO)";
+    }
+    SUBCASE("directory") {
+        std::filesystem::create_directories(f.folder / "sub.bin");
+        uri = "sub.bin";
+        expected = "is not a regular file (a directory)";
+    }
+    SUBCASE("file:// scheme") {
+        uri = "file://" + (f.folder / "tri.bin").string();
+        expected = "the scheme 'file:' is not allowed";
+    }
+    SUBCASE("http:// scheme") {
+        uri = "http://example.com/tri.bin";
+        expected = "the scheme 'http:' is not allowed";
+    }
+    SUBCASE("malformed percent-escape") {
+        uri = "tri%2.bin";
+        expected = "malformed percent-escape at character 4";
+    }
+    SUBCASE("percent-escape cut short at the end") {
+        uri = "tri.bin%";
+        expected = "malformed percent-escape at character 8";
+    }
+    SUBCASE("escaped NUL byte") {
+        uri = "tri.bin%00.txt";
+        expected = "decodes to a NUL byte";
+    }
+    SUBCASE("a file over the 1 GiB limit (sparse, never read)") {
+        std::filesystem::path huge = writeBytes(f.folder / "huge.bin", {});
+        std::filesystem::resize_file(huge, (uint64_t(1) << 30) + 1);
+        uri = "huge.bin";
+        expected = "1073741825 bytes is larger than the limit of 1073741824";
+    }
+    const std::string message = loadError(f.gltf(uri), options);
+    CHECK_MESSAGE(contains(message, "buffers[0].uri '" + uri + "': "), message);
+    CHECK_MESSAGE(contains(message, expected), message);
+}
+
+TEST_CASE("buffer URIs: percent-escapes decoded as RFC 3986 says, and a wider root for trusted input") {
+    UriFixture f;
+    SUBCASE("my%20file.bin names 'my file.bin'") {
+        writeBytes(f.folder / "my file.bin", f.source.bin);
+        CHECK(loadGltf(f.gltf("my%20file.bin")).trianglesStored() == 1);
+    }
+    SUBCASE("'+' is a plus sign, not a space") {
+        writeBytes(f.folder / "a+b.bin", f.source.bin);
+        CHECK(loadGltf(f.gltf("a+b.bin")).trianglesStored() == 1);
+    }
+    SUBCASE("escaped sub-folder and ..: allowed while inside the folder") {
+        std::filesystem::create_directories(f.folder / "sub dir");
+        CHECK(loadGltf(f.gltf("sub%20dir/../tri.bin")).trianglesStored() == 1);
+    }
+    SUBCASE("symlink inside the folder") {
+        std::filesystem::create_symlink("tri.bin", f.folder / "link.bin");
+        CHECK(loadGltf(f.gltf("link.bin")).trianglesStored() == 1);
+    }
+    SUBCASE("a resource root wider than the scene's folder") {
+        const std::filesystem::path file = f.gltf("../secret.bin");
+        CHECK(contains(loadError(file), "outside the folder"));
+        CHECK(loadGltf(file, {.resourceRoot = f.dir / "."}).trianglesStored() == 1);
+        CHECK(contains(loadError(file, {.resourceRoot = f.folder}), "outside the folder"));
+    }
+    SUBCASE("data: URI") {
+        // The triangle's 48 bytes in base64.
+        const std::string base64 = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAEAAAACAAAA";
+        CHECK(loadGltf(f.gltf("data:application/octet-stream;base64," + base64)).trianglesStored() == 1);
+    }
+    SUBCASE("data: URI of a media type tinygltf does not decode") {
+        const std::string message = loadError(f.gltf("data:text/html,hello"));
+        CHECK_MESSAGE(contains(message, "buffers[0].uri 'data:text/html,hello': a data: URI this importer cannot decode"),
+                      message);
+    }
+}
+
+TEST_CASE("image URIs are confined like buffer URIs") {
+    UriFixture f;
+    GltfSource s = triangleSource();
+    s.replace(R"("buffers":)", R"("images":[{"uri":"../secret.png"}],"buffers":)");
+    const std::string message = loadError(writeGlb(f.folder / "image.glb", s));
+    CHECK_MESSAGE(contains(message, "images[0].uri '../secret.png': "), message);
+    CHECK_MESSAGE(contains(message, "outside the folder"), message);
+}
+
+TEST_CASE("JSON nesting is bounded before parsing") {
+    TempFolder dir;
+    GltfSource s = triangleSource();
+    const int levels = 20000;
+    SUBCASE("20,000 levels of arrays in a .glb") {
+        s.replace(R"("scene":0,)", R"("extras":)" + std::string(levels, '[') + std::string(levels, ']') + ",\"scene\":0,");
+        const std::string message = loadError(writeGlb(dir / "deep.glb", s));
+        CHECK_MESSAGE(contains(message, "JSON nested 20001 levels deep, over the limit of 512"), message);
+    }
+    SUBCASE("20,000 levels of objects in a .gltf") {
+        std::string deep;
+        for (int i = 0; i < levels; ++i) deep += R"({"a":)";
+        deep += "0" + std::string(levels, '}');
+        const std::string message = loadError(writeText(dir / "deep.gltf", R"({"asset":{"version":"2.0"},"extras":)" + deep + "}"));
+        CHECK_MESSAGE(contains(message, "JSON nested 20001 levels deep, over the limit of 512"), message);
+    }
+    SUBCASE("brackets inside strings, escaped quotes included, do not count") {
+        const std::string brackets(2000, '[');
+        s.replace(R"("scene":0,)", R"("extras":{"a":"\")" + brackets + R"(","b\"[":"[[[\\"},"scene":0,)");
+        CHECK(loadGltf(writeGlb(dir / "strings.glb", s)).trianglesStored() == 1);
+    }
+    SUBCASE("exactly at the limit loads") {
+        s.replace(R"("scene":0,)", R"("extras":)" + std::string(511, '[') + std::string(511, ']') + ",\"scene\":0,");
+        CHECK(loadGltf(writeGlb(dir / "limit.glb", s)).trianglesStored() == 1);
+    }
+}
+
+TEST_CASE("not a glTF file: JSON that is not an object with an 'asset'") {
+    TempFolder dir;
+    SUBCASE("{}") {
+        const std::string message = loadError(writeText(dir / "empty.gltf", "{}"));
+        CHECK_MESSAGE(contains(message, "not a glTF file: no 'asset' object"), message);
+    }
+    SUBCASE("42") {
+        const std::string message = loadError(writeText(dir / "number.gltf", "42"));
+        CHECK_MESSAGE(contains(message, "not a glTF file: the JSON is a number, not an object"), message);
+    }
+    SUBCASE("42 in a .glb") {
+        GltfSource s;
+        s.json = "42";
+        const std::string message = loadError(writeGlb(dir / "number.glb", s));
+        CHECK_MESSAGE(contains(message, "not a glTF file: the JSON is a number, not an object"), message);
+    }
+    SUBCASE("'asset' that is not an object") {
+        const std::string message = loadError(writeText(dir / "asset.gltf", R"({"asset":"2.0"})"));
+        CHECK_MESSAGE(contains(message, "not a glTF file: 'asset' is a string, not an object"), message);
+    }
+}
+
+TEST_CASE("indices, offsets and values tinygltf would coerce or drop: errors name the JSON path") {
+    TempFolder dir;
+    GltfSource s = triangleSource();
+    std::string expected;
+    SUBCASE("mesh index past the mesh count") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":5}])");
+        expected = "nodes[0].mesh: 5 is out of range (the file has 1 meshes)";
+    }
+    SUBCASE("mesh index 1.5") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":1.5}])");
+        expected = "nodes[0].mesh: expected an integer, found 1.5";
+    }
+    SUBCASE("mesh index \"0\"") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":"0"}])");
+        expected = "nodes[0].mesh: expected an integer, found a string";
+    }
+    SUBCASE("mesh index -1") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":-1}])");
+        expected = "nodes[0].mesh: -1 is out of range (the file has 1 meshes)";
+    }
+    SUBCASE("mesh index 2^32 (an int cast would make it 0)") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":4294967296}])");
+        expected = "nodes[0].mesh: 4294967296 is out of range (the file has 1 meshes)";
+    }
+    SUBCASE("child index past the node count") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0,"children":[7]}])");
+        expected = "nodes[0].children[0]: 7 is out of range (the file has 1 nodes)";
+    }
+    SUBCASE("scene root 1.0") {
+        s.replace(R"("scenes":[{"nodes":[0]}])", R"("scenes":[{"nodes":[1.0]}])");
+        expected = "scenes[0].nodes[0]: expected an integer, found 1.0";
+    }
+    SUBCASE("default scene past the scene count") {
+        s.replace(R"("scene":0)", R"("scene":4)");
+        expected = "scene: 4 is out of range (the file has 1 scenes)";
+    }
+    SUBCASE("material index past the material count") {
+        s.replace(R"("indices":1})", R"("indices":1,"material":3})");
+        expected = "meshes[0].primitives[0].material: 3 is out of range (the file has 0 materials)";
+    }
+    SUBCASE("indices accessor past the accessor count") {
+        s.replace(R"("indices":1)", R"("indices":9)");
+        expected = "meshes[0].primitives[0].indices: 9 is out of range (the file has 2 accessors)";
+    }
+    SUBCASE("attribute accessor past the accessor count") {
+        s.replace(R"({"POSITION":0})", R"({"POSITION":0,"TEXCOORD_0":9})");
+        expected = "meshes[0].primitives[0].attributes.TEXCOORD_0: 9 is out of range (the file has 2 accessors)";
+    }
+    SUBCASE("accessor count given as a string") {
+        s.replace(R"("count":3,"type":"VEC3")", R"("count":"3","type":"VEC3")");
+        expected = "accessors[0].count: expected an integer, found a string";
+    }
+    SUBCASE("negative bufferView byteOffset") {
+        s.replace(R"("byteOffset":36,"byteLength":12)", R"("byteOffset":-4,"byteLength":12)");
+        expected = "bufferViews[1].byteOffset: -4 is negative";
+    }
+    SUBCASE("negative accessor byteOffset") {
+        s.replace(R"("bufferView":1,"componentType":5125)", R"("bufferView":1,"byteOffset":-4,"componentType":5125)");
+        expected = "accessors[1].byteOffset: -4 is negative";
+    }
+    SUBCASE("accessor byteOffset misaligned for its component type") {
+        s.replace(R"("bufferView":1,"componentType":5125)", R"("bufferView":1,"byteOffset":2,"componentType":5125)");
+        expected = "accessors[1].byteOffset: 2 plus bufferViews[1].byteOffset 36 is 38, not a multiple of the "
+                   "component size 4";
+    }
+    SUBCASE("bufferView byteOffset misaligned for its accessor's component type") {
+        s.bin.insert(s.bin.begin() + 36, {0, 0});
+        s.replace(R"("buffers":[{"byteLength":48}])", R"("buffers":[{"byteLength":50}])");
+        s.replace(R"("byteOffset":36,"byteLength":12)", R"("byteOffset":38,"byteLength":12)");
+        expected = "accessors[1].byteOffset: 0 plus bufferViews[1].byteOffset 38 is 38, not a multiple of the "
+                   "component size 4";
+    }
+    SUBCASE("stride below the element size") {
+        s.replace(R"({"buffer":0,"byteOffset":0,"byteLength":36})", R"({"buffer":0,"byteOffset":0,"byteLength":36,"byteStride":4})");
+        expected = "accessors[0] (bufferView 0): byteStride 4 is smaller than the element size 12";
+    }
+    SUBCASE("camera aspectRatio 0") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0,"camera":0}],
+            "cameras":[{"type":"perspective","perspective":{"yfov":0.5,"znear":0.1,"aspectRatio":0}}])");
+        expected = "cameras[0].perspective.aspectRatio: must be greater than 0, found 0";
+    }
+    SUBCASE("negative light range") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0,"extensions":{"KHR_lights_punctual":{"light":0}}}],
+            "extensionsUsed":["KHR_lights_punctual"],
+            "extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","range":-1}]}})");
+        expected = "extensions.KHR_lights_punctual.lights[0].range: must be greater than 0, found -1";
+    }
+    SUBCASE("light index past the light count") {
+        s.replace(R"("nodes":[{"mesh":0}])", R"("nodes":[{"mesh":0,"extensions":{"KHR_lights_punctual":{"light":3}}}],
+            "extensionsUsed":["KHR_lights_punctual"],
+            "extensions":{"KHR_lights_punctual":{"lights":[{"type":"point"}]}})");
+        expected = "nodes[0].extensions.KHR_lights_punctual.light: 3 is out of range (the file has 1 lights)";
+    }
+    const std::string message = loadError(writeGlb(dir / "paths.glb", s));
+    CHECK_MESSAGE(contains(message, expected), message);
 }
