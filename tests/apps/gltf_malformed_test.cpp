@@ -50,6 +50,14 @@ TEST_CASE("GLB container errors") {
     const std::vector<uint8_t> good = glbBytes(triangleSource());
 
     SUBCASE("missing file") { CHECK(contains(loadError(dir / "absent.glb"), "no such file")); }
+    SUBCASE("a FIFO as the scene file: refused at once, not waited on") {
+        REQUIRE(::mkfifo((dir / "pipe.glb").c_str(), 0600) == 0);
+        CHECK(contains(loadError(dir / "pipe.glb"), "pipe.glb: is not a regular file (a FIFO)"));
+    }
+    SUBCASE("a directory as the scene file") {
+        std::filesystem::create_directories(dir / "folder.gltf");
+        CHECK(contains(loadError(dir / "folder.gltf"), "folder.gltf: is not a regular file (a directory)"));
+    }
     SUBCASE("empty file") {
         CHECK(contains(loadError(writeBytes(dir / "empty.glb", {})), "too short for a GLB header"));
     }
