@@ -358,6 +358,9 @@ TEST_CASE("buffer URIs: percent-escapes decoded as RFC 3986 says, and a wider ro
         std::filesystem::create_directories(f.folder / "sub dir");
         CHECK(loadGltf(f.gltf("sub%20dir/../tri.bin")).trianglesStored() == 1);
     }
+    SUBCASE("JSON escapes are undone before percent-escapes") {
+        CHECK(loadGltf(f.gltf(R"(tri\u002Ebin)")).trianglesStored() == 1);
+    }
     SUBCASE("symlink inside the folder") {
         std::filesystem::create_symlink("tri.bin", f.folder / "link.bin");
         CHECK(loadGltf(f.gltf("link.bin")).trianglesStored() == 1);
