@@ -142,7 +142,7 @@ void parseFile(const std::filesystem::path& file, const GltfLoadOptions& options
     const bool binary = (bytes.size() >= 4 && readLittle32(bytes, 0) == kGlbMagic) || file.extension() == ".glb";
     const std::string_view json = binary ? checkGlbContainer(bytes, name) : std::string_view(bytes);
 
-    // Before any parser: tinygltf's recurses once per level and a few kilobytes of brackets overflow the stack.
+    // Before any parser: they recurse once per level, and some tens of kilobytes of brackets overflowed the stack.
     if (const uint32_t depth = jsonNestingDepth(json); depth > options.maxJsonDepth)
         throw GltfError(name + ": JSON nested " + std::to_string(depth) + " levels deep, over the limit of " +
                         std::to_string(options.maxJsonDepth) + " (arrays and objects)");
