@@ -9,6 +9,7 @@
 #include "anari/device/frame/Frame.h"
 #include "anari/device/object/Object.h"
 
+#include <cstdio>
 #include <cstring>
 #include <exception>
 
@@ -18,7 +19,17 @@ namespace {
 
 constexpr int32_t kDeviceVersion = 1;  // the "version" property
 
-template <class Handle> Handle handleOf(Object* object) { return reinterpret_cast<Handle>(object); }
+template <class Handle> Handle handleOf(Object* object) { return reinterpret_cast<Handle>(object->handle()); }
+
+bool isArrayType(ANARIDataType type) {
+    return type == ANARI_ARRAY1D || type == ANARI_ARRAY2D || type == ANARI_ARRAY3D;
+}
+
+std::string handleText(const void* handle) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%p", handle);
+    return text;
+}
 
 }  // namespace
 
@@ -33,10 +44,10 @@ Device::~Device() {
         state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_UNKNOWN_ERROR,
                       std::string("device release: ") + error.what());
     }
-    for (auto& [key, array] : parameterArrays_) array->release();
-    if (state_.liveObjects > 0)
+    for (auto& [key, array] : parameterArrays_) array->releasePublic();
+    if (const size_t live = state_.handles.liveCount(); live > 0)
         state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_NO_ERROR,
-                      "device released with " + std::to_string(state_.liveObjects.load()) +
+                      "device released with " + std::to_string(live) +
                           " object(s) still alive (not released by the application)");
 }
 
@@ -63,7 +74,30 @@ Object* Device::objectFrom(ANARIObject handle, const char* call) {
                       std::string(call) + ": NULL object handle");
         return nullptr;
     }
-    return reinterpret_cast<Object*>(handle);
+    Object* object = state_.handles.find(handle);
+    if (!object) {
+        state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                      std::string(call) + ": handle " + handleText(handle) +
+                          " is not a live object of this device (released already, or never created by it)");
+        return nullptr;
+    }
+    if (object->publicReferenceCount() == 0) {
+        state_.report(object, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_OPERATION,
+                      std::string(call) + ": " + object->label() +
+                          " was released by the application (it holds no reference to it any more)");
+        return nullptr;
+    }
+    return object;
+}
+
+Array* Device::arrayFrom(ANARIArray handle, const char* call) {
+    Object* object = objectFrom(handle, call);
+    if (object && !isArrayType(object->type())) {
+        state_.report(object, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                      std::string(call) + ": " + object->label() + " is not an array");
+        return nullptr;
+    }
+    return static_cast<Array*>(object);
 }
 
 // --- creation ------------------------------------------------------------------------------------------
@@ -81,6 +115,10 @@ ANARIArray Device::newArray(ANARIDataType arrayType, const void* appMemory, ANAR
         if (n1 == 0 || n2 == 0 || n3 == 0) {
             state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
                           "anariNewArray: zero elements along an axis");
+            return nullptr;
+        }
+        if (auto problem = Array::sizeProblem(elementType, n1, n2, n3, appMemory == nullptr)) {
+            state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_OUT_OF_MEMORY, "anariNewArray: " + *problem);
             return nullptr;
         }
         return handleOf<ANARIArray>(
@@ -191,12 +229,13 @@ void* Device::mapParameterArray(ANARIObject object, const char* name, ANARIDataT
     return guarded("anariMapParameterArray", [&]() -> void* {
         Object* target = objectFrom(object, "anariMapParameterArray");
         if (!target || !name || isDevice(object)) return nullptr;
-        auto* array = reinterpret_cast<Array*>(newArray(arrayType, nullptr, nullptr, nullptr, elementType, n1, n2, n3));
-        if (!array) return nullptr;
-        target->setParameter(name, arrayType, &array);  // the parameter holds its own reference
+        ANARIArray handle = newArray(arrayType, nullptr, nullptr, nullptr, elementType, n1, n2, n3);
+        if (!handle) return nullptr;
+        auto* array = static_cast<Array*>(state_.handles.find(handle));
+        target->setParameter(name, arrayType, &handle);  // the parameter holds its own reference
         auto& slot = parameterArrays_[{target, name}];
-        if (slot) slot->release();
-        slot = array;  // ours, until unmapped
+        if (slot) slot->releasePublic();
+        slot = array;  // the application's (through us), until unmapped
         if (elementStride) *elementStride = ripple_anari::sizeOf(elementType);
         return array->map();
     });
@@ -216,7 +255,9 @@ void* Device::mapParameterArray3D(ANARIObject o, const char* n, ANARIDataType t,
 
 void Device::unmapParameterArray(ANARIObject object, const char* name) {
     guarded("anariUnmapParameterArray", [&] {
-        auto it = parameterArrays_.find({reinterpret_cast<Object*>(object), name ? name : ""});
+        Object* target = objectFrom(object, "anariUnmapParameterArray");
+        if (!target) return;
+        auto it = parameterArrays_.find({target, name ? name : ""});
         if (it == parameterArrays_.end()) {
             state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_OPERATION,
                           std::string("anariUnmapParameterArray: parameter '") + (name ? name : "NULL") +
@@ -226,7 +267,7 @@ void Device::unmapParameterArray(ANARIObject object, const char* name) {
         Array* array = it->second;
         parameterArrays_.erase(it);
         array->unmap();
-        array->release();
+        array->releasePublic();  // the reference anariMapParameterArray held for the application
     });
 }
 
@@ -248,7 +289,17 @@ void Device::release(ANARIObject object) {
         if (--references_ == 0) delete this;
         return;
     }
-    guarded("anariRelease", [&] { reinterpret_cast<Object*>(object)->release(); });
+    guarded("anariRelease", [&] {
+        Object* target = state_.handles.find(object);
+        if (!target) {
+            objectFrom(object, "anariRelease");  // reports the stale handle
+            return;
+        }
+        if (!target->releasePublic())
+            state_.report(target, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_OPERATION,
+                          "anariRelease: " + target->label() +
+                              " released more often than created and retained by the application; ignored");
+    });
 }
 
 void Device::retain(ANARIObject object) {
@@ -257,21 +308,23 @@ void Device::retain(ANARIObject object) {
         ++references_;
         return;
     }
-    guarded("anariRetain", [&] { reinterpret_cast<Object*>(object)->retain(); });
+    guarded("anariRetain", [&] {
+        if (Object* target = objectFrom(object, "anariRetain")) target->retainPublic();
+    });
 }
 
 // --- arrays --------------------------------------------------------------------------------------------
 
 void* Device::mapArray(ANARIArray array) {
     return guarded("anariMapArray", [&]() -> void* {
-        Object* target = objectFrom(array, "anariMapArray");
-        return target ? static_cast<Array*>(target)->map() : nullptr;
+        Array* target = arrayFrom(array, "anariMapArray");
+        return target ? target->map() : nullptr;
     });
 }
 
 void Device::unmapArray(ANARIArray array) {
     guarded("anariUnmapArray", [&] {
-        if (Object* target = objectFrom(array, "anariUnmapArray")) static_cast<Array*>(target)->unmap();
+        if (Array* target = arrayFrom(array, "anariUnmapArray")) target->unmap();
     });
 }
 
@@ -318,12 +371,15 @@ const void* Device::getParameterInfo(ANARIDataType objectType, const char* objec
 
 // --- frames --------------------------------------------------------------------------------------------
 
-namespace {
-Frame* frameFrom(ANARIFrame handle) {
-    auto* object = reinterpret_cast<Object*>(handle);
-    return object && object->type() == ANARI_FRAME ? static_cast<Frame*>(object) : nullptr;
+Frame* Device::frameFrom(ANARIFrame handle, const char* call) {
+    Object* object = objectFrom(handle, call);
+    if (object && object->type() != ANARI_FRAME) {
+        state_.report(object, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                      std::string(call) + ": " + object->label() + " is not a frame");
+        return nullptr;
+    }
+    return static_cast<Frame*>(object);
 }
-}  // namespace
 
 const void* Device::mapFrame(ANARIFrame frame, const char* channel, uint32_t* width, uint32_t* height,
                              ANARIDataType* pixelType) {
@@ -331,10 +387,10 @@ const void* Device::mapFrame(ANARIFrame frame, const char* channel, uint32_t* wi
         if (width) *width = 0;
         if (height) *height = 0;
         if (pixelType) *pixelType = ANARI_UNKNOWN;
-        Frame* target = frameFrom(frame);
-        if (!target || !channel) {
-            state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
-                          "anariMapFrame: not a frame, or NULL channel");
+        Frame* target = frameFrom(frame, "anariMapFrame");
+        if (!target) return nullptr;
+        if (!channel) {
+            state_.report(target, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT, "anariMapFrame: NULL channel");
             return nullptr;
         }
         return target->map(channel, width, height, pixelType);
@@ -343,27 +399,26 @@ const void* Device::mapFrame(ANARIFrame frame, const char* channel, uint32_t* wi
 
 void Device::unmapFrame(ANARIFrame frame, const char* channel) {
     guarded("anariUnmapFrame", [&] {
-        if (Frame* target = frameFrom(frame); target && channel) target->unmap(channel);
+        if (Frame* target = frameFrom(frame, "anariUnmapFrame"); target && channel) target->unmap(channel);
     });
 }
 
 void Device::renderFrame(ANARIFrame frame) {
     guarded("anariRenderFrame", [&] {
-        if (Frame* target = frameFrom(frame)) return target->renderFrame();
-        state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT, "anariRenderFrame: not a frame");
+        if (Frame* target = frameFrom(frame, "anariRenderFrame")) target->renderFrame();
     });
 }
 
 int Device::frameReady(ANARIFrame frame, ANARIWaitMask mask) {
     return guarded("anariFrameReady", [&]() -> int {
-        Frame* target = frameFrom(frame);
+        Frame* target = frameFrom(frame, "anariFrameReady");
         return target && target->ready(mask == ANARI_WAIT) ? 1 : 0;
     });
 }
 
 void Device::discardFrame(ANARIFrame frame) {
     guarded("anariDiscardFrame", [&] {
-        if (Frame* target = frameFrom(frame)) target->discard();
+        if (Frame* target = frameFrom(frame, "anariDiscardFrame")) target->discard();
     });
 }
 

@@ -14,6 +14,7 @@ namespace ripple::device {
 
 class Object;
 class Array;
+class Frame;
 
 class Device final : public abi::DeviceInterface {
 public:
@@ -76,7 +77,11 @@ public:
 private:
     bool isDevice(ANARIObject object) const;
     // The object behind a handle, or nullptr (reported, naming the call) for NULL.
+    // The object behind a handle the application passed, or nullptr (reported, naming the call) for NULL,
+    // a handle that is not a live object of this device, or one the application has released.
     Object* objectFrom(ANARIObject handle, const char* call);
+    Array* arrayFrom(ANARIArray handle, const char* call);
+    Frame* frameFrom(ANARIFrame handle, const char* call);
     ANARIObject create(ANARIDataType type, const char* subtype, const char* call);
     ANARIArray newArray(ANARIDataType arrayType, const void* appMemory, ANARIMemoryDeleter deleter,
                         const void* userData, ANARIDataType elementType, uint64_t n1, uint64_t n2, uint64_t n3);

@@ -23,8 +23,7 @@ void DeviceState::report(const Object* source, ANARIStatusSeverity severity, ANA
                          const std::string& message) const {
     std::lock_guard lock(reportMutex_);
     if (!callback_) return;
-    auto* sourceHandle = reinterpret_cast<ANARIObject>(const_cast<Object*>(source));
-    callback_(callbackUserPtr_, handle_, sourceHandle, source ? source->type() : ANARI_DEVICE, severity, code,
+    callback_(callbackUserPtr_, handle_, source ? source->handle() : nullptr, source ? source->type() : ANARI_DEVICE, severity, code,
               message.c_str());
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "anari/anari.h"
+#include "anari/device/object/HandleTable.h"
 #include "mpi/Communicator.h"
 
 #include <atomic>
@@ -54,8 +55,8 @@ public:
     uint64_t nextFrameIndex() { return frames_++; }
     uint64_t nextWorldIndex() { return worlds_++; }
 
-    // Live objects (not counting the device), for the leak report at device release.
-    std::atomic<int64_t> liveObjects{0};
+    // Every live object's handle (not the device's); its count is the leak report at device release.
+    HandleTable handles;
 
 private:
     ANARIDevice handle_;

@@ -38,13 +38,13 @@ bool isArrayType(ANARIDataType type) {
 
 Object::Object(DeviceState& state, ANARIDataType type, std::string subtype)
     : state_(state), type_(type), subtype_(std::move(subtype)), serial_(state.nextSerial()) {
-    ++state_.liveObjects;
+    handle_ = state_.handles.add(this);
     lastCommitted_ = state_.nextStamp();
 }
 
 Object::~Object() {
     unsetAllParameters();
-    --state_.liveObjects;
+    state_.handles.remove(handle_);
 }
 
 std::string Object::label() const {
@@ -58,6 +58,20 @@ void Object::retain() { ++references_; }
 void Object::release() {
     if (references_ == 0) return;  // already dying: a parameter cycle releasing back into us
     if (--references_ == 0) delete this;
+}
+
+void Object::retainPublic() {
+    ++publicReferences_;
+    retain();
+}
+
+bool Object::releasePublic() {
+    if (publicReferences_ == 0) return false;
+    // The application lets go of its last reference: whatever still holds the object internally must
+    // stop depending on application memory now (arrays copy shared memory), before we return.
+    if (--publicReferences_ == 0 && references_ > 1) onLastPublicRelease();
+    release();
+    return true;
 }
 
 void Object::setParameter(std::string_view name, ANARIDataType type, const void* mem) {
@@ -74,7 +88,13 @@ void Object::setParameter(std::string_view name, ANARIDataType type, const void*
     if (type == ANARI_STRING) {
         value.string = static_cast<const char*>(mem);
     } else if (ripple_anari::isObjectType(type)) {
-        value.object = *static_cast<Object* const*>(mem);
+        const auto handle = *static_cast<const ANARIObject*>(mem);
+        value.object = state_.handles.find(handle);
+        if (handle && (!value.object || value.object->publicReferenceCount() == 0)) {
+            reportError("parameter '" + std::string(name) +
+                        "' names an object the application has released (or one that is not of this device); ignored");
+            return;
+        }
         if (value.object) value.object->retain();
     } else {
         const size_t size = ripple_anari::sizeOf(type);

@@ -45,10 +45,19 @@ public:
     // "geometry 'sphere' #12" : how messages name this object.
     std::string label() const;
 
-    // Application and internal references share one count; the object deletes itself at zero.
+    // The handle the application holds (see HandleTable.h); stable for the object's life.
+    ANARIObject handle() const { return handle_; }
+
+    // Every reference, the application's and internal ones (parameters, arrays, committed state), is in one
+    // count; the object deletes itself at zero. The application's own references are also counted apart:
+    // retainPublic/releasePublic are anariRetain/anariRelease. releasePublic is false (and does nothing)
+    // when the application holds no reference any more: a release too many.
     void retain();
     void release();
+    void retainPublic();
+    bool releasePublic();
     uint32_t referenceCount() const { return references_; }
+    uint32_t publicReferenceCount() const { return publicReferences_; }
 
     // The API calls, forwarded by the Device.
     void setParameter(std::string_view name, ANARIDataType type, const void* mem);
@@ -75,6 +84,9 @@ public:
     void reportWarning(const std::string& message) const;
 
 protected:
+    // Called when the application's last reference goes while internal ones remain.
+    virtual void onLastPublicRelease() {}
+
     // Typed parameter access for commit(). A parameter set with a different type than asked for is
     // reported once (naming object, parameter, expected and given types) and the default is used.
     bool has(std::string_view name) const;
@@ -101,7 +113,9 @@ private:
     ANARIDataType type_;
     std::string subtype_;
     uint64_t serial_ = 0;                // creation order, for labels
-    uint32_t references_ = 1;
+    ANARIObject handle_ = nullptr;
+    uint32_t references_ = 1;            // all references; the creator's is the first
+    uint32_t publicReferences_ = 1;      // the application's alone
     bool valid_ = true;
     uint64_t lastCommitted_ = 0;
     std::map<std::string, Parameter, std::less<>> parameters_;
