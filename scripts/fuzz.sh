@@ -21,8 +21,10 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_COMPILER="$
 cmake --build "$build" --parallel ${RIPPLE_BUILD_JOBS:-} --target "${targets[@]/#/ripple_fuzz_}"
 data=$(sed -n 's/^RIPPLE_DATA_DIR:PATH=//p' "$build/CMakeCache.txt")
 
-# As in scripts/sanitize.sh (docs/fuzzing.md), plus: libFuzzer reports the crash itself (no abort core).
-export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
+# As in scripts/sanitize.sh (docs/fuzzing.md), plus verify_asan_link_order=0: clang's -fsanitize=fuzzer puts
+# libstdc++ ahead of the shared ASan runtime in the executable's needed list, which ASan refuses by default;
+# its interceptors still come before libc's functions in the lookup order, so the order is harmless here.
+export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:verify_asan_link_order=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export LSAN_OPTIONS="suppressions=$PWD/cmake/lsan-suppressions.txt:print_suppressions=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 
