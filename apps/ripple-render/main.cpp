@@ -153,7 +153,7 @@ struct RenderPlan {
     std::optional<GltfScene> gltf;
 };
 
-// The host memory ripple-render's own buffers for a w x h image take: the estimator's sums (RGBA doubles:
+// The host memory ripple-render's own buffers for a w x h image take on rank 0: the estimator's sums (RGBA doubles:
 // the previous total and the two halves), one batch's sum while a frame is added, the mean image written
 // at the end, and the reference when given (RGB floats).
 uint64_t appBytes(glm::uvec2 size, bool reference) {
@@ -200,7 +200,7 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     // Only rank 0 writes: it finds out now, not after the render, that it cannot.
     if (plan.root) checkOutputWritable(options.output);
     if (const uint64_t needed = appBytes(plan.size, !options.reference.empty()), available = availableHostBytes();
-        needed > available)
+        plan.root && needed > available)
         throw std::runtime_error("--size " + std::to_string(plan.size.x) + "x" + std::to_string(plan.size.y) +
                                  ": ripple-render's image buffers need " + std::to_string(needed) + " bytes but only " +
                                  std::to_string(available) + " are available; use a smaller size");
@@ -321,7 +321,8 @@ struct RenderOutcome {
 // (data-parallel ANARI): it decides when to stop, and tells the others.
 RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const FrameSetup& setup,
                            const mpi::Communicator& ranks, Session& s, RankStats& stats) {
-    RenderOutcome out{HalfBufferEstimator(plan.size.x, plan.size.y), {}, 0, 0.0};
+    // Only rank 0 holds the image, so only it needs the estimator's buffers.
+    RenderOutcome out{HalfBufferEstimator(plan.root ? plan.size.x : 0, plan.root ? plan.size.y : 0), {}, 0, 0.0};
     const bool stopOnSpp = options.sppGiven || (!options.seconds && !options.targetError);
     const uint32_t sppLimit = stopOnSpp ? options.spp : kMaxSpp;
     const bool printPoints = options.reporting() && !options.quiet && plan.root;

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 namespace ripple::device {
 namespace {
@@ -110,6 +111,16 @@ const core::Scene& DataParallelFrame::scene(SceneSync& sync, const vk::Context& 
 
 void DataParallelFrame::gather(glm::uvec2 size, size_t bytesPerPixel, void* pixels) {
     mpi::gatherFrame(ring_.communicator(), size, bytesPerPixel, pixels);
+}
+
+std::string DataParallelFrame::whyCannotGather(glm::uvec2 size, uint64_t bytesPerPixel) const {
+    // Rank 0 receives the whole channel in one MPI_Gatherv, whose counts and offsets are ints.
+    const uint64_t bytes = uint64_t(size.x) * size.y * bytesPerPixel;  // sides of at most 16384 (commit): no overflow
+    const uint64_t most = uint64_t(std::numeric_limits<int>::max());
+    if (bytes <= most) return {};
+    return "a data-parallel " + std::to_string(size.x) + "x" + std::to_string(size.y) + " channel of " +
+           std::to_string(bytesPerPixel) + " bytes a pixel is more than one MPI gather carries to rank 0 (" +
+           std::to_string(most) + " bytes); use a smaller size";
 }
 
 void DataParallelFrame::failed(const std::string& message) {

@@ -21,6 +21,7 @@ public:
     core::RayExchange* exchange() override { return &ring_; }
     const core::Scene& scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) override;
     void gather(glm::uvec2 size, size_t bytesPerPixel, void* pixels) override;
+    std::string whyCannotGather(glm::uvec2 size, uint64_t bytesPerPixel) const override;
     [[noreturn]] void failed(const std::string& message) override;
 
 private:

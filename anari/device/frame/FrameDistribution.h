@@ -64,6 +64,8 @@ public:
     virtual const core::Scene& scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) = 0;
     // Collective: rank 0 assembles every rank's pixels; the others keep theirs (undefined by ANARI's rule).
     virtual void gather(glm::uvec2 size, size_t bytesPerPixel, void* pixels) = 0;
+    // Why a frame of `size` with `bytesPerPixel` bytes of color and depth cannot be assembled, or empty.
+    virtual std::string whyCannotGather(glm::uvec2 /*size*/, uint64_t /*bytesPerPixel*/) const { return {}; }
     // Rendering failed on this rank. Data-parallel: the other ranks wait for it in the exchange, so every
     // rank is ended with the message (this does not return); alone: nothing more to do.
     virtual void failed(const std::string& message) = 0;
