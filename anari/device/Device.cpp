@@ -340,6 +340,13 @@ int Device::getProperty(ANARIObject object, const char* name, ANARIDataType type
                 std::memcpy(mem, &kDeviceVersion, sizeof(int32_t));
                 return 1;
             }
+            // KHR_DEVICE_SYNCHRONIZATION: "waitIdle" returns once every frame in flight has finished.
+            if (key == "waitIdle" && type == ANARI_BOOL && size >= sizeof(int32_t)) {
+                if (mask == ANARI_WAIT) state_.waitForWork();
+                const int32_t idle = mask == ANARI_WAIT || state_.idle() ? 1 : 0;
+                std::memcpy(mem, &idle, sizeof(idle));
+                return 1;
+            }
             if (key == "extension" && type == ANARI_STRING_LIST && size >= sizeof(const char**)) {
                 const char** list = deviceExtensions();
                 std::memcpy(mem, &list, sizeof(list));

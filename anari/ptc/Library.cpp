@@ -2,13 +2,16 @@
 // gives a pass-through compositing device (anari/ptc/PtcDevice.h).
 #include "anari/backend/LibraryInterface.h"
 #include "anari/ptc/PtcDevice.h"
+#include "anari/ptc/WrappedLibrary.h"
+
+#include <exception>
+#include <string>
 
 namespace ripple::ptc {
 
 namespace {
 
 const char* deviceSubtypeNames[] = {"default", nullptr};
-const char* noExtensions[] = {nullptr};
 
 class Library final : public abi::LibraryInterface {
 public:
@@ -32,8 +35,23 @@ public:
         deviceObject->commitParameters(device);
         return device;
     }
-    // The wrapped device's extensions are known only once it is loaded: none are promised here.
-    const char** getDeviceExtensions(const char*) override { return noExtensions; }
+    // The wrapped library (RIPPLE_PTC_LIBRARY, else ripple) is loaded for the question and let go again; a
+    // device parameter "library" naming another one is known only to the device's "extension" property.
+    const char** getDeviceExtensions(const char*) override {
+        try {
+            WrappedLibrary wrapped = loadWrappedLibrary(defaultWrappedLibraryName(), defaultStatusCallback,
+                                                        defaultStatusCallbackUserPtr);
+            const char** list = compositedExtensions(wrapped.library->getDeviceExtensions("default"));
+            unloadWrappedLibrary(wrapped);
+            return list;
+        } catch (const std::exception& error) {
+            if (defaultStatusCallback)
+                defaultStatusCallback(defaultStatusCallbackUserPtr, nullptr, nullptr, ANARI_LIBRARY,
+                                      ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_OPERATION,
+                                      (std::string("ripple_ptc: ") + error.what()).c_str());
+            return compositedExtensions(nullptr);
+        }
+    }
     const char** getDeviceSubtypes() override { return deviceSubtypeNames; }
     void loadModule(const char*) override {}
     void unloadModule(const char*) override {}

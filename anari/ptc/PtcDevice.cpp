@@ -17,18 +17,6 @@ namespace ripple::ptc {
 
 namespace {
 
-using NewLibraryFunction = ANARILibrary (*)(void*, ANARIStatusCallback, const void*);
-
-// The folder this library was loaded from, so the wrapped library is found beside it.
-std::string ownDirectory() {
-    static const char addressInside = 0;
-    Dl_info info{};
-    if (dladdr(&addressInside, &info) == 0 || info.dli_fname == nullptr) return {};
-    const std::string path = info.dli_fname;
-    const size_t slash = path.rfind('/');
-    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
 uint8_t toUnorm8(float value) { return uint8_t(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f)); }
 float linearToSrgb(float value) {
     value = std::clamp(value, 0.0f, 1.0f);
@@ -39,14 +27,12 @@ float linearToSrgb(float value) {
 
 PtcDevice::PtcDevice(ANARIStatusCallback defaultCallback, const void* defaultCallbackUserPtr)
     : callback_(defaultCallback), callbackUserPtr_(defaultCallbackUserPtr) {
-    const char* fromEnvironment = std::getenv("RIPPLE_PTC_LIBRARY");
-    libraryName_ = fromEnvironment && *fromEnvironment ? fromEnvironment : "ripple";
+    libraryName_ = defaultWrappedLibraryName();
 }
 
 PtcDevice::~PtcDevice() {
     if (wrapped_) wrapped_->release(wrappedHandle());
-    delete library_;  // like the loader: delete the library object, then unmap its code
-    if (libraryHandle_) dlclose(libraryHandle_);
+    unloadWrappedLibrary(library_);
 }
 
 void PtcDevice::report(ANARIStatusSeverity severity, const std::string& message) const {
@@ -57,26 +43,8 @@ void PtcDevice::report(ANARIStatusSeverity severity, const std::string& message)
 }
 
 void PtcDevice::loadWrapped() {
-    const std::string fileName = "libanari_library_" + libraryName_ + ".so";
-    std::string reasons;
-    for (const std::string& candidate : {ownDirectory() + fileName, fileName}) {
-        dlerror();
-        libraryHandle_ = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL);
-        if (libraryHandle_) break;
-        const char* reason = dlerror();
-        reasons += "\n  " + candidate + ": " + (reason ? reason : "unknown dlopen error");
-    }
-    if (!libraryHandle_)
-        throw std::runtime_error("cannot load the wrapped library '" + libraryName_ + "' (device parameter "
-                                 "\"library\" or RIPPLE_PTC_LIBRARY):" + reasons);
-    const std::string symbol = "anari_library_" + libraryName_ + "_new_library";
-    auto newLibrary = reinterpret_cast<NewLibraryFunction>(dlsym(libraryHandle_, symbol.c_str()));
-    if (!newLibrary) throw std::runtime_error("the wrapped library '" + libraryName_ + "' does not export " + symbol);
-    // The wrapped library reports to the application's callback directly.
-    ANARILibrary library = newLibrary(libraryHandle_, callback_, callbackUserPtr_);
-    if (!library) throw std::runtime_error(symbol + " returned NULL");
-    library_ = abi::libraryFromHandle(library);
-    ANARIDevice device = library_->newDevice("default");
+    library_ = loadWrappedLibrary(libraryName_, callback_, callbackUserPtr_);  // reports to the application
+    ANARIDevice device = library_.library->newDevice("default");
     if (!device) throw std::runtime_error("the wrapped library '" + libraryName_ + "' created no device");
     wrapped_ = abi::deviceFromHandle(device);
     // The wrapped device renders this rank's share alone: a data-parallel device must not talk to the
@@ -306,8 +274,18 @@ void PtcDevice::unmapArray(ANARIArray array) { RIPPLE_PTC_FORWARD(void(), unmapA
 int PtcDevice::getProperty(ANARIObject object, const char* name, ANARIDataType type, void* mem, uint64_t size,
                            ANARIWaitMask mask) {
     if (isDevice(object)) {
-        if (abi::DeviceInterface* device = wrapped()) return device->getProperty(wrappedHandle(), name, type, mem, size, mask);
-        return 0;
+        abi::DeviceInterface* device = wrapped();
+        if (!device) return 0;
+        if (name && std::strcmp(name, "extension") == 0 && type == ANARI_STRING_LIST && mem &&
+            size >= sizeof(const char**)) {
+            const char** wrappedList = nullptr;
+            if (!device->getProperty(wrappedHandle(), name, type, &wrappedList, sizeof(wrappedList), mask))
+                wrappedList = nullptr;
+            const char** list = compositedExtensions(wrappedList);
+            std::memcpy(mem, &list, sizeof(list));
+            return 1;
+        }
+        return device->getProperty(wrappedHandle(), name, type, mem, size, mask);
     }
     RIPPLE_PTC_FORWARD(0, getProperty(object, name, type, mem, size, mask));
 }

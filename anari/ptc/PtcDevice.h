@@ -4,6 +4,7 @@
 
 #include "anari/backend/DeviceInterface.h"
 #include "anari/backend/LibraryInterface.h"
+#include "anari/ptc/WrappedLibrary.h"
 #include "mpi/Compositor.h"
 
 #include <map>
@@ -108,8 +109,7 @@ private:
         std::string text;
     };
     std::vector<PendingParameter> pending_;
-    void* libraryHandle_ = nullptr;          // dlopen handle of the wrapped library
-    abi::LibraryInterface* library_ = nullptr;
+    WrappedLibrary library_;
     abi::DeviceInterface* wrapped_ = nullptr;
     bool loadFailed_ = false;
     int references_ = 1;

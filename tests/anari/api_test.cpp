@@ -212,6 +212,12 @@ TEST_CASE("introspection answers from Ripple's own tables") {
                              ANARI_WAIT) == 1);
     CHECK(listContains(extensions, "ANARI_KHR_GEOMETRY_SPHERE"));
     CHECK(listContains(extensions, "ANARI_KHR_CAMERA_PERSPECTIVE"));
+    for (const char* implemented : {"ANARI_KHR_DATA_PARALLEL_MPI", "ANARI_KHR_FRAME_ACCUMULATION",
+                                    "ANARI_KHR_DEVICE_SYNCHRONIZATION", "ANARI_KHR_FRAME_COMPLETION_CALLBACK"})
+        CHECK_MESSAGE(listContains(extensions, implemented), implemented);
+    int32_t idle = 0;  // KHR_DEVICE_SYNCHRONIZATION: nothing in flight, so idle at once
+    CHECK(anariGetProperty(f.device, f.device, "waitIdle", ANARI_BOOL, &idle, sizeof(idle), ANARI_WAIT) == 1);
+    CHECK(idle == 1);
     CHECK_FALSE(listContains(extensions, "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR"));  // no volumes yet
     CHECK(listContains(anariGetDeviceExtensions(f.library, "default"), "ANARI_KHR_GEOMETRY_TRIANGLE"));
 

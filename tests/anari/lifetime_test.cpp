@@ -291,3 +291,16 @@ TEST_CASE("array sizes are 64-bit and overflow-checked; impossible managed array
                                    uint64_t(1) << 40, &stride) == nullptr);
     CHECK_MESSAGE(s.log.count({"anariNewArray", "overflows 64 bits"}) == 3, s.log.dump());
 }
+
+TEST_CASE("KHR_DEVICE_SYNCHRONIZATION: waitIdle returns once the frame in flight has finished") {
+    RenderSession s;
+    ANARISurface floor = s.surface(s.floor(), s.matte({0.8f, 0.8f, 0.8f}));
+    ANARIWorld world = s.world({floor}, {s.directional({0, -1, 0}, 1.0f)});
+    ANARIFrame frame = s.frame(world, s.perspective({0, 4, 6}, {0, 0, 0}), s.renderer(16, 3), {64, 64},
+                               ANARI_FLOAT32_VEC4);
+    anariRenderFrame(s.device, frame);
+    int32_t idle = 0;
+    REQUIRE(anariGetProperty(s.device, s.device, "waitIdle", ANARI_BOOL, &idle, sizeof(idle), ANARI_WAIT) == 1);
+    CHECK(idle == 1);
+    CHECK(anariFrameReady(s.device, frame, ANARI_NO_WAIT) == 1);
+}

@@ -134,3 +134,35 @@ TEST_CASE("ripple_ptc reports a wrapped library that does not exist") {
     anariRelease(device, device);
     anariUnloadLibrary(library);
 }
+
+TEST_CASE("ripple_ptc reports the wrapped device's extensions, less the channels it cannot composite") {
+    auto contains = [](const char** list, const std::string& name) {
+        for (; list && *list; ++list)
+            if (name == *list) return true;
+        return false;
+    };
+    Messages messages;
+    ANARILibrary library = anariLoadLibrary("ripple_ptc", record, &messages);
+    REQUIRE(library != nullptr);
+    // The library-level list asks the default wrapped library, Ripple.
+    const char** fromLibrary = anariGetDeviceExtensions(library, "default");
+    ANARIDevice device = anariNewDevice(library, "default");
+    REQUIRE(device != nullptr);
+    anariSetParameter(device, device, "library", ANARI_STRING, "ripple");
+    anariCommitParameters(device, device);
+    const char** fromDevice = nullptr;
+    REQUIRE(anariGetProperty(device, device, "extension", ANARI_STRING_LIST, &fromDevice, sizeof(fromDevice),
+                             ANARI_WAIT) == 1);
+    for (const char** list : {fromLibrary, fromDevice}) {
+        CHECK(contains(list, "ANARI_KHR_GEOMETRY_TRIANGLE"));
+        CHECK(contains(list, "ANARI_KHR_CAMERA_PERSPECTIVE"));
+        CHECK(contains(list, "ANARI_KHR_MATERIAL_MATTE"));
+        CHECK(contains(list, "ANARI_KHR_DATA_PARALLEL_MPI"));
+        CHECK_FALSE(contains(list, "ANARI_KHR_FRAME_CHANNEL_ALBEDO"));
+        CHECK_FALSE(contains(list, "ANARI_KHR_FRAME_COMPLETION_CALLBACK"));
+    }
+    CHECK(fromLibrary == fromDevice);  // the same list, interned
+    CHECK(messages.texts.empty());
+    anariRelease(device, device);
+    anariUnloadLibrary(library);
+}

@@ -42,6 +42,11 @@ void DeviceState::waitForWork() {
     workDone_.wait(lock, [this] { return workInFlight_ == 0; });
 }
 
+bool DeviceState::idle() {
+    std::lock_guard lock(workMutex_);
+    return workInFlight_ == 0;
+}
+
 void DeviceState::setCommunicatorHandle(const void* mpiComm) {
     if (communicator_) {
         report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_OPERATION,

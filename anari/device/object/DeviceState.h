@@ -44,6 +44,7 @@ public:
     void beginWork();
     void endWork();
     void waitForWork();
+    bool idle();
 
     // Data-parallel rendering: the ranks this device renders with. The application may give its own
     // communicator (device parameter mpiCommunicator / pointer_to_mpi_communicator, or a frame's
