@@ -137,10 +137,12 @@ std::string Frame::whyNotRenderable() {
     if (!world_->isValid()) return "its world is invalid";
     if (!camera_->isValid()) return "its camera is invalid";
     if (!renderer_->isValid()) return "its renderer is invalid";
+    if (std::string why = whyNotInMemory(); !why.empty()) return why;
     const uint64_t colorBytes = colorType_ == ANARI_FLOAT32_VEC4 ? 16 : 4;
-    if (std::string why = distribution_->whyCannotGather(size_, depth_ ? std::max<uint64_t>(colorBytes, 4) : colorBytes);
-        !why.empty())
-        return why;
+    return distribution_->whyCannotGather(size_, depth_ ? std::max<uint64_t>(colorBytes, 4) : colorBytes);
+}
+
+std::string Frame::whyNotInMemory() {
     const uint32_t channelBits = core::channelFeatures(channels_);
     if (acceptedMemory_ && size_ == acceptedSize_ && colorType_ == acceptedColorType_ && channelBits == acceptedChannels_)
         return {};

@@ -77,6 +77,7 @@ private:
 
     // Why this frame cannot render now, or empty when it can; includes the memory check of a new size.
     std::string whyNotRenderable();
+    std::string whyNotInMemory();  // for a new size or channels; remembers what fitted
     FrameFingerprint fingerprint(bool renderable) const;
     Job makeJob() const;
     void run(const Job& job);
