@@ -45,10 +45,35 @@ Device::~Device() {
                       std::string("device release: ") + error.what());
     }
     for (auto& [key, array] : parameterArrays_) array->releasePublic();
-    if (const size_t live = state_.handles.liveCount(); live > 0)
+    destroyRemainingObjects();
+}
+
+void Device::destroyRemainingObjects() {
+    // Objects the application never released are reported; then every live object lets go of what it holds
+    // (which frees reference cycles), and what is left is held by the application alone and deleted, frames
+    // and parents first so that their children's counts fall in turn. Nothing outlives the device's state.
+    std::vector<Object*> live = state_.handles.liveObjects();
+    size_t leaked = 0;
+    for (Object* object : live) leaked += object->publicReferenceCount() > 0 ? 1 : 0;
+    if (leaked > 0)
         state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_NO_ERROR,
-                      "device released with " + std::to_string(live) +
+                      "device released with " + std::to_string(leaked) +
                           " object(s) still alive (not released by the application)");
+    for (Object* object : live) object->retain();
+    for (Object* object : live) object->dropReferences();
+    for (Object* object : live) object->release();
+    // Deleting one object may delete others: work from handles, which tell whether an object still lives.
+    std::vector<ANARIObject> handles;
+    for (Object* object : state_.handles.liveObjects()) handles.push_back(object->handle());
+    for (bool progress = true; progress;) {
+        progress = false;
+        for (ANARIObject handle : handles) {
+            Object* object = state_.handles.find(handle);
+            if (!object || object->referenceCount() != object->publicReferenceCount()) continue;
+            delete object;
+            progress = true;
+        }
+    }
 }
 
 template <class Body> auto Device::guarded(const char* call, Body&& body) -> decltype(body()) {

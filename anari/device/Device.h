@@ -89,6 +89,7 @@ private:
                             ANARIDataType elementType, uint64_t n1, uint64_t n2, uint64_t n3,
                             uint64_t* elementStride);
     void setDeviceParameter(const char* name, ANARIDataType type, const void* mem);
+    void destroyRemainingObjects();
     // Runs body, turning any exception into an ERROR status message naming the call.
     template <class Body> auto guarded(const char* call, Body&& body) -> decltype(body());
 

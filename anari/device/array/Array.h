@@ -43,6 +43,11 @@ public:
     // from its creation (and each unmap) on: a released object inside a live array stays alive.
     std::span<Object* const> objects() const { return held_; }
 
+    void dropReferences() override {
+        Object::dropReferences();
+        releaseObjectElements();
+    }
+
 protected:
     void onLastPublicRelease() override;
 

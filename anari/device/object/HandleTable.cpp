@@ -49,6 +49,14 @@ Object* HandleTable::find(ANARIObject handle) const {
     return slots_[slot].object;
 }
 
+std::vector<Object*> HandleTable::liveObjects() const {
+    std::lock_guard lock(mutex_);
+    std::vector<Object*> objects;
+    for (const Slot& slot : slots_)
+        if (slot.object) objects.push_back(slot.object);
+    return objects;
+}
+
 size_t HandleTable::liveCount() const {
     std::lock_guard lock(mutex_);
     return live_;

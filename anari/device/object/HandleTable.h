@@ -22,6 +22,7 @@ public:
     // The object behind a handle, or nullptr when the handle is not (or no longer) one of ours.
     Object* find(ANARIObject handle) const;
     size_t liveCount() const;
+    std::vector<Object*> liveObjects() const;
 
 private:
     struct Slot {

@@ -86,6 +86,12 @@ public:
 protected:
     // Called when the application's last reference goes while internal ones remain.
     virtual void onLastPublicRelease() {}
+public:
+    // Lets go of every object this one holds (parameters, and what subclasses keep); the device calls it on
+    // every live object when it is released, so that reference cycles (an object set as its own parameter,
+    // A -> B -> A) cannot outlive it.
+    virtual void dropReferences() { unsetAllParameters(); }
+protected:
 
     // Typed parameter access for commit(). A parameter set with a different type than asked for is
     // reported once (naming object, parameter, expected and given types) and the default is used.

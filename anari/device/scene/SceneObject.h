@@ -51,6 +51,11 @@ public:
     uint64_t refreshSubtree(uint64_t walk);
     static uint64_t newWalk();
 
+    void dropReferences() override {
+        Object::dropReferences();
+        forgetDependencies();
+    }
+
 protected:
     // commit() starts with forgetDependencies() and records what it keeps with useArray/useChild.
     void forgetDependencies();
