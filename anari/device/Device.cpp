@@ -39,7 +39,11 @@ Device::Device(const char* subtype, ANARIStatusCallback defaultCallback, const v
 Device::~Device() {
     state_.waitForWork();  // frames still rendering use state_ and its Vulkan context
     try {
-        state_.communicator().barrier();  // the device's last release is collective in data-parallel ANARI
+        // The device's last release is collective in data-parallel ANARI; a peer that never arrives (it
+        // failed elsewhere) ends every rank rather than leaving this one blocked forever. Generous: rank 0
+        // may still be writing a large image while the others wait here.
+        state_.communicator().barrierOrAbort(600.0, "device release: a rank did not release its device within "
+                                                    "600 s (it failed or is stuck); ending every rank");
     } catch (const std::exception& error) {
         state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_UNKNOWN_ERROR,
                       std::string("device release: ") + error.what());

@@ -164,15 +164,38 @@ void writePfmBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
     if (!out) throw std::runtime_error(file.string() + ": write failed");
 }
 
-void writePngFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba) {
-    checkSize(file, width, height, rgba);
+namespace {
+
+// Linear RGBA floats to 8-bit: colour sRGB-encoded and clamped to [0, 1], alpha kept linear; NaN gives 0.
+std::vector<uint8_t> encodeSrgb8(uint32_t width, uint32_t height, const float* rgba) {
     std::vector<uint8_t> bytes(size_t(width) * height * 4);
     for (size_t i = 0; i < bytes.size(); ++i) {
         const float value = std::clamp(rgba[i], 0.0f, 1.0f);  // NaN stays NaN through clamp: caught below
         const float encoded = i % 4 == 3 ? value : srgbEncode(value);
         bytes[i] = std::isnan(encoded) ? 0 : uint8_t(std::lround(encoded * 255.0f));
     }
-    writePngBottomUp(file, width, height, bytes.data());
+    return bytes;
+}
+
+}  // namespace
+
+void writePngFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba) {
+    checkSize(file, width, height, rgba);
+    writePngBottomUp(file, width, height, encodeSrgb8(width, height, rgba).data());
+}
+
+void writeJpegFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height,
+                                 const float* rgba) {
+    checkSize(file, width, height, rgba);
+    const std::vector<uint8_t> bytes = encodeSrgb8(width, height, rgba);
+    // JPEG rows run top to bottom and carry no alpha.
+    std::vector<uint8_t> rgb(size_t(width) * height * 3);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c)
+                rgb[(size_t(y) * width + x) * 3 + size_t(c)] = bytes[(size_t(height - 1 - y) * width + x) * 4 + size_t(c)];
+    if (!stbi_write_jpg(file.string().c_str(), int(width), int(height), 3, rgb.data(), 95))
+        throw std::runtime_error(file.string() + ": cannot write the JPEG");
 }
 
 LinearImage readLinearImage(const std::filesystem::path& file) {

@@ -1,4 +1,4 @@
-// The project's one image reader and writer: PNG for RGBA8 and PFM for float pixels, both taking rows as
+// The project's one image reader and writer: PNG (and JPEG) for 8-bit and PFM for float pixels, both taking rows as
 // ANARI frames map them (row 0 at the bottom of the image); PNG, PFM and EXR read into linear RGB.
 #pragma once
 
@@ -20,6 +20,10 @@ void writePfmBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
 // Writes width x height LINEAR float RGBA pixels, bottom row first, as an 8-bit sRGB-encoded PNG (colour
 // clamped to [0, 1], alpha kept linear), as a device's UFIXED8_RGBA_SRGB channel would be.
 void writePngFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba);
+
+// The same as an 8-bit sRGB JPEG (quality 95; alpha dropped).
+void writeJpegFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height,
+                                 const float* rgba);
 
 // Reads a PNG (sRGB-decoded to linear), PFM or EXR (linear) file into linear RGB, row 0 at the top.
 // Throws std::runtime_error naming the file and what is wrong with it.

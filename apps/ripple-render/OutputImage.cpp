@@ -1,11 +1,8 @@
-// Output format, writability check and writer of ripple-render (see OutputImage.h). PNG and PFM go through
-// the project's image writer; JPEG through stb_image_write, which that writer already uses for PNG.
+// Output format, writability check and writer of ripple-render (see OutputImage.h); the pixels go through
+// the project's one image writer (apps/common/ImageIO).
 #include "apps/ripple-render/OutputImage.h"
 
 #include "apps/common/ImageIO.h"
-#include "apps/common/ImageMetricsDetail.h"
-
-#include <stb_image_write.h>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -48,18 +45,7 @@ void writeOutputImage(const std::filesystem::path& file, OutputFormat format, ui
                       const float* rgba) {
     if (format == OutputFormat::Pfm) return writePfmBottomUp(file, width, height, rgba);
     if (format == OutputFormat::Png) return writePngFromLinearBottomUp(file, width, height, rgba);
-    // JPEG rows run top to bottom and carry no alpha.
-    std::vector<uint8_t> rgb(size_t(width) * height * 3);
-    for (uint32_t y = 0; y < height; ++y) {
-        const float* row = rgba + size_t(height - 1 - y) * width * 4;
-        for (uint32_t x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c) {
-                const float encoded = detail::srgbEncode(std::clamp(row[size_t(x) * 4 + size_t(c)], 0.0f, 1.0f));
-                rgb[(size_t(y) * width + x) * 3 + size_t(c)] = std::isnan(encoded) ? 0 : uint8_t(std::lround(encoded * 255.0f));
-            }
-    }
-    if (!stbi_write_jpg(file.c_str(), int(width), int(height), 3, rgb.data(), 95))
-        throw std::runtime_error(file.string() + ": cannot write the JPEG");
+    writeJpegFromLinearBottomUp(file, width, height, rgba);
 }
 
 }  // namespace ripple::apps

@@ -46,6 +46,7 @@ struct Options {
     std::optional<float> ambient;
     bool quiet = false;
     std::string partition = "round-robin";  // under mpirun: which share of the file each rank imports
+    std::filesystem::path resourceRoot;     // empty: the scene file's folder confines its URIs
     bool stats = false;
     std::string reference;              // converged image of the same view: the true error is reported too
     std::string report;                 // CSV of the convergence series; its plot goes beside it as .png
@@ -219,7 +220,7 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
 
     // The file is read before any library is loaded, so a bad file fails fast.
     if (!options.scene.empty()) {
-        plan.gltf = loadGltf(options.scene);
+        plan.gltf = loadGltf(options.scene, {.resourceRoot = options.resourceRoot});
         if (!options.quiet && plan.root)
             for (const std::string& warning : plan.gltf->warnings)
                 std::fprintf(stderr, "[ripple-render] WARNING: %s\n", warning.c_str());
@@ -477,6 +478,10 @@ int main(int argc, char** argv) {
                    "under mpirun, each rank imports: round-robin (whole mesh instances dealt in turn) or spatial "
                    "(the triangles of one k-d region per rank)")
         ->capture_default_str();
+    app.add_option("--resource-root", options.resourceRoot,
+                   "folder the scene's buffer and image URIs may reach (default: the scene file's folder); "
+                   "for trusted input only")
+        ->check(CLI::ExistingDirectory);
     app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame");
     int parseOutcome = 0;  // 0: parsed; else the parser's exit code + 1
     std::optional<CLI::ParseError> parseError;
