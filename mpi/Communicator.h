@@ -31,6 +31,10 @@ public:
     // The address of an MPI_Comm holding MPI_COMM_SELF (nullptr without MPI): given to a device that
     // must render alone while its caller composites across ranks.
     static const void* selfHandle();
+    // A copy of the MPI_Comm that `handle` points to (nullptr for nullptr, or without MPI): parameters name
+    // the application's MPI_Comm by address, and the application's variable may be gone by the time the
+    // communicator is first used.
+    static std::shared_ptr<const void> copyHandle(const void* handle);
 
     int rank() const { return rank_; }
     int size() const { return size_; }

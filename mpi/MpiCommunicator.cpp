@@ -156,6 +156,11 @@ std::vector<std::vector<uint8_t>> Communicator::gatherToRoot(std::span<const uin
     return result;
 }
 
+std::shared_ptr<const void> Communicator::copyHandle(const void* handle) {
+    if (!handle) return nullptr;
+    return std::make_shared<MPI_Comm>(*static_cast<const MPI_Comm*>(handle));
+}
+
 const void* Communicator::selfHandle() {
     static const MPI_Comm self = MPI_COMM_SELF;
     return &self;

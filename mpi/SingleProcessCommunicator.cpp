@@ -33,6 +33,7 @@ std::vector<std::vector<uint8_t>> Communicator::alltoallv(const std::vector<std:
     return {outgoing.empty() ? std::vector<uint8_t>() : outgoing.front()};
 }
 const void* Communicator::selfHandle() { return nullptr; }
+std::shared_ptr<const void> Communicator::copyHandle(const void*) { return nullptr; }
 std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) const {
     return std::vector<uint8_t>(bytes.begin(), bytes.end());
 }

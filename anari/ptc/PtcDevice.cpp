@@ -133,7 +133,9 @@ void PtcDevice::setDeviceParameter(const char* name, ANARIDataType dataType, con
     }
     if ((key == "mpiCommunicator" && dataType == ANARI_VOID_POINTER) ||
         (key == "pointer_to_mpi_communicator" && dataType == ANARI_UINT64)) {
-        std::memcpy(&communicatorHandle_, mem, sizeof(communicatorHandle_));
+        const void* address = nullptr;  // both parameters hold the address of the application's MPI_Comm
+        std::memcpy(&address, mem, sizeof(address));
+        communicatorHandle_ = mpi::Communicator::copyHandle(address);
         return;
     }
     if (key == "statusCallback" && dataType == ANARI_STATUS_CALLBACK)
@@ -163,7 +165,9 @@ void PtcDevice::setFrameParameter(FrameState& frame, ANARIFrame handle, const ch
         return;
     }
     if (key == "mpiCommunicator" && dataType == ANARI_VOID_POINTER) {
-        std::memcpy(&frame.communicatorHandle, mem, sizeof(frame.communicatorHandle));
+        const void* address = nullptr;
+        std::memcpy(&address, mem, sizeof(address));
+        frame.communicatorHandle = mpi::Communicator::copyHandle(address);
         return;
     }
     if (key == "renderer" && dataType == ANARI_RENDERER) std::memcpy(&frame.renderer, mem, sizeof(frame.renderer));
@@ -234,7 +238,7 @@ void PtcDevice::commitParameters(ANARIObject object) {
     FrameState& frame = it->second;
     try {
         if (!frame.compositor)  // collective: every rank commits its frame
-            frame.compositor = std::make_unique<mpi::Compositor>(mpi::Communicator::fromHandle(frame.communicatorHandle));
+            frame.compositor = std::make_unique<mpi::Compositor>(mpi::Communicator::fromHandle(frame.communicatorHandle.get()));
         frame.compositor->resize(frame.width, frame.height);
     } catch (const std::exception& error) {
         report(ANARI_SEVERITY_ERROR, std::string("anariCommitParameters(frame): ") + error.what());

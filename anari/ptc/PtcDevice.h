@@ -78,7 +78,7 @@ private:
     struct FrameState {
         uint32_t width = 0, height = 0;
         ANARIDataType colorType = ANARI_UNKNOWN, depthType = ANARI_UNKNOWN;
-        const void* communicatorHandle = nullptr;
+        std::shared_ptr<const void> communicatorHandle;  // a copy of the application's MPI_Comm
         std::unique_ptr<mpi::Compositor> compositor;
         std::vector<uint8_t> mappedColor;  // the composited color in colorType
         int references = 1;                // the application's, mirrored: the state lives as long as the frame
@@ -100,7 +100,7 @@ private:
     ANARIStatusCallback callback_;
     const void* callbackUserPtr_;
     std::string libraryName_;
-    const void* communicatorHandle_ = nullptr;
+    std::shared_ptr<const void> communicatorHandle_;  // a copy of the application's MPI_Comm
     // Device parameters set before the wrapped device exists, replayed when it is created.
     struct PendingParameter {
         std::string name;

@@ -285,6 +285,14 @@ TEST_CASE("frames accumulate while nothing changes and start over on a change") 
     s.commit(renderer);
     s.render(frame);
     CHECK(s.numSamples(frame) == 3);
+
+    // KHR_FRAME_ACCUMULATION: with "accumulation" off, every render starts over.
+    const int32_t off = 0;
+    s.setRaw(frame, "accumulation", ANARI_BOOL, &off);
+    s.commit(frame);
+    s.render(frame);
+    s.render(frame);
+    CHECK(s.numSamples(frame) == 3);
     CHECK(s.log.problems() == 0);
 }
 

@@ -90,6 +90,23 @@ void Frame::commit() {
     channels_.objectId = pullTypedChannel("channel.objectId", ANARI_UINT32);
     channels_.instanceId = pullTypedChannel("channel.instanceId", ANARI_UINT32);
 
+    // KHR_FRAME_ACCUMULATION: on by default (frames add samples while nothing changes); off, every
+    // anariRenderFrame starts over.
+    accumulation_ = get<bool>("accumulation", true);
+
+    // KHR_DATA_PARALLEL_MPI: the frame may name the application's communicator (the device's one, which
+    // must be given before the first collective call).
+    if (const Parameter* communicator = findParameter("mpiCommunicator")) {
+        const void* address = nullptr;
+        if (communicator->type == ANARI_VOID_POINTER) {
+            std::memcpy(&address, communicator->bytes.data(), sizeof(address));
+            state().setCommunicatorHandle(address);
+        } else {
+            reportError(std::string("parameter 'mpiCommunicator' is ") + ripple_anari::typeName(communicator->type) +
+                        "; expected ANARI_VOID_POINTER (the address of an MPI_Comm). Ignored");
+        }
+    }
+
     // KHR_FRAME_COMPLETION_CALLBACK: called once per render, when its results can be mapped.
     completion_ = nullptr;
     if (const Parameter* callback = findParameter("frameCompletionCallback")) {
@@ -194,7 +211,8 @@ void Frame::renderFrame() {
     const bool cameraChanged = camera_.get() != renderedCamera_ || camera_->lastCommitted() != renderedCameraStamp_;
     const bool rendererChanged =
         renderer_.get() != renderedRenderer_ || renderer_->lastCommitted() != renderedRendererStamp_;
-    job.restartAccumulation = distribution_->shareLights(sync_, *world_, sceneChanged || cameraChanged || rendererChanged);
+    job.restartAccumulation =
+        distribution_->shareLights(sync_, *world_, sceneChanged || cameraChanged || rendererChanged) || !accumulation_;
     renderedCamera_ = camera_.get();
     renderedCameraStamp_ = camera_->lastCommitted();
     renderedRenderer_ = renderer_.get();

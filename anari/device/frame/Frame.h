@@ -90,6 +90,7 @@ private:
     glm::uvec2 size_{0, 0};
     ANARIDataType colorType_ = ANARI_UNKNOWN;
     bool depth_ = false;
+    bool accumulation_ = true;
     core::FrameChannels channels_;              // channel.depth and the surface channels enabled
     ObjectRef<World> world_;
     ObjectRef<Camera> camera_;

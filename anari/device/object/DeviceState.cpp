@@ -53,12 +53,12 @@ void DeviceState::setCommunicatorHandle(const void* mpiComm) {
                "mpiCommunicator set after the first data-parallel call; the device keeps its communicator");
         return;
     }
-    communicatorHandle_ = mpiComm;
+    communicatorHandle_ = mpi::Communicator::copyHandle(mpiComm);
 }
 
 const mpi::Communicator& DeviceState::communicator() {
     if (!communicator_)
-        communicator_ = std::make_unique<mpi::Communicator>(mpi::Communicator::fromHandle(communicatorHandle_));
+        communicator_ = std::make_unique<mpi::Communicator>(mpi::Communicator::fromHandle(communicatorHandle_.get()));
     return *communicator_;
 }
 

@@ -71,7 +71,7 @@ private:
     int workInFlight_ = 0;
     std::mutex vulkanMutex_;
     std::unique_ptr<vk::Context> vulkan_;
-    const void* communicatorHandle_ = nullptr;
+    std::shared_ptr<const void> communicatorHandle_;  // a copy of the application's MPI_Comm
     std::unique_ptr<mpi::Communicator> communicator_;
     std::atomic<uint64_t> frames_{0};
     std::atomic<uint64_t> worlds_{0};
