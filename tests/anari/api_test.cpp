@@ -85,6 +85,17 @@ TEST_CASE("unknown subtypes and wrong parameter types are reported, naming objec
     anariCommitParameters(f.device, camera);  // warned once, not at every commit
     CHECK_MESSAGE(f.log.count({"notAParameter"}) == 1, f.log.dump());
 
+    // A handle of one kind passed under another kind's type: the message names what the object really is.
+    ANARIWorld notACamera = anariNewWorld(f.device);
+    ANARIFrame frame = anariNewFrame(f.device);
+    anariSetParameter(f.device, frame, "camera", ANARI_CAMERA, &notACamera);
+    anariCommitParameters(f.device, frame);
+    CHECK_MESSAGE(f.log.count({"parameter 'camera' was set as ANARI_CAMERA but names world", "(ANARI_WORLD)",
+                               "expected ANARI_CAMERA"}) == 1,
+                  f.log.dump());
+    anariRelease(f.device, frame);
+    anariRelease(f.device, notACamera);
+
     anariNewObject(f.device, "teapotType", "x");
     CHECK(f.log.count({"teapotType"}) == 1);
     anariCommitParameters(f.device, nullptr);

@@ -193,9 +193,16 @@ Object* Object::getObject(std::string_view name, ANARIDataType objectType) {
     const Parameter* p = findParameter(name);
     if (!p || !p->object) return nullptr;
     const bool typeMatches = p->type == objectType || (isArrayType(objectType) && isArrayType(p->type));
-    if (!typeMatches || (isArrayType(objectType) ? !isArrayType(p->object->type()) : p->object->type() != objectType)) {
+    if (!typeMatches) {
         reportWarning("parameter '" + std::string(name) + "' has type " + ripple_anari::typeName(p->type) +
                       ", expected " + ripple_anari::typeName(objectType) + "; ignored");
+        return nullptr;
+    }
+    // Set with the right type but naming an object of another kind: name what it really is.
+    if (isArrayType(objectType) ? !isArrayType(p->object->type()) : p->object->type() != objectType) {
+        reportWarning("parameter '" + std::string(name) + "' was set as " + ripple_anari::typeName(p->type) +
+                      " but names " + p->object->label() + " (" + ripple_anari::typeName(p->object->type()) +
+                      "), expected " + ripple_anari::typeName(objectType) + "; ignored");
         return nullptr;
     }
     return p->object;
