@@ -2,12 +2,15 @@
 # Builds Ripple with AddressSanitizer + UndefinedBehaviorSanitizer (RIPPLE_SANITIZE) in a build folder of its
 # own and runs the test suite under them. Arguments go to ctest, e.g. scripts/sanitize.sh -R '^(unit|robustness)$'.
 #   RIPPLE_SANITIZE_BUILD_DIR  build folder (build-asan)     RIPPLE_BUILD_JOBS  parallel build jobs (all cores)
+#   RIPPLE_SANITIZE_TARGETS    build only these targets (space-separated; default: all), for a partial run
 # The options below are explained in docs/fuzzing.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${RIPPLE_SANITIZE_BUILD_DIR:-build-asan}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRIPPLE_SANITIZE=ON -DRIPPLE_BUILD_BENCH=OFF
-cmake --build "$build" --parallel ${RIPPLE_BUILD_JOBS:-}
+targets=()
+for t in ${RIPPLE_SANITIZE_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "$build" --parallel ${RIPPLE_BUILD_JOBS:-} "${targets[@]}"
 
 # Leaks are checked, minus those of libraries outside Ripple that keep allocations until exit; UB ends the
 # process (the build sets -fno-sanitize-recover) with a stack; ASan's own reports name file and line.
