@@ -4,7 +4,7 @@
 #pragma once
 
 #include "anari/anari.h"
-#include "tests/anari/StatusLog.h"
+#include "tests/support/StatusLog.h"
 
 #include <glm/glm.hpp>
 

@@ -3,7 +3,7 @@
 // Renders a lit sphere that way and checks the pixels.
 #include "anari/backend/DeviceInterface.h"
 #include "anari/backend/LibraryInterface.h"
-#include "tests/anari/StatusLog.h"
+#include "tests/support/StatusLog.h"
 
 #include <doctest/doctest.h>
 #include <dlfcn.h>

@@ -2,7 +2,7 @@
 // (the device's own included), parameters of the wrong type and unknown subtypes reported, array deleters
 // called exactly once, mapping, introspection answers and world bounds.
 #include "anari/anari.h"
-#include "tests/anari/StatusLog.h"
+#include "tests/support/StatusLog.h"
 
 #include <doctest/doctest.h>
 

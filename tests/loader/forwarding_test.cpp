@@ -1,7 +1,7 @@
 // Every device and library function of libanari.so must reach the virtual method of the same name on the
 // fake device library, with the same arguments, and hand back what the method returned.
 #include "CallRecord.h"
-#include "StatusLog.h"
+#include "tests/support/StatusLog.h"
 
 #include "anari/anari.h"
 
@@ -29,8 +29,8 @@ std::vector<uint64_t> words(Args... arguments) {
 
 class FakeDeviceFixture {
 public:
-    FakeDeviceFixture() : log_(loadertest::freshStatusLog()) {
-        library_ = anariLoadLibrary("loadertest", loadertest::recordStatus, &log_);
+    FakeDeviceFixture() : log_(ripple::test::freshStaticStatusLog()) {
+        library_ = anariLoadLibrary("loadertest", ripple::test::StatusLog::callback, &log_);
         REQUIRE(library_ != nullptr);
         device = anariNewDevice(library_, "default");
         REQUIRE(device != nullptr);
@@ -71,7 +71,7 @@ public:
     ANARIDevice device = nullptr;
 
 private:
-    loadertest::StatusLog& log_;
+    ripple::test::StatusLog& log_;
     ANARILibrary library_ = nullptr;
     loadertest::CallRecordAccess access_ = nullptr;
     int callsSoFar_ = 0;

@@ -1,7 +1,7 @@
 // anariLoadLibrary and anariUnloadLibrary of Ripple's libanari.so with the fake device libraries built
 // beside this test: where libraries are found, what each failure reports, and the order of unloading.
 #include "CallRecord.h"
-#include "StatusLog.h"
+#include "tests/support/StatusLog.h"
 
 #include "anari/anari.h"
 
@@ -11,9 +11,8 @@
 #include <cstdlib>
 #include <string>
 
-using loadertest::freshStatusLog;
-using loadertest::recordStatus;
-using loadertest::StatusLog;
+using ripple::test::freshStaticStatusLog;
+using ripple::test::StatusLog;
 
 namespace {
 
@@ -29,8 +28,8 @@ bool isMapped(const std::string& path) {
     return true;
 }
 
-void checkOneLoadError(const StatusLog& log, const char* mentioned) {
-    REQUIRE(log.count == 1);
+void checkOneLoadError(StatusLog& log, const char* mentioned) {
+    REQUIRE(log.size() == 1);
     CHECK(log.entries[0].severity == ANARI_SEVERITY_ERROR);
     CHECK(log.entries[0].code == ANARI_STATUS_INVALID_ARGUMENT);
     CHECK(log.entries[0].sourceType == ANARI_LIBRARY);
@@ -40,10 +39,10 @@ void checkOneLoadError(const StatusLog& log, const char* mentioned) {
 }  // namespace
 
 TEST_CASE("A plain name finds the library beside libanari.so") {
-    StatusLog& log = freshStatusLog();
-    ANARILibrary library = anariLoadLibrary("loadertest", recordStatus, &log);
+    StatusLog& log = freshStaticStatusLog();
+    ANARILibrary library = anariLoadLibrary("loadertest", StatusLog::callback, &log);
     REQUIRE(library != nullptr);
-    CHECK(log.count == 0);
+    CHECK(log.size() == 0);
     const char** subtypes = anariGetDeviceSubtypes(library);
     REQUIRE(subtypes != nullptr);
     CHECK(std::string(subtypes[0]) == "default");
@@ -53,41 +52,41 @@ TEST_CASE("A plain name finds the library beside libanari.so") {
 }
 
 TEST_CASE("\"NAME,/dir/\" names the folder to load from") {
-    StatusLog& log = freshStatusLog();
-    CHECK(anariLoadLibrary("elsewhere", recordStatus, &log) == nullptr);  // not on any search path
+    StatusLog& log = freshStaticStatusLog();
+    CHECK(anariLoadLibrary("elsewhere", StatusLog::callback, &log) == nullptr);  // not on any search path
     checkOneLoadError(log, "libanari_library_elsewhere.so");
 
     for (const std::string& folder : {elsewhereDirectory + "/", elsewhereDirectory}) {
-        StatusLog& quiet = freshStatusLog();
-        ANARILibrary library = anariLoadLibrary(("elsewhere," + folder).c_str(), recordStatus, &quiet);
-        REQUIRE_MESSAGE(library != nullptr, quiet.entries[0].message);
-        CHECK(quiet.count == 0);
+        StatusLog& quiet = freshStaticStatusLog();
+        ANARILibrary library = anariLoadLibrary(("elsewhere," + folder).c_str(), StatusLog::callback, &quiet);
+        REQUIRE_MESSAGE(library != nullptr, quiet.dump());
+        CHECK(quiet.size() == 0);
         anariUnloadLibrary(library);
     }
 }
 
 TEST_CASE("\"environment\" takes the name from ANARI_LIBRARY") {
-    StatusLog& log = freshStatusLog();
+    StatusLog& log = freshStaticStatusLog();
     REQUIRE(setenv("ANARI_LIBRARY", "loadertest", 1) == 0);
-    ANARILibrary library = anariLoadLibrary("environment", recordStatus, &log);
+    ANARILibrary library = anariLoadLibrary("environment", StatusLog::callback, &log);
     REQUIRE(library != nullptr);
     anariUnloadLibrary(library);
 
     REQUIRE(setenv("ANARI_LIBRARY", ("elsewhere," + elsewhereDirectory).c_str(), 1) == 0);
-    library = anariLoadLibrary("environment", recordStatus, &log);
+    library = anariLoadLibrary("environment", StatusLog::callback, &log);
     REQUIRE(library != nullptr);
     anariUnloadLibrary(library);
     CHECK(log.errors() == 0);
 
-    StatusLog& unsetLog = freshStatusLog();
+    StatusLog& unsetLog = freshStaticStatusLog();
     REQUIRE(unsetenv("ANARI_LIBRARY") == 0);
-    CHECK(anariLoadLibrary("environment", recordStatus, &unsetLog) == nullptr);
+    CHECK(anariLoadLibrary("environment", StatusLog::callback, &unsetLog) == nullptr);
     checkOneLoadError(unsetLog, "ANARI_LIBRARY");
 }
 
 TEST_CASE("A missing library is reported with every place tried and dlerror's reason") {
-    StatusLog& log = freshStatusLog();
-    CHECK(anariLoadLibrary("doesnotexist", recordStatus, &log) == nullptr);
+    StatusLog& log = freshStaticStatusLog();
+    CHECK(anariLoadLibrary("doesnotexist", StatusLog::callback, &log) == nullptr);
     checkOneLoadError(log, "'doesnotexist'");
     CHECK(log.find("libanari_library_doesnotexist.so: cannot open shared object file") == 0);
     CHECK(log.find((libraryDirectory + "/libanari_library_doesnotexist.so").c_str()) == 0);
@@ -97,9 +96,9 @@ TEST_CASE("A missing library is reported with every place tried and dlerror's re
 }
 
 TEST_CASE("A library without anari_library_NAME_new_library is reported and closed again") {
-    StatusLog& log = freshStatusLog();
+    StatusLog& log = freshStaticStatusLog();
     // libanari_library_nosymbol.so exports anari_library_wrongname_new_library only.
-    CHECK(anariLoadLibrary("nosymbol", recordStatus, &log) == nullptr);
+    CHECK(anariLoadLibrary("nosymbol", StatusLog::callback, &log) == nullptr);
     checkOneLoadError(log, "anari_library_nosymbol_new_library");
     CHECK_FALSE(isMapped(libraryDirectory + "/libanari_library_nosymbol.so"));
 }
@@ -107,9 +106,9 @@ TEST_CASE("A library without anari_library_NAME_new_library is reported and clos
 TEST_CASE("An entry point that returns NULL or throws is reported and closed again") {
     for (const char* failure : {"null", "throw"}) {
         CAPTURE(failure);
-        StatusLog& log = freshStatusLog();
+        StatusLog& log = freshStaticStatusLog();
         REQUIRE(setenv(loadertest::newLibraryFailureVariable, failure, 1) == 0);
-        CHECK(anariLoadLibrary("loadertest", recordStatus, &log) == nullptr);
+        CHECK(anariLoadLibrary("loadertest", StatusLog::callback, &log) == nullptr);
         REQUIRE(unsetenv(loadertest::newLibraryFailureVariable) == 0);
         checkOneLoadError(log, "anari_library_loadertest_new_library of library 'loadertest' returned NULL");
         CHECK_FALSE(isMapped(libraryDirectory + "/libanari_library_loadertest.so"));
@@ -119,18 +118,18 @@ TEST_CASE("An entry point that returns NULL or throws is reported and closed aga
 TEST_CASE("Names that cannot be libraries are errors, not crashes") {
     for (const char* name : {static_cast<const char*>(nullptr), "", ",/tmp/", "../loadertest"}) {
         CAPTURE(name ? name : "NULL");
-        StatusLog& log = freshStatusLog();
-        CHECK(anariLoadLibrary(name, recordStatus, &log) == nullptr);
-        REQUIRE(log.count == 1);
+        StatusLog& log = freshStaticStatusLog();
+        CHECK(anariLoadLibrary(name, StatusLog::callback, &log) == nullptr);
+        REQUIRE(log.size() == 1);
         CHECK(log.entries[0].severity == ANARI_SEVERITY_ERROR);
         CHECK(log.entries[0].code == ANARI_STATUS_INVALID_ARGUMENT);
     }
 }
 
 TEST_CASE("anariUnloadLibrary deletes the library object, then dlcloses") {
-    StatusLog& log = freshStatusLog();
+    StatusLog& log = freshStaticStatusLog();
     const std::string path = libraryDirectory + "/libanari_library_loadertest.so";
-    ANARILibrary library = anariLoadLibrary("loadertest", recordStatus, &log);
+    ANARILibrary library = anariLoadLibrary("loadertest", StatusLog::callback, &log);
     REQUIRE(library != nullptr);
     CHECK(isMapped(path));
     anariUnloadLibrary(library);
@@ -140,7 +139,7 @@ TEST_CASE("anariUnloadLibrary deletes the library object, then dlcloses") {
     const int unmapped = log.find(loadertest::moduleUnmappedMessage);
     CHECK(destroyed == 0);
     CHECK(unmapped == 1);
-    CHECK(log.count == 2);
+    CHECK(log.size() == 2);
     CHECK_FALSE(isMapped(path));
 }
 
