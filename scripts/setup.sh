@@ -8,6 +8,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslc spirv-tools  # Vulkan + lavapipe, shaders
   libglm-dev libtbb-dev doctest-dev libtinygltf-dev libcli11-dev libstb-dev libtinyexr-dev
   libembree-dev                                                                # ripple-bench comparison only
+  nlohmann-json3-dev                                                           # glTF importer: JSON checks
   libopenmpi-dev openmpi-bin                                                   # data-parallel rendering
   clang-14 libclang-rt-14-dev                                                  # libFuzzer (scripts/fuzz.sh)
 )

@@ -148,14 +148,15 @@ void parseFile(const std::filesystem::path& file, const GltfLoadOptions& options
                         std::to_string(options.maxJsonDepth) + " (arrays and objects)");
     ConfinedUris uris(file, options, name);
     std::string syntaxError;
-    const std::optional<JsonValue> root = parseJson(json, syntaxError);
+    const std::optional<Json> root = parseJson(json, syntaxError);
     if (root) {
-        checkGltfJson(*root, name);
+        checkGltfJson(*root, name);  // buffers and images are arrays of objects, each uri a string
         for (const char* collection : {"buffers", "images"})
-            if (const JsonValue* items = root->find(collection))
-                for (size_t i = 0; i < items->items.size(); ++i)
-                    if (const JsonValue* uri = items->items[i].find("uri"))
-                        uris.approve(uri->text(), std::string(collection) + "[" + std::to_string(i) + "].uri");
+            if (const Json* items = jsonMember(*root, collection))
+                for (size_t i = 0; i < items->size(); ++i)
+                    if (const Json* uri = jsonMember((*items)[i], "uri"))
+                        uris.approve(uri->get_ref<const std::string&>(),
+                                     std::string(collection) + "[" + std::to_string(i) + "].uri");
     }  // else tinygltf reports the syntax error in its words below; with no URI approved it can open no file
 
     ImageDecoding ctx{&options, &warnings, {}};
@@ -179,7 +180,7 @@ void parseFile(const std::filesystem::path& file, const GltfLoadOptions& options
         return s;
     };
     if (!ok) throw GltfError(name + ": " + (error.empty() ? "tinygltf could not parse it" : trim(error)));
-    if (!root) throw GltfError(name + ": JSON parse error at " + syntaxError);
+    if (!root) throw GltfError(name + ": JSON " + syntaxError);  // "JSON parse error at line 1, column 37: ..."
     if (!warning.empty()) warnings.push_back(trim(warning));
     if (options.decodeImages) decodeBufferViewImages(model, ctx, name);
 }

@@ -1,42 +1,34 @@
 // The importer's own read of a glTF file's JSON, before tinygltf sees it: a nesting-depth scan that needs no
-// parser, and a small document tree whose numbers keep their text, so "1.5" and "1.0" stay visible where
-// tinygltf would quietly drop them. Internal to the importer (GltfFile.cpp, GltfJsonChecks.cpp).
+// parser, then nlohmann/json, whose numbers keep their kind (integer, unsigned or float), so "1.5" and "1.0"
+// stay visible where tinygltf would quietly drop them. Internal to the importer (GltfFile.cpp,
+// GltfJsonChecks.cpp).
 #pragma once
+
+#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <utility>
-#include <vector>
 
 namespace ripple::apps::gltf {
+
+// Objects keep their members in file order, so a check names the first bad member as the file lists it; a
+// repeated key keeps its last value, as the parser tinygltf uses does.
+using Json = nlohmann::ordered_json;
 
 // The deepest nesting of arrays and objects in `json` (1 for "[]"), brackets inside strings not counted.
 // Linear and allocation-free, so it is safe on input no parser should see.
 uint32_t jsonNestingDepth(std::string_view json);
 
-// One JSON value. Strings and numbers point into the parsed text, which must outlive the tree.
-struct JsonValue {
-    enum class Kind : uint8_t { Null, Bool, Number, String, Array, Object };
-    Kind kind = Kind::Null;
-    bool boolean = false;
-    std::string_view token;   // Number: its text as written; String: its raw contents, escapes not decoded
-    std::vector<JsonValue> items;                           // Array
-    std::vector<std::pair<std::string, JsonValue>> members; // Object, keys decoded, in file order
+// Parses `json` (RFC 8259; a UTF-8 byte order mark and trailing NUL padding are allowed, as in tinygltf).
+// Call it only on text whose jsonNestingDepth is bounded. On an error returns nothing and sets `error`
+// ("parse error at line 1, column 37: ...").
+std::optional<Json> parseJson(std::string_view json, std::string& error);
 
-    // The member named `key`; the last one when a key repeats, as the parser tinygltf uses keeps the last.
-    const JsonValue* find(std::string_view key) const;
-    // Number whose text has no fraction or exponent: what tinygltf accepts as an integer.
-    bool isIntegerToken() const;
-    double number() const;
-    std::string text() const;  // a String with its escapes decoded
-    const char* kindName() const;  // "a string", "an array", ... for messages
-};
-
-// Parses `json` (RFC 8259; a UTF-8 byte order mark and trailing NUL padding are allowed, as tinygltf's parser
-// allows them). Recursive: call it only on text whose jsonNestingDepth is bounded. On a syntax error returns
-// nothing and sets `error` ("line 1, column 37: ...").
-std::optional<JsonValue> parseJson(std::string_view json, std::string& error);
+// The member named `key` of an object; null when absent or when `object` is not an object.
+const Json* jsonMember(const Json& object, const char* key);
+// "a string", "an array", ... for messages.
+const char* jsonKindName(const Json& value);
 
 }  // namespace ripple::apps::gltf

@@ -5,7 +5,6 @@
 #include "apps/common/GltfScene.h"
 
 #include <algorithm>
-#include <charconv>
 #include <initializer_list>
 #include <optional>
 
@@ -13,7 +12,8 @@ namespace ripple::apps::gltf {
 
 namespace {
 
-using Kind = JsonValue::Kind;
+// A type test of nlohmann/json (&Json::is_object, ...).
+using IsKind = bool (Json::*)() const noexcept;
 
 std::string member(const std::string& path, const char* key) { return path.empty() ? key : path + "." + key; }
 std::string element(const std::string& path, size_t i) { return path + "[" + std::to_string(i) + "]"; }
@@ -40,15 +40,15 @@ int64_t elementBytes(const std::string& type, int64_t component) {
 
 class Checker {
 public:
-    Checker(const JsonValue& root, const std::string& name) : root_(root), name_(name) {}
+    Checker(const Json& root, const std::string& name) : root_(root), name_(name) {}
 
     void run() {
-        if (root_.kind != Kind::Object)
-            throw GltfError(name_ + ": not a glTF file: the JSON is " + root_.kindName() + ", not an object");
-        const JsonValue* asset = root_.find("asset");
+        if (!root_.is_object())
+            throw GltfError(name_ + ": not a glTF file: the JSON is " + jsonKindName(root_) + ", not an object");
+        const Json* asset = jsonMember(root_, "asset");
         if (!asset) throw GltfError(name_ + ": not a glTF file: no 'asset' object");
-        if (asset->kind != Kind::Object)
-            throw GltfError(name_ + ": not a glTF file: 'asset' is " + asset->kindName() + ", not an object");
+        if (!asset->is_object())
+            throw GltfError(name_ + ": not a glTF file: 'asset' is " + jsonKindName(*asset) + ", not an object");
 
         for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images",
                                 "materials", "meshes", "nodes", "samplers", "scenes", "skins", "textures"})
@@ -56,45 +56,45 @@ public:
         strings(root_, "extensionsUsed", "");
         strings(root_, "extensionsRequired", "");
         const std::string lightsPath = "extensions.KHR_lights_punctual.lights";
-        if (const JsonValue* ext = object(root_, "extensions", ""))
-            if (const JsonValue* khr = object(*ext, "KHR_lights_punctual", "extensions"))
+        if (const Json* ext = object(root_, "extensions", ""))
+            if (const Json* khr = object(*ext, "KHR_lights_punctual", "extensions"))
                 lights_ = objects(*khr, "lights", "extensions.KHR_lights_punctual");
 
         index(root_, "scene", "", "scenes");
-        each("scenes", [&](const JsonValue& scene, const std::string& path) { indices(scene, "nodes", path, "nodes"); });
-        each("nodes", [&](const JsonValue& node, const std::string& path) { this->node(node, path); });
-        each("meshes", [&](const JsonValue& mesh, const std::string& path) { this->mesh(mesh, path); });
-        each("bufferViews", [&](const JsonValue& view, const std::string& path) { bufferView(view, path); });
-        each("accessors", [&](const JsonValue& accessor, const std::string& path) { this->accessor(accessor, path); });
-        each("buffers", [&](const JsonValue& buffer, const std::string& path) {
+        each("scenes", [&](const Json& scene, const std::string& path) { indices(scene, "nodes", path, "nodes"); });
+        each("nodes", [&](const Json& node, const std::string& path) { this->node(node, path); });
+        each("meshes", [&](const Json& mesh, const std::string& path) { this->mesh(mesh, path); });
+        each("bufferViews", [&](const Json& view, const std::string& path) { bufferView(view, path); });
+        each("accessors", [&](const Json& accessor, const std::string& path) { this->accessor(accessor, path); });
+        each("buffers", [&](const Json& buffer, const std::string& path) {
             integer(buffer, "byteLength", path, 1, true);
             string(buffer, "uri", path);
         });
-        each("images", [&](const JsonValue& image, const std::string& path) {
+        each("images", [&](const Json& image, const std::string& path) {
             string(image, "uri", path);
             string(image, "mimeType", path);
             index(image, "bufferView", path, "bufferViews");
         });
-        each("samplers", [&](const JsonValue& sampler, const std::string& path) {
+        each("samplers", [&](const Json& sampler, const std::string& path) {
             oneOf(sampler, "magFilter", path, {9728, 9729});
             oneOf(sampler, "minFilter", path, {9728, 9729, 9984, 9985, 9986, 9987});
             oneOf(sampler, "wrapS", path, {33071, 33648, 10497});
             oneOf(sampler, "wrapT", path, {33071, 33648, 10497});
         });
-        each("textures", [&](const JsonValue& texture, const std::string& path) {
+        each("textures", [&](const Json& texture, const std::string& path) {
             index(texture, "source", path, "images");
             index(texture, "sampler", path, "samplers");
         });
-        each("materials", [&](const JsonValue& material, const std::string& path) { this->material(material, path); });
-        each("cameras", [&](const JsonValue& camera, const std::string& path) { this->camera(camera, path); });
+        each("materials", [&](const Json& material, const std::string& path) { this->material(material, path); });
+        each("cameras", [&](const Json& camera, const std::string& path) { this->camera(camera, path); });
         if (lights_)
-            for (size_t i = 0; i < lights_->items.size(); ++i) light(lights_->items[i], element(lightsPath, i));
-        each("skins", [&](const JsonValue& skin, const std::string& path) {
+            for (size_t i = 0; i < lights_->size(); ++i) light((*lights_)[i], element(lightsPath, i));
+        each("skins", [&](const Json& skin, const std::string& path) {
             indices(skin, "joints", path, "nodes");
             index(skin, "skeleton", path, "nodes");
             index(skin, "inverseBindMatrices", path, "accessors");
         });
-        each("animations", [&](const JsonValue& animation, const std::string& path) { this->animation(animation, path); });
+        each("animations", [&](const Json& animation, const std::string& path) { this->animation(animation, path); });
     }
 
 private:
@@ -104,62 +104,60 @@ private:
 
     template <typename F>
     void each(const char* collection, F&& check) const {
-        if (const JsonValue* items = root_.find(collection))
-            for (size_t i = 0; i < items->items.size(); ++i) check(items->items[i], element(collection, i));
+        if (const Json* items = jsonMember(root_, collection))
+            for (size_t i = 0; i < items->size(); ++i) check((*items)[i], element(collection, i));
     }
 
     size_t count(const char* collection) const {
-        if (std::string_view(collection) == "lights") return lights_ ? lights_->items.size() : 0;
-        const JsonValue* items = root_.find(collection);
-        return items ? items->items.size() : 0;
+        if (std::string_view(collection) == "lights") return lights_ ? lights_->size() : 0;
+        const Json* items = jsonMember(root_, collection);
+        return items ? items->size() : 0;
     }
 
-    const JsonValue* typed(const JsonValue& parent, const char* key, const std::string& path, Kind kind,
-                           const char* expected) const {
-        const JsonValue* v = parent.find(key);
-        if (v && v->kind != kind) fail(member(path, key), std::string("expected ") + expected + ", found " + v->kindName());
+    const Json* typed(const Json& parent, const char* key, const std::string& path, IsKind is,
+                      const char* expected) const {
+        const Json* v = jsonMember(parent, key);
+        if (v && !(v->*is)()) fail(member(path, key), std::string("expected ") + expected + ", found " + jsonKindName(*v));
         return v;
     }
-    const JsonValue* object(const JsonValue& parent, const char* key, const std::string& path) const {
-        return typed(parent, key, path, Kind::Object, "an object");
+    const Json* object(const Json& parent, const char* key, const std::string& path) const {
+        return typed(parent, key, path, &Json::is_object, "an object");
     }
-    const JsonValue* array(const JsonValue& parent, const char* key, const std::string& path) const {
-        return typed(parent, key, path, Kind::Array, "an array");
+    const Json* array(const Json& parent, const char* key, const std::string& path) const {
+        return typed(parent, key, path, &Json::is_array, "an array");
     }
-    const JsonValue* string(const JsonValue& parent, const char* key, const std::string& path) const {
-        return typed(parent, key, path, Kind::String, "a string");
+    const Json* string(const Json& parent, const char* key, const std::string& path) const {
+        return typed(parent, key, path, &Json::is_string, "a string");
     }
 
     // An array whose elements are all objects.
-    const JsonValue* objects(const JsonValue& parent, const char* key, const std::string& path) const {
-        const JsonValue* items = array(parent, key, path);
+    const Json* objects(const Json& parent, const char* key, const std::string& path) const {
+        const Json* items = array(parent, key, path);
         if (items)
-            for (size_t i = 0; i < items->items.size(); ++i)
-                if (items->items[i].kind != Kind::Object)
-                    fail(element(member(path, key), i), std::string("expected an object, found ") + items->items[i].kindName());
+            for (size_t i = 0; i < items->size(); ++i)
+                if (!(*items)[i].is_object())
+                    fail(element(member(path, key), i), std::string("expected an object, found ") + jsonKindName((*items)[i]));
         return items;
     }
-    void strings(const JsonValue& parent, const char* key, const std::string& path) const {
-        if (const JsonValue* items = array(parent, key, path))
-            for (size_t i = 0; i < items->items.size(); ++i)
-                if (items->items[i].kind != Kind::String)
-                    fail(element(member(path, key), i), std::string("expected a string, found ") + items->items[i].kindName());
+    void strings(const Json& parent, const char* key, const std::string& path) const {
+        if (const Json* items = array(parent, key, path))
+            for (size_t i = 0; i < items->size(); ++i)
+                if (!(*items)[i].is_string())
+                    fail(element(member(path, key), i), std::string("expected a string, found ") + jsonKindName((*items)[i]));
     }
 
-    // The value at `path` as an integer; tinygltf reads only integer tokens as integers.
-    int64_t integerValue(const JsonValue& v, const std::string& path) const {
-        if (v.kind != Kind::Number) fail(path, std::string("expected an integer, found ") + v.kindName());
-        if (!v.isIntegerToken()) fail(path, "expected an integer, found " + std::string(v.token));
-        int64_t value = 0;
-        const auto [end, ec] = std::from_chars(v.token.data(), v.token.data() + v.token.size(), value);
-        if (ec != std::errc() || end != v.token.data() + v.token.size())
-            fail(path, std::string(v.token) + " is out of range");
-        return value;
+    // The value at `path` as an integer. A number written with a fraction or an exponent (1.0, 1e2) is a float
+    // to nlohmann/json, as to tinygltf, which reads only integers as integers.
+    int64_t integerValue(const Json& v, const std::string& path) const {
+        if (!v.is_number()) fail(path, std::string("expected an integer, found ") + jsonKindName(v));
+        if (v.is_number_float()) fail(path, "expected an integer, found " + v.dump());
+        if (v.is_number_unsigned() && v.get<uint64_t>() > uint64_t(INT64_MAX)) fail(path, v.dump() + " is out of range");
+        return v.get<int64_t>();
     }
 
-    std::optional<int64_t> integer(const JsonValue& parent, const char* key, const std::string& path, int64_t min,
+    std::optional<int64_t> integer(const Json& parent, const char* key, const std::string& path, int64_t min,
                                    bool required = false) const {
-        const JsonValue* v = parent.find(key);
+        const Json* v = jsonMember(parent, key);
         if (!v) {
             if (required) fail(path, std::string("'") + key + "' is missing");
             return std::nullopt;
@@ -170,21 +168,21 @@ private:
         return value;
     }
 
-    void oneOf(const JsonValue& parent, const char* key, const std::string& path, std::initializer_list<int64_t> allowed) const {
+    void oneOf(const Json& parent, const char* key, const std::string& path, std::initializer_list<int64_t> allowed) const {
         const std::optional<int64_t> v = integer(parent, key, path, INT64_MIN);
         if (v && std::find(allowed.begin(), allowed.end(), *v) == allowed.end())
             fail(member(path, key), std::to_string(*v) + " is not a value glTF defines here");
     }
 
-    void checkIndex(const JsonValue& v, const std::string& path, const char* collection) const {
+    void checkIndex(const Json& v, const std::string& path, const char* collection) const {
         const int64_t value = integerValue(v, path);
         const size_t n = count(collection);
         if (value < 0 || uint64_t(value) >= n)
             fail(path, std::to_string(value) + " is out of range (the file has " + std::to_string(n) + " " + collection + ")");
     }
-    std::optional<int64_t> index(const JsonValue& parent, const char* key, const std::string& path,
+    std::optional<int64_t> index(const Json& parent, const char* key, const std::string& path,
                                  const char* collection, bool required = false) const {
-        const JsonValue* v = parent.find(key);
+        const Json* v = jsonMember(parent, key);
         if (!v) {
             if (required) fail(path, std::string("'") + key + "' is missing");
             return std::nullopt;
@@ -192,58 +190,59 @@ private:
         checkIndex(*v, member(path, key), collection);
         return integerValue(*v, member(path, key));
     }
-    void indices(const JsonValue& parent, const char* key, const std::string& path, const char* collection) const {
-        if (const JsonValue* items = array(parent, key, path))
-            for (size_t i = 0; i < items->items.size(); ++i) checkIndex(items->items[i], element(member(path, key), i), collection);
+    void indices(const Json& parent, const char* key, const std::string& path, const char* collection) const {
+        if (const Json* items = array(parent, key, path))
+            for (size_t i = 0; i < items->size(); ++i) checkIndex((*items)[i], element(member(path, key), i), collection);
     }
     // An object whose every member is an index ("attributes": {"POSITION": 0, ...}).
-    void indexMap(const JsonValue& parent, const char* key, const std::string& path, const char* collection) const {
-        if (const JsonValue* map = object(parent, key, path))
-            for (const auto& [name, v] : map->members) checkIndex(v, member(path, key) + "." + name, collection);
+    void indexMap(const Json& parent, const char* key, const std::string& path, const char* collection) const {
+        if (const Json* map = object(parent, key, path))
+            for (const auto& entry : map->items()) checkIndex(entry.value(), member(path, key) + "." + entry.key(), collection);
     }
 
-    std::optional<double> number(const JsonValue& parent, const char* key, const std::string& path) const {
-        const JsonValue* v = typed(parent, key, path, Kind::Number, "a number");
-        return v ? std::optional<double>(v->number()) : std::nullopt;
+    const Json* number(const Json& parent, const char* key, const std::string& path) const {
+        return typed(parent, key, path, &Json::is_number, "a number");
     }
     // A number that glTF bounds below: exclusive (> min) or inclusive (>= min).
-    std::optional<double> bounded(const JsonValue& parent, const char* key, const std::string& path, double min,
+    std::optional<double> bounded(const Json& parent, const char* key, const std::string& path, double min,
                                   bool exclusive) const {
-        const std::optional<double> v = number(parent, key, path);
-        if (v && (exclusive ? !(*v > min) : !(*v >= min)))
+        const Json* v = number(parent, key, path);
+        if (!v) return std::nullopt;
+        const double value = v->get<double>();
+        if (exclusive ? !(value > min) : !(value >= min))
             fail(member(path, key), std::string("must be ") + (exclusive ? "greater than " : "at least ") +
-                                        std::to_string(int(min)) + ", found " + std::string(parent.find(key)->token));
-        return v;
+                                        std::to_string(int(min)) + ", found " + v->dump());
+        return value;
     }
 
-    void node(const JsonValue& n, const std::string& path) const {
+    void node(const Json& n, const std::string& path) const {
         index(n, "camera", path, "cameras");
         index(n, "mesh", path, "meshes");
         index(n, "skin", path, "skins");
         indices(n, "children", path, "nodes");
-        if (const JsonValue* ext = object(n, "extensions", path))
-            if (const JsonValue* khr = object(*ext, "KHR_lights_punctual", member(path, "extensions")))
+        if (const Json* ext = object(n, "extensions", path))
+            if (const Json* khr = object(*ext, "KHR_lights_punctual", member(path, "extensions")))
                 index(*khr, "light", member(path, "extensions.KHR_lights_punctual"), "lights", true);
     }
 
-    void mesh(const JsonValue& m, const std::string& path) const {
-        const JsonValue* primitives = objects(m, "primitives", path);
+    void mesh(const Json& m, const std::string& path) const {
+        const Json* primitives = objects(m, "primitives", path);
         if (!primitives) return;
-        for (size_t i = 0; i < primitives->items.size(); ++i) {
-            const JsonValue& p = primitives->items[i];
+        for (size_t i = 0; i < primitives->size(); ++i) {
+            const Json& p = (*primitives)[i];
             const std::string at = element(member(path, "primitives"), i);
             indexMap(p, "attributes", at, "accessors");
             index(p, "indices", at, "accessors");
             index(p, "material", at, "materials");
             oneOf(p, "mode", at, {0, 1, 2, 3, 4, 5, 6});
-            if (const JsonValue* targets = objects(p, "targets", at))
-                for (size_t t = 0; t < targets->items.size(); ++t)
-                    for (const auto& [name, v] : targets->items[t].members)
-                        checkIndex(v, element(member(at, "targets"), t) + "." + name, "accessors");
+            if (const Json* targets = objects(p, "targets", at))
+                for (size_t t = 0; t < targets->size(); ++t)
+                    for (const auto& entry : (*targets)[t].items())
+                        checkIndex(entry.value(), element(member(at, "targets"), t) + "." + entry.key(), "accessors");
         }
     }
 
-    void bufferView(const JsonValue& v, const std::string& path) const {
+    void bufferView(const Json& v, const std::string& path) const {
         index(v, "buffer", path, "buffers", true);
         integer(v, "byteOffset", path, 0);
         integer(v, "byteLength", path, 1, true);
@@ -253,7 +252,7 @@ private:
 
     // A view's byteOffset and byteStride; the view itself was checked already.
     std::pair<int64_t, int64_t> viewLayout(int64_t view) const {
-        const JsonValue& v = root_.find("bufferViews")->items[size_t(view)];
+        const Json& v = (*jsonMember(root_, "bufferViews"))[size_t(view)];
         return {integer(v, "byteOffset", "", 0).value_or(0), integer(v, "byteStride", "", 0).value_or(0)};
     }
 
@@ -267,20 +266,20 @@ private:
                                                  ", not a multiple of the component size " + std::to_string(component));
     }
 
-    void accessor(const JsonValue& a, const std::string& path) const {
+    void accessor(const Json& a, const std::string& path) const {
         const std::optional<int64_t> view = index(a, "bufferView", path, "bufferViews");
         const int64_t offset = integer(a, "byteOffset", path, 0).value_or(0);
         const int64_t componentType = *integer(a, "componentType", path, INT64_MIN, true);
         const int64_t component = componentBytes(componentType);
         if (!component) fail(member(path, "componentType"), std::to_string(componentType) + " is not a glTF component type");
         integer(a, "count", path, 1, true);
-        const JsonValue* type = string(a, "type", path);
+        const Json* type = string(a, "type", path);
         if (!type) fail(path, "'type' is missing");
-        const std::string typeName = type->text();
+        const std::string& typeName = type->get_ref<const std::string&>();
         static const char* const types[] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
         if (std::find(std::begin(types), std::end(types), typeName) == std::end(types))
             fail(member(path, "type"), "'" + typeName + "' is not a glTF accessor type");
-        typed(a, "normalized", path, Kind::Bool, "a boolean");
+        typed(a, "normalized", path, &Json::is_boolean, "a boolean");
         if (view) {
             aligned(path, *view, offset, component);
             const int64_t stride = viewLayout(*view).second;
@@ -292,12 +291,12 @@ private:
                 fail(named, "byteStride " + std::to_string(stride) + " is not a multiple of the component size " +
                                 std::to_string(component));
         }
-        const JsonValue* sparse = object(a, "sparse", path);
+        const Json* sparse = object(a, "sparse", path);
         if (!sparse) return;
         const std::string at = member(path, "sparse");
         integer(*sparse, "count", at, 1, true);
-        const JsonValue* sparseIndices = object(*sparse, "indices", at);
-        const JsonValue* sparseValues = object(*sparse, "values", at);
+        const Json* sparseIndices = object(*sparse, "indices", at);
+        const Json* sparseValues = object(*sparse, "values", at);
         if (!sparseIndices) fail(at, "'indices' is missing");
         if (!sparseValues) fail(at, "'values' is missing");
         const std::string indicesPath = member(at, "indices"), valuesPath = member(at, "values");
@@ -312,15 +311,15 @@ private:
                 component);
     }
 
-    void textureInfo(const JsonValue& parent, const char* key, const std::string& path) const {
-        const JsonValue* info = object(parent, key, path);
+    void textureInfo(const Json& parent, const char* key, const std::string& path) const {
+        const Json* info = object(parent, key, path);
         if (!info) return;
         index(*info, "index", member(path, key), "textures", true);
         integer(*info, "texCoord", member(path, key), 0);
     }
 
-    void material(const JsonValue& m, const std::string& path) const {
-        if (const JsonValue* pbr = object(m, "pbrMetallicRoughness", path)) {
+    void material(const Json& m, const std::string& path) const {
+        if (const Json* pbr = object(m, "pbrMetallicRoughness", path)) {
             textureInfo(*pbr, "baseColorTexture", member(path, "pbrMetallicRoughness"));
             textureInfo(*pbr, "metallicRoughnessTexture", member(path, "pbrMetallicRoughness"));
         }
@@ -330,13 +329,13 @@ private:
         bounded(m, "alphaCutoff", path, 0.0, false);
     }
 
-    void camera(const JsonValue& c, const std::string& path) const {
-        const JsonValue* type = string(c, "type", path);
+    void camera(const Json& c, const std::string& path) const {
+        const Json* type = string(c, "type", path);
         if (!type) fail(path, "'type' is missing");
-        const std::string kind = type->text();
+        const std::string& kind = type->get_ref<const std::string&>();
         if (kind != "perspective" && kind != "orthographic")
             fail(member(path, "type"), "'" + kind + "' is neither perspective nor orthographic");
-        const JsonValue* p = object(c, kind.c_str(), path);
+        const Json* p = object(c, kind.c_str(), path);
         if (!p) fail(path, "'" + kind + "' is missing");
         const std::string at = member(path, kind.c_str());
         std::optional<double> znear;
@@ -351,52 +350,52 @@ private:
         }
         const std::optional<double> zfar = bounded(*p, "zfar", at, 0.0, true);
         if (znear && zfar && !(*zfar > *znear))
-            fail(member(at, "zfar"), "must be greater than znear (" + std::string(p->find("znear")->token) + "), found " +
-                                         std::string(p->find("zfar")->token));
+            fail(member(at, "zfar"), "must be greater than znear (" + jsonMember(*p, "znear")->dump() + "), found " +
+                                         jsonMember(*p, "zfar")->dump());
     }
 
-    void light(const JsonValue& l, const std::string& path) const {
-        const JsonValue* type = string(l, "type", path);
+    void light(const Json& l, const std::string& path) const {
+        const Json* type = string(l, "type", path);
         if (!type) fail(path, "'type' is missing");
-        const std::string kind = type->text();
+        const std::string& kind = type->get_ref<const std::string&>();
         if (kind != "directional" && kind != "point" && kind != "spot")
             fail(member(path, "type"), "'" + kind + "' is not directional, point or spot");
         bounded(l, "intensity", path, 0.0, false);
         bounded(l, "range", path, 0.0, true);
-        if (const JsonValue* spot = object(l, "spot", path)) {
+        if (const Json* spot = object(l, "spot", path)) {
             number(*spot, "innerConeAngle", member(path, "spot"));
             number(*spot, "outerConeAngle", member(path, "spot"));
         }
     }
 
-    void animation(const JsonValue& a, const std::string& path) const {
-        const JsonValue* samplers = objects(a, "samplers", path);
-        const size_t samplerCount = samplers ? samplers->items.size() : 0;
+    void animation(const Json& a, const std::string& path) const {
+        const Json* samplers = objects(a, "samplers", path);
+        const size_t samplerCount = samplers ? samplers->size() : 0;
         for (size_t i = 0; i < samplerCount; ++i) {
-            index(samplers->items[i], "input", element(member(path, "samplers"), i), "accessors", true);
-            index(samplers->items[i], "output", element(member(path, "samplers"), i), "accessors", true);
+            index((*samplers)[i], "input", element(member(path, "samplers"), i), "accessors", true);
+            index((*samplers)[i], "output", element(member(path, "samplers"), i), "accessors", true);
         }
-        if (const JsonValue* channels = objects(a, "channels", path))
-            for (size_t i = 0; i < channels->items.size(); ++i) {
+        if (const Json* channels = objects(a, "channels", path))
+            for (size_t i = 0; i < channels->size(); ++i) {
                 const std::string at = element(member(path, "channels"), i);
-                const JsonValue& channel = channels->items[i];
-                if (const JsonValue* s = channel.find("sampler")) {
+                const Json& channel = (*channels)[i];
+                if (const Json* s = jsonMember(channel, "sampler")) {
                     const int64_t value = integerValue(*s, member(at, "sampler"));
                     if (value < 0 || uint64_t(value) >= samplerCount)
                         fail(member(at, "sampler"), std::to_string(value) + " is out of range (the animation has " +
                                                         std::to_string(samplerCount) + " samplers)");
                 }
-                if (const JsonValue* target = object(channel, "target", at)) index(*target, "node", member(at, "target"), "nodes");
+                if (const Json* target = object(channel, "target", at)) index(*target, "node", member(at, "target"), "nodes");
             }
     }
 
-    const JsonValue& root_;
+    const Json& root_;
     const std::string& name_;
-    const JsonValue* lights_ = nullptr;
+    const Json* lights_ = nullptr;
 };
 
 }  // namespace
 
-void checkGltfJson(const JsonValue& root, const std::string& name) { Checker(root, name).run(); }
+void checkGltfJson(const Json& root, const std::string& name) { Checker(root, name).run(); }
 
 }  // namespace ripple::apps::gltf

@@ -13,6 +13,6 @@ namespace ripple::apps::gltf {
 // has 2 meshes)") at the first problem: the document is not a glTF object with an 'asset', an index is not
 // an integer or names nothing, an offset is negative or misaligned for its accessor, a stride is smaller
 // than its element, an enum value is unknown, a camera or light parameter is outside glTF's range.
-void checkGltfJson(const JsonValue& root, const std::string& name);
+void checkGltfJson(const Json& root, const std::string& name);
 
 }  // namespace ripple::apps::gltf
