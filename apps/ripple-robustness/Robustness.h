@@ -124,5 +124,6 @@ std::vector<Row> intersectionCases(Harness& harness, bool quick);    // Intersec
 std::vector<Row> radiometryCases(Harness& harness, bool quick);      // RadiometryCases.cpp: 1e-10..1e10, sun, tiny emitters
 std::vector<Row> extremeSizeCases(Harness& harness, bool quick);     // ExtremeSizeCases.cpp: frames, spp, fov, cameras
 std::vector<Row> badDataCases(Harness& harness, bool quick);         // BadDataCases.cpp: NaN/Inf, indices, types
+std::vector<Row> misuseCases(Harness& harness, bool quick);          // MisuseCases.cpp: sizes, releases, handles
 
 }  // namespace ripple::robustness

@@ -26,6 +26,7 @@ const std::vector<Group>& groups() {
     static const std::vector<Group> all = {
         {"precision", precisionCases},     {"intersection", intersectionCases}, {"radiometry", radiometryCases},
         {"sizes", extremeSizeCases},       {"bad-data", badDataCases},
+        {"misuse", misuseCases},
     };
     return all;
 }

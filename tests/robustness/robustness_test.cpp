@@ -27,5 +27,8 @@ TEST_CASE("robustness: intersection (acne, coincident, thin, degenerate, edges)"
 TEST_CASE("robustness: radiometry (1e-10..1e10, tiny emitters, sun)") { checkGroup(radiometryCases); }
 TEST_CASE("robustness: sizes (frames, samples, fields of view, cameras)") { checkGroup(extremeSizeCases); }
 TEST_CASE("robustness: bad data (NaN/Inf, indices, element types)") { checkGroup(badDataCases); }
+TEST_CASE("robustness: API misuse (overflowing sizes, releases, stale handles, freed memory)") {
+    checkGroup(misuseCases);
+}
 
 }  // namespace ripple::robustness
