@@ -5,7 +5,9 @@ find_program(GLSLC glslc REQUIRED)
 find_program(SPIRV_VAL spirv-val REQUIRED)
 
 # ripple_add_shaders(<interface-target> <file.comp>...): headers land in
-# ${CMAKE_BINARY_DIR}/generated/shaders/<name>.spv.h, each defining ripple::shaders::<name>.
+# ${CMAKE_BINARY_DIR}/generated/shaders/<name>.spv.h, each defining ripple::shaders::<name>. Includes are
+# looked up beside the including file, in the calling folder, then in shaders/ (shared/*.h and the .glsl
+# pieces that kernels outside shaders/, such as bench/kernels, share with the renderer).
 function(ripple_add_shaders target)
   set(out_dir "${CMAKE_BINARY_DIR}/generated/shaders")
   file(MAKE_DIRECTORY "${out_dir}")
@@ -18,6 +20,7 @@ function(ripple_add_shaders target)
     add_custom_command(
       OUTPUT "${header}"
       COMMAND ${GLSLC} --target-env=vulkan1.2 -O -Werror -I "${CMAKE_CURRENT_SOURCE_DIR}"
+              -I "${PROJECT_SOURCE_DIR}/shaders"
               -MD -MF "${spv}.d" -MT "${header}" -o "${spv}" "${abs_source}"
       COMMAND ${SPIRV_VAL} --target-env vulkan1.2 "${spv}"
       COMMAND ${CMAKE_COMMAND} -DINPUT=${spv} -DOUTPUT=${header} -DNAME=${name}

@@ -1,5 +1,5 @@
 // Host side of the BVH4 lever: mesh upload in the collapsed layout and the two single-level kernels.
-#include "core/bvh/Bvh4TraceKernels.h"
+#include "bench/kernels/Bvh4TraceKernels.h"
 
 #include "core/render/TraceKernels.h"
 #include "shaders/shared/scene.h"

@@ -1,6 +1,6 @@
 // Morton-code ray ordering (see RayOrder.h). Keys are computed in parallel and (key, index) pairs sorted, a
 // total order, so equal keys keep input order and the permutation is deterministic.
-#include "core/bvh/RayOrder.h"
+#include "bench/kernels/RayOrder.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>

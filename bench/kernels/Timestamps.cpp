@@ -1,5 +1,5 @@
 // GPU timestamp queries, converted to seconds with the device's timestamp period.
-#include "core/vk/Timestamps.h"
+#include "bench/kernels/Timestamps.h"
 
 namespace ripple::vk {
 

@@ -1,5 +1,5 @@
 // Ray-by-ray comparison of two tracers' results (reference: Embree; test: Ripple).
-#include "apps/ripple-bench/Agreement.h"
+#include "bench/ripple-bench/Agreement.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Embree 3 side of ripple-bench: scene build and single-ray traversal over gpu::Ray arrays.
-#include "apps/ripple-bench/EmbreeTracer.h"
+#include "bench/ripple-bench/EmbreeTracer.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -1,6 +1,6 @@
 // glTF -> one world-space TriangleMesh: the importer shares geometry between instances, the benchmark wants
 // every drawn triangle in one mesh, so each instance's copy is transformed and appended here.
-#include "apps/ripple-bench/GltfMeshes.h"
+#include "bench/ripple-bench/GltfMeshes.h"
 
 #include "apps/common/GltfScene.h"
 

@@ -1,5 +1,5 @@
 // Generates the displaced cube-sphere used by the "builtin" and "procedural" benchmark scenes.
-#include "apps/ripple-bench/ProceduralMeshes.h"
+#include "bench/ripple-bench/ProceduralMeshes.h"
 
 #include <glm/gtc/constants.hpp>
 

@@ -1,5 +1,5 @@
 // Generates the benchmark's ray sets on the host, in parallel; both tracers then trace these same arrays.
-#include "apps/ripple-bench/RaySets.h"
+#include "bench/ripple-bench/RaySets.h"
 
 #include <glm/gtc/constants.hpp>
 

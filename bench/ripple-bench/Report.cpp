@@ -1,5 +1,5 @@
 // Formats ripple-bench results: fixed-width tables for people, JSON for scripts and the README's numbers.
-#include "apps/ripple-bench/Report.h"
+#include "bench/ripple-bench/Report.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 // What ripple-bench measured, and its two outputs: the stdout tables and the JSON file with every number.
 #pragma once
 
-#include "apps/ripple-bench/Agreement.h"
-#include "apps/ripple-bench/Timing.h"
+#include "bench/ripple-bench/Agreement.h"
+#include "bench/ripple-bench/Timing.h"
 
 #include <cstdint>
 #include <filesystem>

@@ -1,7 +1,7 @@
 // Ripple scene construction and trace launches as ripple-bench times them, through the chosen levers.
-#include "apps/ripple-bench/RippleTracer.h"
+#include "bench/ripple-bench/RippleTracer.h"
 
-#include "core/bvh/RayOrder.h"
+#include "bench/kernels/RayOrder.h"
 
 #include <stdexcept>
 #include <type_traits>

@@ -3,13 +3,13 @@
 // through the speed levers chosen (BVH width, ray order).
 #pragma once
 
-#include "apps/ripple-bench/Timing.h"
-#include "core/bvh/Bvh4TraceKernels.h"
+#include "bench/kernels/Bvh4TraceKernels.h"
+#include "bench/kernels/Timestamps.h"
+#include "bench/ripple-bench/Timing.h"
 #include "core/render/TraceKernels.h"
 #include "core/scene/Scene.h"
 #include "core/vk/Buffer.h"
 #include "core/vk/Context.h"
-#include "core/vk/Timestamps.h"
 
 #include <memory>
 #include <span>

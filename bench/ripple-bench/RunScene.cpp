@@ -1,9 +1,9 @@
 // The phases of one benchmark scene, in the order they run; each phase is a function of its own.
-#include "apps/ripple-bench/RunScene.h"
+#include "bench/ripple-bench/RunScene.h"
 
-#include "apps/ripple-bench/GltfMeshes.h"
-#include "apps/ripple-bench/ProceduralMeshes.h"
-#include "apps/ripple-bench/RaySets.h"
+#include "bench/ripple-bench/GltfMeshes.h"
+#include "bench/ripple-bench/ProceduralMeshes.h"
+#include "bench/ripple-bench/RaySets.h"
 
 #include <algorithm>
 #include <iostream>

@@ -2,9 +2,9 @@
 // sets, trace each with both tracers, compare.
 #pragma once
 
-#include "apps/ripple-bench/EmbreeTracer.h"
-#include "apps/ripple-bench/Report.h"
-#include "apps/ripple-bench/RippleTracer.h"
+#include "bench/ripple-bench/EmbreeTracer.h"
+#include "bench/ripple-bench/Report.h"
+#include "bench/ripple-bench/RippleTracer.h"
 
 #include <filesystem>
 #include <string>

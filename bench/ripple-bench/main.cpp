@@ -1,8 +1,8 @@
 // ripple-bench: builds Ripple's and Embree's BVHs over the same meshes, traces the same primary, shadow and
 // diffuse-bounce rays with both, and reports speed (per wall second and per CPU second) and agreement.
 #include "apps/common/ImageSize.h"
-#include "apps/ripple-bench/Report.h"
-#include "apps/ripple-bench/RunScene.h"
+#include "bench/ripple-bench/Report.h"
+#include "bench/ripple-bench/RunScene.h"
 
 #include <CLI/CLI.hpp>
 #include <tbb/info.h>

@@ -1,6 +1,7 @@
 // 4-wide BVH node layout of every BVH the kernels traverse (core/bvh/Bvh4Collapse; shaders/bvh4_node.glsl):
 // a binned-SAH BVH2 collapsed so that one node fetch tests four boxes. The renderer's TLAS and BLASes
-// (shaders/traverse.glsl) and ripple-bench's single-level kernel (shaders/traverse_bvh4.glsl) use it.
+// (shaders/traverse.glsl) and ripple-bench's single-level kernel (bench/kernels/shaders/traverse_bvh4.glsl)
+// use it.
 #ifndef RIPPLE_SHARED_BVH4_H
 #define RIPPLE_SHARED_BVH4_H
 #include "common.h"

@@ -1,8 +1,8 @@
 // The speed levers of ripple-bench (issue 2): the BVH2 -> BVH4 collapse, the single-level BVH4 kernels
 // against the renderer's two-level kernels, subgroup packet traversal, and Morton ray ordering.
+#include "bench/kernels/Bvh4TraceKernels.h"
+#include "bench/kernels/RayOrder.h"
 #include "core/bvh/Bvh4Compress.h"
-#include "core/bvh/Bvh4TraceKernels.h"
-#include "core/bvh/RayOrder.h"
 #include "core/render/TraceKernels.h"
 #include "tests/support/SceneGenerators.h"
 #include "tests/support/TestContext.h"
