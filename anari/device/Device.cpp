@@ -212,11 +212,12 @@ void Device::setDeviceParameter(const char* name, ANARIDataType type, const void
         std::memcpy(&pendingCallback_, mem, sizeof(pendingCallback_));
         callbackSet_ = true;
     } else if (key == "statusCallbackUserData" && type == ANARI_VOID_POINTER) {
-        std::memcpy(&pendingCallbackUserPtr_, mem, sizeof(pendingCallbackUserPtr_));
+        pendingCallbackUserPtr_ = mem;  // an ANARI_VOID_POINTER's value is `mem` itself
         callbackSet_ = true;
-    } else if ((key == "mpiCommunicator" && type == ANARI_VOID_POINTER) ||
-               (key == "pointer_to_mpi_communicator" && type == ANARI_UINT64)) {
-        const void* communicator = nullptr;  // both are the address of the application's MPI_Comm
+    } else if (key == "mpiCommunicator" && type == ANARI_VOID_POINTER) {
+        state_.setCommunicatorHandle(mem);  // the address of the application's MPI_Comm
+    } else if (key == "pointer_to_mpi_communicator" && type == ANARI_UINT64) {
+        const void* communicator = nullptr;  // the same address, as a number
         std::memcpy(&communicator, mem, sizeof(communicator));
         state_.setCommunicatorHandle(communicator);
     } else {
@@ -228,7 +229,8 @@ void Device::setDeviceParameter(const char* name, ANARIDataType type, const void
 
 void Device::setParameter(ANARIObject object, const char* name, ANARIDataType dataType, const void* mem) {
     guarded("anariSetParameter", [&] {
-        if (!name || !mem) {
+        // An ANARI_VOID_POINTER's value is `mem` itself, and NULL is a value like any other.
+        if (!name || (!mem && dataType != ANARI_VOID_POINTER)) {
             state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
                           "anariSetParameter: NULL name or value");
             return;

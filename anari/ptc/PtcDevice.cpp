@@ -50,10 +50,12 @@ void PtcDevice::loadWrapped() {
     // The wrapped device renders this rank's share alone: a data-parallel device must not talk to the
     // other ranks itself, or they would be composited twice.
     if (const void* self = mpi::Communicator::selfHandle())
-        wrapped_->setParameter(device, "mpiCommunicator", ANARI_VOID_POINTER, &self);
+        wrapped_->setParameter(device, "mpiCommunicator", ANARI_VOID_POINTER, self);
     for (const PendingParameter& p : pending_) {
-        wrapped_->setParameter(device, p.name.c_str(), p.type,
-                               p.type == ANARI_STRING ? static_cast<const void*>(p.text.c_str()) : p.bytes.data());
+        const void* mem = p.bytes.data();
+        if (p.type == ANARI_STRING) mem = p.text.c_str();
+        if (p.type == ANARI_VOID_POINTER) std::memcpy(&mem, p.bytes.data(), sizeof(mem));
+        wrapped_->setParameter(device, p.name.c_str(), p.type, mem);
     }
     pending_.clear();
 }
@@ -131,21 +133,26 @@ void PtcDevice::setDeviceParameter(const char* name, ANARIDataType dataType, con
             libraryName_ = static_cast<const char*>(mem);
         return;
     }
-    if ((key == "mpiCommunicator" && dataType == ANARI_VOID_POINTER) ||
-        (key == "pointer_to_mpi_communicator" && dataType == ANARI_UINT64)) {
-        const void* address = nullptr;  // both parameters hold the address of the application's MPI_Comm
+    if (key == "mpiCommunicator" && dataType == ANARI_VOID_POINTER) {
+        communicatorHandle_ = mpi::Communicator::copyHandle(mem);  // a VOID_POINTER's value is mem itself
+        return;
+    }
+    if (key == "pointer_to_mpi_communicator" && dataType == ANARI_UINT64) {
+        const void* address = nullptr;  // the address of the application's MPI_Comm, as a number
         std::memcpy(&address, mem, sizeof(address));
         communicatorHandle_ = mpi::Communicator::copyHandle(address);
         return;
     }
     if (key == "statusCallback" && dataType == ANARI_STATUS_CALLBACK)
         std::memcpy(&callback_, mem, sizeof(callback_));
-    if (key == "statusCallbackUserData" && dataType == ANARI_VOID_POINTER)
-        std::memcpy(&callbackUserPtr_, mem, sizeof(callbackUserPtr_));
+    if (key == "statusCallbackUserData" && dataType == ANARI_VOID_POINTER) callbackUserPtr_ = mem;
     if (wrapped_) return wrapped_->setParameter(wrappedHandle(), name, dataType, mem);
     PendingParameter p{key, dataType, {}, {}};
     if (dataType == ANARI_STRING) {
         p.text = static_cast<const char*>(mem);  // ANARI passes the characters themselves
+    } else if (dataType == ANARI_VOID_POINTER) {
+        const auto* value = reinterpret_cast<const uint8_t*>(&mem);  // the pointer is the value
+        p.bytes.assign(value, value + sizeof(mem));
     } else {
         const size_t bytes = ripple_anari::sizeOf(dataType);
         p.bytes.assign(static_cast<const uint8_t*>(mem), static_cast<const uint8_t*>(mem) + bytes);
@@ -165,9 +172,7 @@ void PtcDevice::setFrameParameter(FrameState& frame, ANARIFrame handle, const ch
         return;
     }
     if (key == "mpiCommunicator" && dataType == ANARI_VOID_POINTER) {
-        const void* address = nullptr;
-        std::memcpy(&address, mem, sizeof(address));
-        frame.communicatorHandle = mpi::Communicator::copyHandle(address);
+        frame.communicatorHandle = mpi::Communicator::copyHandle(mem);
         return;
     }
     if (key == "renderer" && dataType == ANARI_RENDERER) std::memcpy(&frame.renderer, mem, sizeof(frame.renderer));
@@ -181,7 +186,9 @@ void PtcDevice::setFrameParameter(FrameState& frame, ANARIFrame handle, const ch
 }
 
 void PtcDevice::setParameter(ANARIObject object, const char* name, ANARIDataType dataType, const void* mem) {
-    if (!name || !mem) return report(ANARI_SEVERITY_ERROR, "anariSetParameter: NULL name or value");
+    // An ANARI_VOID_POINTER's value is `mem` itself, and NULL is a value like any other.
+    if (!name || (!mem && dataType != ANARI_VOID_POINTER))
+        return report(ANARI_SEVERITY_ERROR, "anariSetParameter: NULL name or value");
     if (isDevice(object)) return setDeviceParameter(name, dataType, mem);
     if (!wrapped()) return;
     if (auto it = frames_.find(reinterpret_cast<ANARIFrame>(object)); it != frames_.end())

@@ -139,7 +139,7 @@ std::vector<float> renderWay(const Options& options, glm::uvec2 size, const mpi:
     ANARIDevice d = s.device;
     if (way == Way::Single) {
         if (const void* self = mpi::Communicator::selfHandle())
-            anariSetParameter(d, d, "mpiCommunicator", ANARI_VOID_POINTER, &self);
+            anariSetParameter(d, d, "mpiCommunicator", ANARI_VOID_POINTER, self);
         anariCommitParameters(d, d);
     }
     const bool alone = way == Way::Single;

@@ -129,8 +129,8 @@ void run(const Options& options, MPI_Comm comm, int rank, int ranks) {
     ANARIDevice d = anariNewDevice(library, "default");
     if (!d) throw std::runtime_error("the ANARI library created no device");
     // Which ranks render together: the device copies the communicator (without it, MPI_COMM_WORLD).
-    const void* communicator = &comm;  // a VOID_POINTER parameter: the address of the application's MPI_Comm
-    anariSetParameter(d, d, "mpiCommunicator", ANARI_VOID_POINTER, &communicator);
+    // An ANARI_VOID_POINTER parameter's value is the pointer itself: here the address of the MPI_Comm.
+    anariSetParameter(d, d, "mpiCommunicator", ANARI_VOID_POINTER, &comm);
     anariCommitParameters(d, d);
     renderTogether(d, options, rank, ranks);
     anariRelease(d, d);  // the device's last release is collective

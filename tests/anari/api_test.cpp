@@ -66,6 +66,21 @@ TEST_CASE("device handle is reference counted; releasing NULL does nothing") {
     CHECK(version >= 1);
 }
 
+TEST_CASE("device parameters statusCallback and statusCallbackUserData (an ANARI_VOID_POINTER: the pointer itself)") {
+    Fixture f;
+    StatusLog other;
+    const ANARIStatusCallback callback = &StatusLog::callback;
+    anariSetParameter(f.device, f.device, "statusCallback", ANARI_STATUS_CALLBACK, &callback);
+    // The SDK's C++ wrapper and helium pass a VOID_POINTER's value as `mem` itself, not its address.
+    anariSetParameter(f.device, f.device, "statusCallbackUserData", ANARI_VOID_POINTER, &other);
+    anariCommitParameters(f.device, f.device);
+    ANARIGeometry teapot = anariNewGeometry(f.device, "teapot");
+    anariCommitParameters(f.device, teapot);
+    CHECK_MESSAGE(other.count({"teapot"}) >= 1, other.dump());
+    CHECK(f.log.count({"teapot"}) == 0);
+    anariRelease(f.device, teapot);
+}
+
 TEST_CASE("unknown subtypes and wrong parameter types are reported, naming object and parameter") {
     Fixture f;
     ANARIGeometry teapot = anariNewGeometry(f.device, "teapot");

@@ -44,9 +44,9 @@ TEST_CASE("KHR_FRAME_COMPLETION_CALLBACK: called once per render, ready and mapp
     completion.device = s.device;
     completion.frame = frame;
     const ANARIFrameCompletionCallback callback = &onComplete;
-    const void* userData = &completion;
     s.setRaw(frame, "frameCompletionCallback", ANARI_FRAME_COMPLETION_CALLBACK, &callback);
-    s.setRaw(frame, "frameCompletionCallbackUserData", ANARI_VOID_POINTER, &userData);
+    // As the ANARI SDK's C++ wrapper passes it: an ANARI_VOID_POINTER parameter's value is the pointer itself.
+    s.setRaw(frame, "frameCompletionCallbackUserData", ANARI_VOID_POINTER, &completion);
     s.commit(frame);
     for (int render = 1; render <= 3; ++render) {
         anariRenderFrame(s.device, frame);

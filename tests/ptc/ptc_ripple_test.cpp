@@ -26,7 +26,7 @@ Image renderOnRoot(RenderSession& s, ANARIFrame frame, int rank) {
 
 // Tells a Ripple device to render its own world alone (MPI_COMM_SELF), as the reference holding everything.
 void renderAlone(RenderSession& s) {
-    if (const void* self = Communicator::selfHandle()) s.setRaw(s.device, "mpiCommunicator", ANARI_VOID_POINTER, &self);
+    if (const void* self = Communicator::selfHandle()) s.setRaw(s.device, "mpiCommunicator", ANARI_VOID_POINTER, self);
     s.commit(s.device);
 }
 

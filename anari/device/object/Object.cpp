@@ -79,13 +79,18 @@ void Object::setParameter(std::string_view name, ANARIDataType type, const void*
         reportWarning("anariSetParameter with an empty name; ignored");
         return;
     }
-    if (!mem) {
+    if (!mem && type != ANARI_VOID_POINTER) {
         reportWarning("parameter '" + std::string(name) + "' set with a NULL value; ignored");
         return;
     }
     Parameter value;
     value.type = type;
-    if (type == ANARI_STRING) {
+    if (type == ANARI_VOID_POINTER) {
+        // As in the SDK's C++ wrapper and helium: an ANARI_VOID_POINTER's value is `mem` itself, not what
+        // it points to (like ANARI_STRING). Stored as the pointer's bytes.
+        const auto* bytes = reinterpret_cast<const uint8_t*>(&mem);
+        value.bytes.assign(bytes, bytes + sizeof(mem));
+    } else if (type == ANARI_STRING) {
         value.string = static_cast<const char*>(mem);
     } else if (ripple_anari::isObjectType(type)) {
         const auto handle = *static_cast<const ANARIObject*>(mem);
