@@ -262,6 +262,49 @@ TEST_CASE("direct lighting of a matte plane matches a / pi * E * cos(theta)") {
     CHECK(s.log.problems() == 0);
 }
 
+TEST_CASE("a world with no light and no emitter, ambientRadiance unset: an implicit white ambient light of 1") {
+    // Orthographic view straight down on an unoccluded matte plane of albedo a under a uniform sky of
+    // radiance L: every pixel is a * L. With L = 1 (the implicit light) and 64 samples of one bounce the
+    // mean over the image is within 1% of a; with ambientRadiance set to 0 (explicitly) it is black.
+    auto render = [](bool setAmbientToZero, bool addLight, RenderSession& s) {
+        ANARISurface plane = s.surface(s.floor(), s.matte(glm::vec3(0.5f)));
+        ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+        s.set(camera, "position", glm::vec3(0, 5, 0));
+        s.set(camera, "direction", glm::vec3(0, -1, 0));
+        s.set(camera, "up", glm::vec3(0, 0, -1));
+        s.set(camera, "height", 4.0f);
+        s.commit(camera);
+        ANARIRenderer renderer = s.renderer(64, 2, {0, 0, 0, 1});
+        if (setAmbientToZero) {
+            s.set(renderer, "ambientRadiance", 0.0f);
+            s.commit(renderer);
+        }
+        std::vector<ANARILight> lights;
+        if (addLight) lights.push_back(s.directional({0, -1, 0}, 0.001f));
+        const Image image = s.render(s.frame(s.world({plane}, lights), camera, renderer, {16, 16}, ANARI_FLOAT32_VEC4));
+        double mean = 0.0;
+        for (const glm::vec4& pixel : image.linear) mean += (pixel.r + pixel.g + pixel.b) / 3.0;
+        return mean / double(image.linear.size());
+    };
+    {
+        RenderSession s;
+        CHECK(render(false, false, s) == doctest::Approx(0.5).epsilon(0.01));
+        CHECK_MESSAGE(s.log.entries.size() == 1, s.log.dump());
+        CHECK(s.log.count({}) == 0);  // reported as information, not as a warning
+        CHECK(s.log.find("implicit white ambient light of radiance 1") == 0);
+    }
+    {
+        RenderSession s;
+        CHECK(render(true, false, s) == 0.0);
+        CHECK(s.log.find("implicit") == -1);
+    }
+    {
+        RenderSession s;  // a light turns the implicit one off: a / pi * E = 1.6e-4
+        CHECK(render(false, true, s) == doctest::Approx(0.5 / glm::pi<double>() * 0.001).epsilon(0.01));
+        CHECK(s.log.find("implicit") == -1);
+    }
+}
+
 TEST_CASE("frames accumulate while nothing changes and start over on a change") {
     RenderSession s;
     ANARICamera camera = s.perspective({0, 1.6f, 4}, {0, 0.5f, 0});

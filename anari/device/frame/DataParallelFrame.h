@@ -17,6 +17,7 @@ public:
 
     std::string disagreement(const FrameFingerprint& mine) override;
     bool shareLights(SceneSync& sync, World& world, bool restart) override;
+    bool anyRank(bool value) override { return ring_.communicator().max(value ? 1 : 0) > 0; }
     bool rendersOnWorker() const override { return false; }
     core::RayExchange* exchange() override { return &ring_; }
     const core::Scene& scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) override;

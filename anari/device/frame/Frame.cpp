@@ -213,6 +213,19 @@ void Frame::renderFrame() {
         renderer_.get() != renderedRenderer_ || renderer_->lastCommitted() != renderedRendererStamp_;
     job.restartAccumulation =
         distribution_->shareLights(sync_, *world_, sceneChanged || cameraChanged || rendererChanged) || !accumulation_;
+    // A world with no light and no emitter anywhere, rendered with "ambientRadiance" unset, would be black:
+    // it gets an implicit white ambient light of radiance 1 instead (as the SDK's test scenes and tutorials
+    // expect of a device), reported once. An application that sets ambientRadiance, even to 0, gets exactly
+    // what it set; any light or emitter turns the implicit light off.
+    if (!renderer_->ambientGiven() && !distribution_->anyRank(sync_.lit())) {
+        job.settings.ambientRadiance = 1.0f;
+        job.settings.ambientColor = glm::vec3(1.0f);
+        if (!implicitAmbientReported_)
+            state().report(this, ANARI_SEVERITY_INFO, ANARI_STATUS_NO_ERROR,
+                           label() + ": the world has no light and no emitter and the renderer no "
+                                     "'ambientRadiance': lit by an implicit white ambient light of radiance 1");
+        implicitAmbientReported_ = true;
+    }
     renderedCamera_ = camera_.get();
     renderedCameraStamp_ = camera_->lastCommitted();
     renderedRenderer_ = renderer_.get();

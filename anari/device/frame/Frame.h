@@ -91,6 +91,7 @@ private:
     ANARIDataType colorType_ = ANARI_UNKNOWN;
     bool depth_ = false;
     bool accumulation_ = true;
+    bool implicitAmbientReported_ = false;
     core::FrameChannels channels_;              // channel.depth and the surface channels enabled
     ObjectRef<World> world_;
     ObjectRef<Camera> camera_;

@@ -12,6 +12,7 @@ class SingleRankFrame final : public FrameDistribution {
 public:
     std::string disagreement(const FrameFingerprint&) override { return {}; }
     bool shareLights(SceneSync&, World&, bool restart) override { return restart; }
+    bool anyRank(bool value) override { return value; }
     bool rendersOnWorker() const override { return true; }
     core::RayExchange* exchange() override { return nullptr; }
     const core::Scene& scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) override {

@@ -56,6 +56,8 @@ public:
     // Collective, on the API thread after the scene sync: every rank's lights for `sync` and the world's
     // extent over ranks. Returns whether the accumulation restarts: on every rank when it does on one.
     virtual bool shareLights(SceneSync& sync, World& world, bool restart) = 0;
+    // Collective: whether `value` is true on any rank.
+    virtual bool anyRank(bool value) = 0;
     // Whether the frame may render on a worker thread (data-parallel: MPI is called from one thread).
     virtual bool rendersOnWorker() const = 0;
     // The ray exchange the path tracer uses (null: this rank holds the whole scene). Owned here.

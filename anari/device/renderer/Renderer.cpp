@@ -18,6 +18,7 @@ void Renderer::commit() {
     }
     settings_.ambientColor = get<glm::vec3>("ambientColor", settings_.ambientColor);
     settings_.ambientRadiance = get<float>("ambientRadiance", settings_.ambientRadiance);
+    ambientGiven_ = has("ambientRadiance");
     if (!allFinite(settings_.ambientColor) || !std::isfinite(settings_.ambientRadiance) ||
         settings_.ambientRadiance < 0.0f || glm::any(glm::lessThan(settings_.ambientColor, glm::vec3(0.0f)))) {
         reportWarning(

@@ -13,12 +13,16 @@ public:
 
     void commit() override;
     const core::RenderSettings& settings() const { return settings_; }
+    // Whether the application set "ambientRadiance" (to any value, 0 included): if not, a world with no
+    // light and no emitter gets the implicit ambient light (Frame.cpp).
+    bool ambientGiven() const { return ambientGiven_; }
 
 private:
     // pixelSamples and maxPathLength are Ripple's own; INT32 (as other devices take them) or UINT32.
     uint32_t pullCount(std::string_view name, uint32_t fallback, uint32_t most);
 
     core::RenderSettings settings_;
+    bool ambientGiven_ = false;
 };
 
 }  // namespace ripple::device

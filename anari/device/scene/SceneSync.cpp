@@ -4,6 +4,7 @@
 
 #include "anari/device/world/World.h"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <unordered_map>
@@ -150,6 +151,13 @@ bool SceneSync::update(World& world) {
     localLights_ = description_.lights;
     pending_ = true;
     return true;
+}
+
+bool SceneSync::lit() const {
+    if (!description_.lights.empty()) return true;
+    return std::any_of(description_.materials.begin(), description_.materials.end(), [](const core::Material& m) {
+        return glm::any(glm::greaterThan(m.emissive, glm::vec3(0.0f))) || m.emissiveTexture != core::kNoTexture;
+    });
 }
 
 bool SceneSync::setLights(const std::vector<core::Light>& lights, float worldRadius, float worldMagnitude) {

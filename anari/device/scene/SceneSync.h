@@ -35,6 +35,9 @@ public:
     // replace them in the scene (mpi/LightGather), with the whole world's radius for picking lights by
     // power and its largest |coordinate| for ray offsets. Returns whether that changed the scene.
     const std::vector<core::Light>& localLights() const { return localLights_; }
+    // Whether the latest description has a light (data-parallel: after setLights, any rank's) or a surface
+    // that emits.
+    bool lit() const;
     bool setLights(const std::vector<core::Light>& lights, float worldRadius, float worldMagnitude);
     // Data-parallel: the other ranks' emissive-triangle lights; returns whether they changed the scene.
     bool setForeignTriangleLights(std::vector<gpu::LightRecord> lights);
