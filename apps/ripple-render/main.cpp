@@ -20,6 +20,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -332,9 +333,15 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
     uint32_t nextReport = 2;  // the first spp with a batch in each half
     bool reportsRays = true;  // until the device says it has no such property (only Ripple has it)
     const ANARIFrame frame = setup.frame;
+    std::array<double, 4> recentFrames{};
     for (bool stop = false; !stop;) {
+        const double frameStart = clock.seconds();
         anariRenderFrame(s.device, frame);
         anariFrameReady(s.device, frame, ANARI_WAIT);
+        // The longest of the last few frames predicts the next one (a single frame's time is noisy on a loaded
+        // machine); the first frame, which compiles the kernels, drops out after four more.
+        recentFrames[out.frames % recentFrames.size()] = clock.seconds() - frameStart;
+        const double nextFrame = *std::max_element(recentFrames.begin(), recentFrames.end());
         ++out.frames;
         float raysPerSecond = 0.0f;
         if (reportsRays)
@@ -355,8 +362,10 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
             progress.update(spp, reportsRays ? raysPerSecond : 0.0f);
             const double estimate =
                 options.targetError || spp >= nextReport ? out.estimator.estimatedRelMse() : 0.0;
-            // --time leaves at least two frames, so that there is an estimate.
-            stop = spp >= sppLimit || (options.seconds && out.frames >= 2 && clock.seconds() >= *options.seconds) ||
+            // --time stops before a frame that would end past the limit: the render ends within it, at most
+            // one frame early; only a first frame longer than the limit, or a frame far slower than the
+            // ones before, overruns it.
+            stop = spp >= sppLimit || (options.seconds && clock.seconds() + nextFrame > *options.seconds) ||
                    (options.targetError && spp >= kMinSamplesForTarget && estimate <= *options.targetError);
             if (options.reporting() && (spp >= nextReport || stop)) {
                 clock.pause();  // metrics and printing are not render time
@@ -459,7 +468,7 @@ int main(int argc, char** argv) {
     app.add_option("--size", options.size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--spp", options.spp, "samples per pixel (with --time or --target-error: a cap, when given)")
         ->check(CLI::Range(1u, ripple::apps::kMaxSpp))->capture_default_str();
-    app.add_option("--time", options.seconds, "stop after this many seconds of rendering")->check(CLI::PositiveNumber);
+    app.add_option("--time", options.seconds, "render for at most this many seconds: stop before a frame that would end past it")->check(CLI::PositiveNumber);
     app.add_option("--target-error", options.targetError, "stop when the estimated relMSE falls to this")
         ->check(CLI::PositiveNumber);
     app.add_option("--reference", options.reference,
