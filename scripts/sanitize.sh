@@ -12,9 +12,11 @@ targets=()
 for t in ${RIPPLE_SANITIZE_TARGETS:-}; do targets+=(--target "$t"); done
 cmake --build "$build" --parallel ${RIPPLE_BUILD_JOBS:-} "${targets[@]}"
 
-# Leaks are checked, minus those of libraries outside Ripple that keep allocations until exit; UB ends the
-# process (the build sets -fno-sanitize-recover) with a stack; ASan's own reports name file and line.
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=0:check_initialization_order=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
+# No leak check in the Vulkan and MPI suites: the Vulkan loader unloads the driver and layers, and Open MPI
+# its components, before LeakSanitizer looks at exit, so their allocations kept until exit are reported
+# from unknown modules that no suppression can name. The fuzz replay tests (no Vulkan) turn it back on
+# (fuzz/CMakeLists.txt). UB ends the process (the build sets -fno-sanitize-recover) with a stack.
+export ASAN_OPTIONS="detect_leaks=0:strict_string_checks=1:check_initialization_order=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export LSAN_OPTIONS="suppressions=$PWD/cmake/lsan-suppressions.txt:print_suppressions=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 start=$(date +%s)
