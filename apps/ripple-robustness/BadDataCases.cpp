@@ -391,20 +391,6 @@ Image renderWith(Harness& h, const GoodScene& scene, const Additions& added) {
     return h.render(h.world(surfaces, added.instances, lights), scene.camera, scene.settings);
 }
 
-float maxDifference(const Image& a, const Image& b) {
-    if (a.rgba.size() != b.rgba.size() || a.rgba.empty()) return kInf;
-    float largest = 0.0f;
-    for (size_t i = 0; i < a.rgba.size(); ++i)
-        for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(a.rgba[i][c] - b.rgba[i][c]));
-    return largest;
-}
-
-std::string number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.2g", value);
-    return text;
-}
-
 }  // namespace
 
 std::vector<Row> badDataCases(Harness& h, bool quick) {
@@ -438,11 +424,11 @@ std::vector<Row> badDataCases(Harness& h, bool quick) {
                  {{"vertex.position", h.array(ANARI_FLOAT32_VEC3, kQuadCorners)}, {"primitive.index", quadIndex(h)}})},
              {},
              {}});
-        const float difference = maxDifference(image, references[""]);
+        const float difference = maxRgbDifference(image, references[""]);
         row.finite = image.nonFinite == 0 && image.rendered;
         row.holds = h.errorCount() == 0 && difference > kVisible;
         row.measured = "errors " + std::to_string(h.errorCount()) + " (want 0), largest pixel difference " +
-                       number(difference) + " (want > " + number(kVisible) + ")";
+                       formatNumber(difference) + " (want > " + formatNumber(kVisible) + ")";
         row.why = "the comparison below can see a rendered bad object";
         rows.push_back(row);
     }
@@ -456,7 +442,7 @@ std::vector<Row> badDataCases(Harness& h, bool quick) {
                 return message.find(fragment) != std::string::npos;
             });
         });
-        const float difference = maxDifference(image, references[badCase.referenceKey]);
+        const float difference = maxRgbDifference(image, references[badCase.referenceKey]);
         Row row;
         row.group = "bad data";
         row.name = badCase.name;
@@ -465,8 +451,8 @@ std::vector<Row> badDataCases(Harness& h, bool quick) {
         row.holds = h.errorCount() == 1 && named != messages.end() && difference <= kSameImage;
         row.measured = "errors " + std::to_string(h.errorCount()) +
                        " (want 1, naming object, parameter, where: " + (named != messages.end() ? "yes" : "no") +
-                       "), largest pixel difference from the frame without it " + number(difference) +
-                       " (want <= " + number(kSameImage) + ")";
+                       "), largest pixel difference from the frame without it " + formatNumber(difference) +
+                       " (want <= " + formatNumber(kSameImage) + ")";
         row.why = named != messages.end() ? "refused: " + *named
                                           : "no message with: " + badCase.fragments.back() +
                                                 (messages.empty() ? "" : "; got: " + messages.front());

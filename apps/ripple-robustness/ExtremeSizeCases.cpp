@@ -19,11 +19,7 @@ namespace {
 constexpr float kRadiance = 0.5f;
 constexpr float kUniformTolerance = 1e-4f;
 
-std::string number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.4g", value);
-    return text;
-}
+std::string number(double value) { return formatNumber(value, 4); }
 
 // For values that differ in the 5th digit (fovy 3.1415, 3.14158).
 std::string preciseNumber(float value) {

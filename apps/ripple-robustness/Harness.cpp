@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 namespace ripple::robustness {
@@ -213,6 +215,20 @@ Uniformity uniformity(const Image& image, float value, float tolerance) {
     }
     u.mean = sum / (3.0 * double(image.rgba.size()));
     return u;
+}
+
+float maxRgbDifference(const Image& a, const Image& b) {
+    if (a.rgba.size() != b.rgba.size() || a.rgba.empty()) return std::numeric_limits<float>::infinity();
+    float largest = 0.0f;
+    for (size_t i = 0; i < a.rgba.size(); ++i)
+        for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(a.rgba[i][c] - b.rgba[i][c]));
+    return largest;
+}
+
+std::string formatNumber(double value, int digits) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.*g", digits, value);
+    return text;
 }
 
 }  // namespace ripple::robustness

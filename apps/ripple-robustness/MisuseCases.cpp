@@ -113,20 +113,6 @@ std::vector<MisuseCase> allCases() {
     return cases;
 }
 
-std::string number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.2g", value);
-    return text;
-}
-
-float maxDifference(const Image& a, const Image& b) {
-    if (a.rgba.size() != b.rgba.size() || a.rgba.empty()) return INFINITY;
-    float largest = 0.0f;
-    for (size_t i = 0; i < a.rgba.size(); ++i)
-        for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(a.rgba[i][c] - b.rgba[i][c]));
-    return largest;
-}
-
 }  // namespace
 
 std::vector<Row> misuseCases(Harness& h, bool quick) {
@@ -149,7 +135,7 @@ std::vector<Row> misuseCases(Harness& h, bool quick) {
         const bool reported = misuse.fragment.empty() ? h.errorCount() == 0 : h.messagesContain(misuse.fragment);
         surfaces.insert(surfaces.begin(), sphere);
         const Image image = h.render(h.world(surfaces, {}, {light}), camera, settings);
-        const float difference = maxDifference(image, misuse.addsSphere ? withSecond : good);
+        const float difference = maxRgbDifference(image, misuse.addsSphere ? withSecond : good);
         Row row;
         row.group = "API misuse";
         row.name = misuse.name;
@@ -157,8 +143,8 @@ std::vector<Row> misuseCases(Harness& h, bool quick) {
         row.finite = image.rendered && image.nonFinite == 0;
         row.holds = reported && difference <= kSameImage;
         row.measured = std::string(misuse.fragment.empty() ? "no error: " : "reported: ") + (reported ? "yes" : "no") +
-                       ", largest pixel difference from the intended frame " + number(difference) + " (want <= " +
-                       number(kSameImage) + ")";
+                       ", largest pixel difference from the intended frame " + formatNumber(difference) + " (want <= " +
+                       formatNumber(kSameImage) + ")";
         const std::vector<std::string> messages = h.messages();
         row.why = misuse.fragment.empty() ? "the device copied the data when the application released the array"
                                           : (messages.empty() ? std::string("no message") : messages.front());

@@ -22,11 +22,7 @@ constexpr double kPi = glm::pi<double>();
 constexpr float kLightHeight = 1.0f;
 constexpr float kViewHeight = 2.0f;  // the camera sees x, y in [-1, 1]
 
-std::string number(double value) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.4g", value);
-    return text;
-}
+std::string number(double value) { return formatNumber(value, 4); }
 
 ANARISurface plane(Harness& harness, float halfSize) {
     const std::vector<glm::vec3> corners{{-halfSize, -halfSize, 0.0f}, {halfSize, -halfSize, 0.0f},

@@ -117,6 +117,10 @@ struct Uniformity {
     uint64_t outliers = 0;
 };
 Uniformity uniformity(const Image& image, float value, float tolerance);
+// The largest difference of any RGB channel of any pixel; infinite when the sizes differ or one is empty.
+float maxRgbDifference(const Image& a, const Image& b);
+// A number for the table: `digits` significant digits (printf's %g).
+std::string formatNumber(double value, int digits = 2);
 
 // The case groups, one file each. quick: the smaller sweep the tests run (the program runs the full one).
 std::vector<Row> precisionCases(Harness& harness, bool quick);       // PrecisionCases.cpp: scale x translation
