@@ -92,3 +92,57 @@ inline DeviceInterface* deviceFromHandle(ANARIDevice device) {
 inline ANARIDevice handleFromDevice(DeviceInterface* device) { return reinterpret_cast<ANARIDevice>(device); }
 
 }  // namespace ripple::abi
+
+// Declares every slot above as an override, for a device class that implements them all in its .cpp
+// (Ripple's device and its compositing device): one list, kept beside the slots it mirrors.
+#define RIPPLE_ANARI_DEVICE_OVERRIDES                                                                          \
+    ANARIArray1D newArray1D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,           \
+                            ANARIDataType dataType, uint64_t n1) override;                                     \
+    ANARIArray2D newArray2D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,           \
+                            ANARIDataType dataType, uint64_t n1, uint64_t n2) override;                        \
+    ANARIArray3D newArray3D(const void* appMemory, ANARIMemoryDeleter deleter, const void* userData,           \
+                            ANARIDataType dataType, uint64_t n1, uint64_t n2, uint64_t n3) override;           \
+    ANARIGeometry newGeometry(const char* type) override;                                                      \
+    ANARIMaterial newMaterial(const char* type) override;                                                      \
+    ANARISampler newSampler(const char* type) override;                                                        \
+    ANARISurface newSurface() override;                                                                        \
+    ANARISpatialField newSpatialField(const char* type) override;                                              \
+    ANARIVolume newVolume(const char* type) override;                                                          \
+    ANARILight newLight(const char* type) override;                                                            \
+    ANARIGroup newGroup() override;                                                                            \
+    ANARIInstance newInstance(const char* type) override;                                                      \
+    ANARIWorld newWorld() override;                                                                            \
+    ANARICamera newCamera(const char* type) override;                                                          \
+    ANARIRenderer newRenderer(const char* type) override;                                                      \
+    ANARIFrame newFrame() override;                                                                            \
+    void setParameter(ANARIObject object, const char* name, ANARIDataType dataType, const void* mem) override;  \
+    void unsetParameter(ANARIObject object, const char* name) override;                                        \
+    void unsetAllParameters(ANARIObject object) override;                                                      \
+    void* mapParameterArray1D(ANARIObject object, const char* name, ANARIDataType dataType, uint64_t n1,       \
+                              uint64_t* elementStride) override;                                               \
+    void* mapParameterArray2D(ANARIObject object, const char* name, ANARIDataType dataType, uint64_t n1,       \
+                              uint64_t n2, uint64_t* elementStride) override;                                  \
+    void* mapParameterArray3D(ANARIObject object, const char* name, ANARIDataType dataType, uint64_t n1,       \
+                              uint64_t n2, uint64_t n3, uint64_t* elementStride) override;                     \
+    void unmapParameterArray(ANARIObject object, const char* name) override;                                   \
+    void commitParameters(ANARIObject object) override;                                                        \
+    void release(ANARIObject object) override;                                                                 \
+    void retain(ANARIObject object) override;                                                                  \
+    void* mapArray(ANARIArray array) override;                                                                 \
+    void unmapArray(ANARIArray array) override;                                                                \
+    int getProperty(ANARIObject object, const char* name, ANARIDataType type, void* mem, uint64_t size,        \
+                    ANARIWaitMask mask) override;                                                              \
+    const char** getObjectSubtypes(ANARIDataType objectType) override;                                         \
+    const void* getObjectInfo(ANARIDataType objectType, const char* objectSubtype, const char* infoName,       \
+                              ANARIDataType infoType) override;                                                \
+    const void* getParameterInfo(ANARIDataType objectType, const char* objectSubtype, const char* parameterName, \
+                                 ANARIDataType parameterType, const char* infoName,                            \
+                                 ANARIDataType infoType) override;                                             \
+    const void* mapFrame(ANARIFrame frame, const char* channel, uint32_t* width, uint32_t* height,             \
+                         ANARIDataType* pixelType) override;                                                   \
+    void unmapFrame(ANARIFrame frame, const char* channel) override;                                           \
+    void renderFrame(ANARIFrame frame) override;                                                               \
+    int frameReady(ANARIFrame frame, ANARIWaitMask mask) override;                                             \
+    void discardFrame(ANARIFrame frame) override;                                                              \
+    ANARIObject newObject(const char* objectType, const char* type) override;                                  \
+    ProcAddress getProcAddress(const char* name) override;
