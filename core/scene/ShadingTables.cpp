@@ -94,7 +94,8 @@ bool convertTexture(const Texture& texture, uint32_t index, ShadingTables& out, 
 
     const size_t first = out.texels.size();
     out.texels.resize(first + texture.texels.size() / 4);
-    std::memcpy(out.texels.data() + first, texture.texels.data(), texture.texels.size());
+    // memcpy with a null pointer is undefined even for 0 bytes, and an empty vector's data() may be null.
+    if (!texture.texels.empty()) std::memcpy(out.texels.data() + first, texture.texels.data(), texture.texels.size());
     if (texture.format == Texture::Format::Rgba32Float) {
         uint64_t repaired = 0;
         for (size_t i = first; i < out.texels.size(); ++i) {
