@@ -7,7 +7,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${RIPPLE_SANITIZE_BUILD_DIR:-build-asan}
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRIPPLE_SANITIZE=ON -DRIPPLE_BUILD_BENCH=OFF
+# Warnings are not errors here (the Release tree gates them): GCC 12's object-size analysis of
+# sanitizer-instrumented code reports impossible bounds (-Wstringop-overflow on a vector resize in
+# tests/unit/sampler_tables_test.cpp), which the sanitizers themselves check at run time.
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRIPPLE_SANITIZE=ON -DRIPPLE_BUILD_BENCH=OFF -DRIPPLE_WERROR=OFF
 targets=()
 for t in ${RIPPLE_SANITIZE_TARGETS:-}; do targets+=(--target "$t"); done
 cmake --build "$build" --parallel ${RIPPLE_BUILD_JOBS:-} "${targets[@]}"
