@@ -27,8 +27,6 @@ public:
     uint64_t size() const { return dims_[0] * dims_[1] * dims_[2]; }
     uint64_t dim(int axis) const { return dims_[axis]; }
     const void* data() const { return appMemory_ ? appMemory_ : owned_.data(); }
-    // True while the data lives in application memory (shared or captured, not yet privatized).
-    bool sharesApplicationMemory() const { return appMemory_ != nullptr; }
 
     // The elements as T when the element type matches exactly (checked by the caller with elementType()).
     template <class T> std::span<const T> as() const {

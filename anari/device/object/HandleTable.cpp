@@ -24,7 +24,6 @@ ANARIObject HandleTable::add(Object* object) {
     entry.object = object;
     ++entry.generation;  // generation 0 is never handed out
     if (entry.generation == 0) entry.generation = 1;
-    ++live_;
     return reinterpret_cast<ANARIObject>(encode(slot, entry.generation));
 }
 
@@ -37,7 +36,6 @@ void HandleTable::remove(ANARIObject handle) {
         return;
     slots_[slot].object = nullptr;
     freeSlots_.push_back(slot);
-    --live_;
 }
 
 Object* HandleTable::find(ANARIObject handle) const {
@@ -57,9 +55,5 @@ std::vector<Object*> HandleTable::liveObjects() const {
     return objects;
 }
 
-size_t HandleTable::liveCount() const {
-    std::lock_guard lock(mutex_);
-    return live_;
-}
 
 }  // namespace ripple::device

@@ -21,7 +21,6 @@ public:
     void remove(ANARIObject handle);
     // The object behind a handle, or nullptr when the handle is not (or no longer) one of ours.
     Object* find(ANARIObject handle) const;
-    size_t liveCount() const;
     std::vector<Object*> liveObjects() const;
 
 private:
@@ -36,7 +35,6 @@ private:
     mutable std::mutex mutex_;  // objects die on frame worker threads too
     std::vector<Slot> slots_;
     std::vector<uint32_t> freeSlots_;
-    size_t live_ = 0;
 };
 
 }  // namespace ripple::device

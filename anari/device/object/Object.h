@@ -83,15 +83,14 @@ public:
     void reportError(const std::string& message) const;
     void reportWarning(const std::string& message) const;
 
-protected:
-    // Called when the application's last reference goes while internal ones remain.
-    virtual void onLastPublicRelease() {}
-public:
     // Lets go of every object this one holds (parameters, and what subclasses keep); the device calls it on
     // every live object when it is released, so that reference cycles (an object set as its own parameter,
     // A -> B -> A) cannot outlive it.
     virtual void dropReferences() { unsetAllParameters(); }
+
 protected:
+    // Called when the application's last reference goes while internal ones remain.
+    virtual void onLastPublicRelease() {}
 
     // Typed parameter access for commit(). A parameter set with a different type than asked for is
     // reported once (naming object, parameter, expected and given types) and the default is used.
