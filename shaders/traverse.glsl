@@ -17,6 +17,12 @@
 layout(local_size_x_id = 0) in;
 
 layout(push_constant) uniform Push { TraceParams params; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RayCountRef { uint rayCount; };
+
+// Rays in this dispatch: from the push constants, or written on the device by the stage before.
+uint traceRayCount() {
+    return params.rayCountAddress != 0ul ? RayCountRef(params.rayCountAddress).rayCount : params.rayCount;
+}
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneRef { SceneDesc desc; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodesRef { BVH4_NODE nodes[]; };
@@ -144,7 +150,7 @@ void main() {
         for (uint i = 0u; i < stackSize; ++i) stack[i] = pool.states[slot].stack[i];
     } else {
         rayIndex = gl_GlobalInvocationID.x;
-        if (rayIndex >= params.rayCount) return;
+        if (rayIndex >= traceRayCount()) return;
         instanceSlot = NO_INSTANCE;
         best = Hit(RaysRef(params.rays).rays[rayIndex].direction.w, 0.0, 0.0, NO_INSTANCE, NO_INSTANCE, HIT_MISS);
         // A TLAS of one instance is a root with one leaf: the traversal starts in that instance's BLAS

@@ -84,8 +84,8 @@ static_assert(offsetof(TraversalState, best) == 16);
 static_assert(offsetof(TraversalState, stack) == 48);
 static_assert(sizeof(TraversalState) == 48 + 4 * TRAVERSAL_STACK_SIZE);
 static_assert(sizeof(ResumeHeader) == 16);
-static_assert(sizeof(TraceParams) == 56);
-static_assert(offsetof(TraceParams, rayCount) == 40);
+static_assert(sizeof(TraceParams) == 64);
+static_assert(offsetof(TraceParams, rayCount) == 48);
 static_assert(sizeof(TraceParams) <= 128, "push constants: 128 bytes is all Vulkan guarantees");
 
 }  // namespace ripple::gpu

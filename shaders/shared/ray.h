@@ -59,6 +59,8 @@ struct TraceParams {
     uint64_t hits;        // Hit[rayCount] (closest) or uint[rayCount] (any-hit)
     uint64_t resumeIn;    // ResumeHeader then TraversalState[]: the traversals to continue (0: fresh rays)
     uint64_t resumeOut;   // where traversals that run out of budget are parked
+    uint64_t rayCountAddress; // nonzero: the ray count is the uint there, written by an earlier kernel
+                              // (the dispatch is then indirect); 0: rayCount below
     uint rayCount;
     uint resumeCapacity;  // TraversalState slots in resumeOut
     uint stepBudget;      // node visits + primitive tests per invocation before suspending
