@@ -122,8 +122,8 @@ void writeBuild(Json& j, const BuildResult& b, uint64_t triangles) {
 }  // namespace
 
 void printTables(std::ostream& out, const RunInfo& info, const std::vector<SceneResult>& scenes) {
-    out << format("ripple-bench: Ripple on \"%s\" vs %s; %u hardware threads, %ux%u rays, median of %u timed run(s)\n",
-                  info.vkDevice.c_str(),
+    out << format("ripple-bench: Ripple on \"%s\" (driver %s) vs %s; %u hardware threads, %ux%u rays, median of %u timed run(s)\n",
+                  info.vkDevice.c_str(), info.vkDriver.c_str(),
                   info.embreeVersion.empty() ? "nothing (--no-embree)" : ("Embree " + info.embreeVersion).c_str(),
                   info.hardwareThreads, info.width, info.height, info.repeat);
     out << format("Ripple levers: --bvh-width %u (%s), --features %s, --nodes %s, --traversal %s, --ray-order %s.\n",
@@ -179,6 +179,7 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
     j.open(nullptr, '{');
     j.open("machine", '{');
     j.value("vkDevice", info.vkDevice);
+    j.value("vkDriver", info.vkDriver);
     j.valueOrNull("embreeVersion", info.embreeVersion);
     j.value("cpuModel", info.cpuModel);
     j.value("hardwareThreads", uint64_t(info.hardwareThreads));

@@ -59,6 +59,7 @@ struct SceneResult {
 
 struct RunInfo {
     std::string vkDevice;
+    std::string vkDriver;            // driver name and version (Context::driverVersion)
     std::string embreeVersion;       // empty with --no-embree
     std::string cpuModel;
     unsigned hardwareThreads = 0;

@@ -44,6 +44,7 @@ public:
     RippleTracer(const core::TraceOptions& options, const Levers& levers);
 
     const std::string& deviceName() const { return context_.deviceName(); }
+    const std::string& driverVersion() const { return context_.driverVersion(); }
 
     // One mesh, one identity instance. Returns the time of the core::Scene construction (validation, BVH
     // builds, upload); report().blasBuildSeconds is the BVH part of it.

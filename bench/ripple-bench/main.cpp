@@ -131,6 +131,7 @@ std::string cpuModel() {
 RunInfo describeRun(const Options& o, const RippleTracer& ripple) {
     RunInfo info;
     info.vkDevice = ripple.deviceName();
+    info.vkDriver = ripple.driverVersion();
     info.embreeVersion = o.noEmbree ? "" : EmbreeTracer::version();
     info.cpuModel = cpuModel();
     info.hardwareThreads = std::thread::hardware_concurrency();
@@ -168,7 +169,7 @@ int main(int argc, char** argv) {
                             .packetTraversal = options.traversal == "packet",
                             .mortonOrder = options.rayOrder == "morton"};
         RippleTracer ripple(traceOptions, levers);
-        std::cerr << "[ripple-bench] Vulkan device: " << ripple.deviceName() << "\n";
+        std::cerr << "[ripple-bench] Vulkan device: " << ripple.deviceName() << ", driver " << ripple.driverVersion() << "\n";
         std::unique_ptr<EmbreeTracer> embree;
         if (!options.noEmbree) embree = std::make_unique<EmbreeTracer>();
 

@@ -241,6 +241,11 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
     physicalDevice_ = devices[chosen];
     properties_ = props[chosen];
     deviceName_ = properties_.deviceName;
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties2.pNext = &driver;
+    vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
+    driverVersion_ = std::string(driver.driverName) + " " + driver.driverInfo;
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
 
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
@@ -252,8 +257,9 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
                                  " lacks bufferDeviceAddress, shaderInt64 or hostQueryReset, which Ripple needs");
 
     if (options.printDeviceChoice)
-        std::fprintf(stderr, "ripple: Vulkan device %u of %u: %s (%s)%s\n", chosen, count, deviceName_.c_str(),
-                     typeName(properties_.deviceType), choice.empty() ? "" : " chosen by RIPPLE_VK_DEVICE");
+        std::fprintf(stderr, "ripple: Vulkan device %u of %u: %s (%s), driver %s%s\n", chosen, count, deviceName_.c_str(),
+                     typeName(properties_.deviceType), driverVersion_.c_str(),
+                     choice.empty() ? "" : ", chosen by RIPPLE_VK_DEVICE");
 }
 
 Context::~Context() { destroy(); }

@@ -17,6 +17,21 @@ struct ContextOptions {
     bool validation = false;      // enable VK_LAYER_KHRONOS_validation; every message is counted
     bool printDeviceChoice = true;
     std::string deviceOverride;   // empty: take RIPPLE_VK_DEVICE from the environment
+    // Enable VK_KHR_acceleration_structure and VK_KHR_ray_query where the device has them (the ray-query
+    // traversal back-end); false makes the context behave as a device without them (tests of that path).
+    bool rayQuery = true;
+};
+
+// Entry points of VK_KHR_acceleration_structure, loaded with vkGetDeviceProcAddr (the loader does not
+// export extension commands). All null unless Context::supportsRayQuery().
+struct AccelerationStructureFunctions {
+    PFN_vkCreateAccelerationStructureKHR create = nullptr;
+    PFN_vkDestroyAccelerationStructureKHR destroy = nullptr;
+    PFN_vkGetAccelerationStructureBuildSizesKHR buildSizes = nullptr;
+    PFN_vkCmdBuildAccelerationStructuresKHR cmdBuild = nullptr;
+    PFN_vkGetAccelerationStructureDeviceAddressKHR deviceAddress = nullptr;
+    PFN_vkCmdWriteAccelerationStructuresPropertiesKHR cmdWriteProperties = nullptr;
+    PFN_vkCmdCopyAccelerationStructureKHR cmdCopy = nullptr;
 };
 
 class Context {
@@ -35,7 +50,18 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
     const std::string& deviceName() const { return deviceName_; }
+    // The driver's name and version as it reports them, e.g. "llvmpipe Mesa 25.0.7 (LLVM 15.0.6)".
+    const std::string& driverVersion() const { return driverVersion_; }
     bool isCpuDevice() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+
+    // Ray queries: VK_KHR_acceleration_structure, VK_KHR_ray_query and VK_KHR_deferred_host_operations
+    // with the accelerationStructure and rayQuery features, all enabled on this device.
+    bool supportsRayQuery() const { return rayQuery_; }
+    // What this device lacks for ray queries ("VK_KHR_ray_query, rayQuery feature"); empty when supported.
+    const std::string& rayQueryMissing() const { return rayQueryMissing_; }
+    const AccelerationStructureFunctions& accelerationStructureFunctions() const { return asFunctions_; }
+    // VkPhysicalDeviceAccelerationStructurePropertiesKHR::minAccelerationStructureScratchOffsetAlignment.
+    VkDeviceSize accelerationStructureScratchAlignment() const { return scratchAlignment_; }
 
     // Index of a memory type with all of `required` among `typeBits`, preferring one that also has `preferred`.
     uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred = 0) const;
@@ -54,6 +80,9 @@ private:
     static VkBool32 VKAPI_PTR onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
                                              const VkDebugUtilsMessengerCallbackDataEXT*, void*);
     void choosePhysicalDevice(const ContextOptions& options);
+    // Checks the ray-query extensions and features; fills `extensions` and the feature chain to enable.
+    void probeRayQuery(const ContextOptions& options, std::vector<const char*>& extensions);
+    void loadAccelerationStructureFunctions();
     void destroy();
 
     VkInstance instance_ = VK_NULL_HANDLE;
@@ -62,6 +91,7 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
     std::string deviceName_;
+    std::string driverVersion_;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     uint32_t queueFamily_ = 0;
@@ -69,6 +99,10 @@ private:
     VkFence fence_ = VK_NULL_HANDLE;
     VkPipelineCache pipelineCache_ = VK_NULL_HANDLE;
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
+    bool rayQuery_ = false;
+    std::string rayQueryMissing_;
+    AccelerationStructureFunctions asFunctions_;
+    VkDeviceSize scratchAlignment_ = 256;
     std::atomic<uint64_t> validationMessages_{0};
     std::string lastValidationMessage_;
 };
