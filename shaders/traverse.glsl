@@ -13,16 +13,9 @@
 #include "shared/scene.h"
 #include "bvh4_node.glsl"
 #include "features.glsl"
+#include "trace_params.glsl"
 
 layout(local_size_x_id = 0) in;
-
-layout(push_constant) uniform Push { TraceParams params; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer RayCountRef { uint rayCount; };
-
-// Rays in this dispatch: from the push constants, or written on the device by the stage before.
-uint traceRayCount() {
-    return params.rayCountAddress != 0ul ? RayCountRef(params.rayCountAddress).rayCount : params.rayCount;
-}
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneRef { SceneDesc desc; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer NodesRef { BVH4_NODE nodes[]; };

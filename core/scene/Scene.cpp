@@ -5,6 +5,7 @@
 #include "core/bvh/Bvh4Collapse.h"
 #include "core/bvh/Bvh4Compress.h"
 #include "core/render/FeatureSet.h"
+#include "core/scene/AccelerationStructures.h"
 #include "core/scene/ShadingTables.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -226,7 +227,7 @@ std::shared_ptr<const PreparedGeometry> prepareOrReuse(const SceneDescription& d
 }  // namespace
 
 Scene::Scene(const vk::Context& context, const SceneDescription& description, const bvh::BuildOptions& buildOptions,
-             const Scene* previous) {
+             const Scene* previous, Traversal traversal) {
     // 1. Validate every instance and every geometry it references (once per geometry); what cannot be
     //    traced is skipped and reported.
     std::vector<UsedGeometry> used;
@@ -327,6 +328,8 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         instances.push_back(prim);
     }
     instanceCount_ = static_cast<uint32_t>(instances.size());
+    traversal_ = resolveTraversal(context, traversal);
+    const bool rayQuery = traversal_ == Traversal::RayQuery;
 
     std::vector<gpu::InstanceShading> instanceShading(description.instances.size(), gpu::InstanceShading{});
     uint64_t badMaterial = 0;
@@ -350,16 +353,18 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     features_ |= shadingFeatures(description);  // materials and lights: see FeatureSet.h
 
     // 4. Upload. Empty arrays still get a (tiny) buffer so every address in SceneDesc is valid.
-    auto upload = [&](vk::Buffer& buffer, const auto& items, const char* name) {
+    auto upload = [&](vk::Buffer& buffer, const auto& items, const char* name, VkBufferUsageFlags usage = 0) {
         const VkDeviceSize bytes = items.size() * sizeof(items[0]);
-        buffer = vk::Buffer(context, bytes, name);
+        buffer = vk::Buffer(context, bytes, name, usage);
         buffer.upload(items.data(), bytes);
         report_.gpuBytes += bytes;
         return buffer.address();
     };
     gpu::SceneDesc desc{};
     desc.nodes = upload(nodes_, bvh::compressBvh4(flat.nodes), "scene BVH4 nodes");
-    desc.triangles = upload(triangles_, flat.triangles, "scene triangles");
+    // Triangle BLASes read their vertices straight from this buffer (ray-query traversal).
+    desc.triangles = upload(triangles_, flat.triangles, "scene triangles",
+                            rayQuery ? VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR : 0);
     desc.spheres = upload(spheres_, flat.spheres, "scene spheres");
     desc.cylinders = upload(cylinders_, flat.cylinders, "scene cylinders");
     desc.cones = upload(cones_, flat.cones, "scene cones");
@@ -389,7 +394,31 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         magnitude = std::max(largest.x, std::max(largest.y, largest.z));
     }
     desc.originUnit = std::isfinite(magnitude) ? std::clamp(magnitude, 1e-30f, 1.0f) : 1.0f;
+
+    // 5. Ray-query traversal: acceleration structures over the uploaded primitives, in the same order.
+    if (rayQuery) {
+        std::vector<AccelerationGeometry> geometries;
+        for (const UsedGeometry& g : used)
+            geometries.push_back({g.prepared, g.kind, g.primOffset, static_cast<uint32_t>(g.prepared->validPrims.size())});
+        std::vector<uint32_t> instanceGeometry;
+        for (uint32_t slot : tlas.primOrder) instanceGeometry.push_back(valid[slot].geometry);
+        const AccelerationInputs inputs{geometries, desc.triangles, flat.spheres, flat.cylinders, flat.cones, instances,
+                                        instanceGeometry};
+        accelerationStructures_ = std::make_unique<AccelerationStructures>(
+            context, inputs, previous ? previous->accelerationStructures_.get() : nullptr);
+        desc.accelerationStructure = accelerationStructures_->tlasAddress();
+        report_.accelerationStructuresBuilt = accelerationStructures_->blasBuilt();
+        report_.accelerationStructuresReused = accelerationStructures_->blasReused();
+        report_.accelerationStructurePrimitives = accelerationStructures_->primitivesBuilt();
+        report_.accelerationStructureSeconds = accelerationStructures_->buildSeconds();
+        report_.accelerationStructureBytes = accelerationStructures_->bytes();
+        report_.gpuBytes += report_.accelerationStructureBytes;
+    }
     upload(desc_, std::vector<gpu::SceneDesc>{desc}, "scene descriptor");
 }
+
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
 
 }  // namespace ripple::core

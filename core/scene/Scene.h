@@ -7,9 +7,14 @@
 // `previous` (of the same kind, built with the same bvh::BuildOptions) reuses that geometry's validation
 // and BLAS instead of building them again; everything else (attributes, TLAS, materials, upload) is redone.
 // `previous` is only read during construction and may be destroyed afterwards.
+//
+// With ray-query traversal (core/render/Traversal.h; Auto resolves as the trace kernels do) the Scene also
+// builds Vulkan acceleration structures over the same primitives (AccelerationStructures.h); a reused
+// geometry reuses its BLAS from `previous` when that Scene has one. Its BVH4 is built either way.
 #pragma once
 
 #include "core/bvh/BinnedSahBuilder.h"
+#include "core/render/Traversal.h"
 #include "core/scene/PreparedGeometry.h"
 #include "core/scene/SceneDescription.h"
 #include "core/vk/Buffer.h"
@@ -20,6 +25,8 @@
 #include <vector>
 
 namespace ripple::core {
+
+class AccelerationStructures;
 
 // What validation dropped or repaired, and why; nothing bad ever reaches a kernel.
 struct SceneReport {
@@ -42,6 +49,13 @@ struct SceneReport {
     uint64_t blasReused = 0;           // taken from `previous` (see the header comment)
     double blasBuildSeconds = 0.0;     // validation and BLAS builds (reused BLASes cost nothing)
     double tlasBuildSeconds = 0.0;
+    // Ray-query traversal only: acceleration structures built and reused, their time (host setup, device
+    // build and wait) and their bytes (also counted in gpuBytes).
+    uint64_t accelerationStructuresBuilt = 0;  // BLASes
+    uint64_t accelerationStructuresReused = 0;
+    uint64_t accelerationStructurePrimitives = 0;  // in the BLASes built
+    double accelerationStructureSeconds = 0.0;
+    uint64_t accelerationStructureBytes = 0;
     uint64_t gpuBytes = 0;
     std::vector<std::string> messages; // one line per kind of problem per object, naming it
 };
@@ -49,12 +63,18 @@ struct SceneReport {
 class Scene {
 public:
     Scene(const vk::Context& context, const SceneDescription& description,
-          const bvh::BuildOptions& buildOptions = {}, const Scene* previous = nullptr);
+          const bvh::BuildOptions& buildOptions = {}, const Scene* previous = nullptr,
+          Traversal traversal = Traversal::Auto);
+    ~Scene();
+    Scene(Scene&&) noexcept;
+    Scene& operator=(Scene&&) noexcept;
 
     const SceneReport& report() const { return report_; }
     VkDeviceAddress descAddress() const { return desc_.address(); }
     uint32_t instanceCount() const { return instanceCount_; }
     uint32_t lightCount() const { return lightCount_; }
+    // Software or RayQuery: whether this scene has acceleration structures for ray-query kernels.
+    Traversal traversal() const { return traversal_; }
     // FEATURE_* bits (shaders/shared/features.h) of what this scene holds: geometry kinds of its kept
     // instances, textures, emission, alpha and light kinds. The frame adds its own (core/render/FeatureSet.h).
     uint32_t features() const { return features_; }
@@ -71,6 +91,8 @@ private:
     std::vector<gpu::LightRecord> triangleLights_;
     // The validated geometries with an identity, kept so a later Scene can reuse them.
     std::vector<std::shared_ptr<const PreparedGeometry>> reusable_;
+    Traversal traversal_ = Traversal::Software;
+    std::unique_ptr<AccelerationStructures> accelerationStructures_;  // RayQuery only
     vk::Buffer nodes_, triangles_, spheres_, cylinders_, cones_, instances_, instanceShading_, geometries_, primSlots_,
         vertexIndices_, attributes_, materials_, textures_, texels_, lights_, desc_;
 };

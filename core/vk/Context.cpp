@@ -8,6 +8,7 @@
 #include <cstring>
 #include <mutex>
 #include <sstream>
+#include <type_traits>
 
 namespace ripple::vk {
 
@@ -181,12 +182,27 @@ Context::Context(const ContextOptions& options) {
         features.pNext = &features12;
         features.features.shaderInt64 = VK_TRUE;
 
+        std::vector<const char*> deviceExtensions;
+        probeRayQuery(options, deviceExtensions);
+        VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+        VkPhysicalDeviceRayQueryFeaturesKHR rayQueryFeatures{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+        if (rayQuery_) {
+            asFeatures.accelerationStructure = VK_TRUE;
+            rayQueryFeatures.rayQuery = VK_TRUE;
+            features12.pNext = &asFeatures;
+            asFeatures.pNext = &rayQueryFeatures;
+        }
+
         VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
         deviceInfo.pNext = &features;
         deviceInfo.queueCreateInfoCount = 1;
         deviceInfo.pQueueCreateInfos = &queueInfo;
+        deviceInfo.enabledExtensionCount = static_cast<uint32_t>(deviceExtensions.size());
+        deviceInfo.ppEnabledExtensionNames = deviceExtensions.data();
         RIPPLE_VK_CHECK(vkCreateDevice(physicalDevice_, &deviceInfo, nullptr, &device_));
         vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+        if (rayQuery_) loadAccelerationStructureFunctions();
 
         VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -260,6 +276,59 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
         std::fprintf(stderr, "ripple: Vulkan device %u of %u: %s (%s), driver %s%s\n", chosen, count, deviceName_.c_str(),
                      typeName(properties_.deviceType), driverVersion_.c_str(),
                      choice.empty() ? "" : ", chosen by RIPPLE_VK_DEVICE");
+}
+
+void Context::probeRayQuery(const ContextOptions& options, std::vector<const char*>& extensions) {
+    uint32_t count = 0;
+    RIPPLE_VK_CHECK(vkEnumerateDeviceExtensionProperties(physicalDevice_, nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> available(count);
+    RIPPLE_VK_CHECK(vkEnumerateDeviceExtensionProperties(physicalDevice_, nullptr, &count, available.data()));
+    auto has = [&](const char* name) {
+        return std::any_of(available.begin(), available.end(),
+                           [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
+    };
+    const char* needed[] = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME, VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                            VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+    std::vector<std::string> missing;
+    for (const char* name : needed)
+        if (!has(name)) missing.emplace_back(name);
+    if (missing.empty()) {
+        VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+        VkPhysicalDeviceRayQueryFeaturesKHR rayQueryFeatures{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+        asFeatures.pNext = &rayQueryFeatures;
+        VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        features.pNext = &asFeatures;
+        vkGetPhysicalDeviceFeatures2(physicalDevice_, &features);
+        if (!asFeatures.accelerationStructure) missing.emplace_back("the accelerationStructure feature");
+        if (!rayQueryFeatures.rayQuery) missing.emplace_back("the rayQuery feature");
+    }
+    if (!options.rayQuery) missing.emplace_back("(ray queries disabled by ContextOptions::rayQuery)");
+    for (const std::string& m : missing) rayQueryMissing_ += (rayQueryMissing_.empty() ? "" : ", ") + m;
+    rayQuery_ = missing.empty();
+    if (!rayQuery_) return;
+    extensions.insert(extensions.end(), std::begin(needed), std::end(needed));
+
+    VkPhysicalDeviceAccelerationStructurePropertiesKHR asProperties{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &asProperties;
+    vkGetPhysicalDeviceProperties2(physicalDevice_, &properties);
+    scratchAlignment_ = std::max<VkDeviceSize>(1, asProperties.minAccelerationStructureScratchOffsetAlignment);
+}
+
+void Context::loadAccelerationStructureFunctions() {
+    auto load = [&](auto& fn, const char* name) {
+        fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(vkGetDeviceProcAddr(device_, name));
+        if (!fn) throw std::runtime_error(std::string("Vulkan device ") + deviceName_ + " reports ray queries but has no " + name);
+    };
+    load(asFunctions_.create, "vkCreateAccelerationStructureKHR");
+    load(asFunctions_.destroy, "vkDestroyAccelerationStructureKHR");
+    load(asFunctions_.buildSizes, "vkGetAccelerationStructureBuildSizesKHR");
+    load(asFunctions_.cmdBuild, "vkCmdBuildAccelerationStructuresKHR");
+    load(asFunctions_.deviceAddress, "vkGetAccelerationStructureDeviceAddressKHR");
+    load(asFunctions_.cmdWriteProperties, "vkCmdWriteAccelerationStructuresPropertiesKHR");
+    load(asFunctions_.cmdCopy, "vkCmdCopyAccelerationStructureKHR");
 }
 
 Context::~Context() { destroy(); }

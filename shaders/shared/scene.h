@@ -126,6 +126,8 @@ struct SceneDesc {
     uint testedLightCount;    // the first lights, which rays test themselves (quad, ring, hdri)
     uint bsdfTables;          // first word of the BSDF energy tables in texels (core/scene/BsdfTables.h)
     int environmentLight;     // index of the hdri light, or -1
+    uint64_t accelerationStructure; // the TLAS for ray-query traversal (accelerationStructureEXT); 0 when
+                                    // the scene was built without one or has no instances
 };
 
 RIPPLE_GPU_END
