@@ -35,6 +35,7 @@ constexpr int32_t kTrue = 1;
 constexpr int32_t kFalse = 0;
 constexpr int32_t kOneSample = 1;
 constexpr int32_t kPathLength = 5;
+constexpr uint32_t kSeed = 0;
 
 constexpr const char* kCaps[] = {"none", "first", "second", "both", nullptr};
 constexpr const char* kLayouts[] = {"equirectangular", nullptr};
@@ -281,6 +282,7 @@ const std::vector<Entry>& table() {
              {"maxPathLength", ANARI_INT32, "surface interactions per path", &kPathLength},
              {"maxRadiance", ANARI_FLOAT32, "largest component of one contribution (biased, less noise); 0: off",
               &kZero},
+             {"seed", ANARI_UINT32, "varies the random numbers; images with different seeds share no samples", &kSeed},
          }})},
         {ANARI_SURFACE, "", "a geometry with its material",
          joined({kName, {

@@ -43,6 +43,7 @@ struct Options {
     uint32_t spp = 16;
     std::string library = "ripple";
     uint32_t maxPathLength = 5;
+    uint32_t seed = 0;                  // the renderer's "seed": a reference must not share the image's samples
     std::optional<int> camera;
     std::optional<float> ambient;
     bool quiet = false;
@@ -292,6 +293,7 @@ FrameSetup makeFrame(const Options& options, const AnariWorld& scene, ANARICamer
     s.objects.push_back(renderer);
     anari::set(s.device, renderer, "pixelSamples", int32_t(setup.batch));
     anari::set(s.device, renderer, "maxPathLength", int32_t(options.maxPathLength));
+    if (options.seed != 0) anari::set(s.device, renderer, "seed", options.seed);  // 0: the device's default
     anari::set(s.device, renderer, "background", scene.background);
     anari::set(s.device, renderer, "ambientRadiance", options.ambient.value_or(scene.ambientRadiance));
     anariCommitParameters(s.device, renderer);
@@ -441,6 +443,7 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
             {"--time", options.seconds ? number(*options.seconds) : 0, false},
             {"--target-error", options.targetError ? number(*options.targetError) : 0, false},
             {"--max-path-length", options.maxPathLength, true},
+            {"--seed", options.seed, true},
             {"--camera", options.camera ? uint64_t(int64_t(*options.camera) + 2) : 0, false},
             {"--ambient", options.ambient ? number(*options.ambient) : 0, false},
             {"--partition", optionHash(options.partition), false},
@@ -478,6 +481,10 @@ int main(int argc, char** argv) {
     app.add_option("--library", options.library, "ANARI library name (loads libanari_library_NAME.so)")->capture_default_str();
     app.add_option("--max-path-length", options.maxPathLength, "surface interactions per path")
         ->check(CLI::Range(1u, 1024u))->capture_default_str();
+    app.add_option("--seed", options.seed,
+                   "the renderer's random seed: images with different seeds share no samples (render a reference "
+                   "with another seed than the image it judges)")
+        ->capture_default_str();
     app.add_option("--camera", options.camera, "scene camera index; -1 frames the scene bounds (default: camera 0 if any)")
         ->check(CLI::Range(-1, 1 << 20));
     app.add_option("--ambient", options.ambient, "ambient radiance (default: what the scene suggests)")

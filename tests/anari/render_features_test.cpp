@@ -1,6 +1,6 @@
 // Render tests of the ANARI features beyond the basic subtypes: samplers (image1D, image2D driving every
 // physicallyBased parameter), hdri/spot/ring lights, cameras, cone/curve/capped cylinder geometry, the id,
-// albedo and normal channels, and the renderer's maxRadiance. Exact values where the scene allows them
+// albedo and normal channels, and the renderer's maxRadiance and seed. Exact values where the scene allows them
 // (emission seen directly, ids), references (tests/anari/references, RIPPLE_UPDATE_REFERENCES=1) elsewhere.
 #include "tests/anari/RenderSession.h"
 
@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 using ripple::test::Image;
 using ripple::test::RenderSession;
@@ -260,6 +261,47 @@ TEST_CASE("renderer maxRadiance clamps each contribution; 0 (the default) leaves
     CHECK(image.at(2, 2).r == doctest::Approx(1.0f));
     CHECK(image.at(2, 2).g == doctest::Approx(0.4f));
     CHECK(image.at(2, 2).b == doctest::Approx(0.1f));
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+}
+
+TEST_CASE("renderer seed: the same seed repeats an image exactly, another draws other samples of it") {
+    // A sphere on a floor under an ambient sky, 1 sample of paths of 3: every pixel is noisy.
+    RenderSession s;
+    ANARIGeometry sphere = s.keep(anariNewGeometry(s.device, "sphere"));
+    s.setObject(sphere, "vertex.position", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{0, 0.6f, 0}}));
+    s.set(sphere, "radius", 0.6f);
+    s.commit(sphere);
+    ANARIWorld world = s.world({s.surface(s.floor(), s.matte(glm::vec3(0.7f))), s.surface(sphere, s.matte({0.8f, 0.5f, 0.3f}))}, {});
+    ANARICamera camera = s.perspective({0.0f, 1.6f, 4.0f}, {0.0f, 0.5f, 0.0f});
+    const auto render = [&](std::optional<int64_t> seed, ANARIDataType type) {
+        ANARIRenderer renderer = s.renderer(1, 3);
+        s.set(renderer, "ambientRadiance", 1.0f);
+        if (seed && type == ANARI_UINT32) {
+            const uint32_t value = uint32_t(*seed);
+            s.setRaw(renderer, "seed", ANARI_UINT32, &value);
+        } else if (seed) {
+            s.setInt(renderer, "seed", int32_t(*seed));
+        }
+        s.commit(renderer);
+        return s.render(s.frame(world, camera, renderer, {32, 32}, ANARI_FLOAT32_VEC4));
+    };
+    const Image unset = render(std::nullopt, ANARI_UINT32), zero = render(0, ANARI_UINT32);
+    const Image seven = render(7, ANARI_UINT32), sevenInt = render(7, ANARI_INT32);
+    const Image minusOne = render(-1, ANARI_INT32), maxUint = render(0xffffffffu, ANARI_UINT32);
+    CHECK(unset.linear == zero.linear);        // 0 is the default
+    CHECK(seven.linear == sevenInt.linear);    // INT32 and UINT32 name the same seed
+    CHECK(minusOne.linear == maxUint.linear);  // INT32 keeps the bit pattern
+    // Other samples: the noisy pixels (those near the sphere; the open floor under a uniform sky is exact)
+    // differ, while the image's mean agrees within the noise. An ignored seed would make them all equal.
+    size_t differing = 0;
+    double meanZero = 0.0, meanSeven = 0.0;
+    for (size_t i = 0; i < zero.linear.size(); ++i) {
+        differing += zero.linear[i] != seven.linear[i] ? 1 : 0;
+        meanZero += zero.linear[i].g;
+        meanSeven += seven.linear[i].g;
+    }
+    CHECK(differing > 50);
+    CHECK(meanSeven == doctest::Approx(meanZero).epsilon(0.1));
     CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
 }
 

@@ -1,5 +1,5 @@
 // Renderer parameters: "background" (KHR_RENDERER_BACKGROUND_COLOR), "ambientColor" and
-// "ambientRadiance" (KHR_RENDERER_AMBIENT_LIGHT), "pixelSamples", "maxPathLength" and "maxRadiance".
+// "ambientRadiance" (KHR_RENDERER_AMBIENT_LIGHT), "pixelSamples", "maxPathLength", "maxRadiance" and "seed".
 #include "anari/device/renderer/Renderer.h"
 
 #include "anari/device/scene/ArrayConversion.h"
@@ -35,6 +35,12 @@ void Renderer::commit() {
         reportWarning("parameter 'maxRadiance' must be finite and not negative; no clamp");
         settings_.maxRadiance = 0.0f;
     }
+    // Two images with different seeds share no random numbers: a reference rendered with one judges an image
+    // rendered with another without sharing its samples. INT32 (bit pattern kept) or UINT32.
+    if (parameterType("seed") == ANARI_INT32)
+        settings_.seed = uint32_t(get<int32_t>("seed", 0));
+    else
+        settings_.seed = get<uint32_t>("seed", 0u);
 }
 
 uint32_t Renderer::pullCount(std::string_view name, uint32_t fallback, uint32_t most) {
