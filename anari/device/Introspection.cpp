@@ -45,7 +45,6 @@ constexpr const char* kWrapModes[] = {"clampToEdge", "repeat", "mirrorRepeat", n
 constexpr const char* kSides[] = {"front", "back", "both", nullptr};
 constexpr const char* kAttributes[] = {"attribute0", "attribute1", "attribute2", "attribute3", "color",
                                        "primitiveId", "worldPosition", "worldNormal", nullptr};
-constexpr const char* kColorAttribute[] = {"color", nullptr};
 
 struct Param {
     const char* name;
@@ -136,23 +135,28 @@ const std::vector<Entry>& table() {
          joined({kName, kAlpha, {
              {"color", ANARI_FLOAT32_VEC3, "diffuse colour", kGrey},
              {"color", ANARI_SAMPLER, "diffuse colour from an image1D/image2D sampler"},
-             {"color", ANARI_STRING, "diffuse colour from the geometry's colour attribute", "color", kColorAttribute},
+             {"color", ANARI_STRING, "diffuse colour from a surface attribute", "color", kAttributes},
              {"opacity", ANARI_FLOAT32, "opacity", &kOne},
              {"opacity", ANARI_SAMPLER, "opacity from a sampler's first component"},
+             {"opacity", ANARI_STRING, "opacity from a surface attribute's first component", "attribute0", kAttributes},
          }})},
         {ANARI_MATERIAL, "physicallyBased", "glTF metallic-roughness",
          joined({kName, kAlpha, {
              {"baseColor", ANARI_FLOAT32_VEC3, "base colour", kWhite},
              {"baseColor", ANARI_SAMPLER, "base colour from an image1D/image2D sampler"},
-             {"baseColor", ANARI_STRING, "base colour from the geometry's colour attribute", "color", kColorAttribute},
+             {"baseColor", ANARI_STRING, "base colour from a surface attribute", "color", kAttributes},
              {"opacity", ANARI_FLOAT32, "opacity", &kOne},
              {"opacity", ANARI_SAMPLER, "opacity from a sampler's first component"},
+             {"opacity", ANARI_STRING, "opacity from a surface attribute's first component", "attribute0", kAttributes},
              {"metallic", ANARI_FLOAT32, "metalness", &kOne},
              {"metallic", ANARI_SAMPLER, "metalness from a sampler's first component"},
+             {"metallic", ANARI_STRING, "metalness from a surface attribute's first component", "attribute0", kAttributes},
              {"roughness", ANARI_FLOAT32, "roughness", &kOne},
              {"roughness", ANARI_SAMPLER, "roughness from a sampler's first component"},
+             {"roughness", ANARI_STRING, "roughness from a surface attribute's first component", "attribute0", kAttributes},
              {"emissive", ANARI_FLOAT32_VEC3, "emitted radiance", kBlack},
              {"emissive", ANARI_SAMPLER, "emitted radiance from a sampler's rgb"},
+             {"emissive", ANARI_STRING, "emitted radiance from a surface attribute's rgb", "attribute0", kAttributes},
              {"normal", ANARI_SAMPLER, "tangent-space normal map (rgb in [0,1]; needs texture coordinates)"},
              {"ior", ANARI_FLOAT32, "index of refraction", &kIor},
          }})},

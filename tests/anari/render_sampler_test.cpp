@@ -167,3 +167,70 @@ TEST_CASE("image3D sampler: nearest picks the slice at w (with inOffset); linear
             CHECK(near(glm::vec3(blended.at(x, y)), glm::vec3(0.25f), kExact));
         }
 }
+
+TEST_CASE("material parameters named by attribute: emissive = attribute2 shows the attribute, analytic") {
+    RenderSession s;
+    ANARIMaterial material = s.keep(anariNewMaterial(s.device, "physicallyBased"));
+    s.set(material, "baseColor", glm::vec3(0.0f));
+    s.set(material, "emissive", "attribute2");
+    s.commit(material);
+    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+    s.set(camera, "position", glm::vec3(0, 0, 3));
+    s.set(camera, "direction", glm::vec3(0, 0, -1));
+    s.set(camera, "height", 2.0f);
+    s.commit(camera);
+    const glm::uvec2 size{16, 16};
+    const Image image = s.render(s.frame(s.world({s.surface(quadGrid(s), material)}, {}), camera,
+                                         s.renderer(1, 1, glm::vec4(0, 0, 0, 1)), size, ANARI_FLOAT32_VEC4));
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    // attribute2 is (1 - u, v, 0.75); over a pixel u and v change by 1/16 from the pixel centre's value.
+    for (uint32_t y = 0; y < size.y; ++y)
+        for (uint32_t x = 0; x < size.x; ++x) {
+            const float u = (float(x) + 0.5f) / 16.0f, v = (float(y) + 0.5f) / 16.0f;
+            const glm::vec3 got(image.at(x, y));
+            INFO("pixel " << x << "," << y << " got " << got.r << " " << got.g << " " << got.b);
+            CHECK(std::abs(got.r - (1.0f - u)) <= 1.0f / 32.0f + kExact);
+            CHECK(std::abs(got.g - v) <= 1.0f / 32.0f + kExact);
+            CHECK(std::abs(got.b - 0.75f) <= kExact);
+        }
+}
+
+TEST_CASE("material parameters named by attribute: metallic, roughness, baseColor and opacity as the values") {
+    // A lit floor whose vertex attributes hold constant values: naming the attributes must give the image
+    // of the same values set directly (the texture path multiplies 1 by the attribute: no rounding), and
+    // the values must matter (metallic 0 instead of 1 changes the image).
+    const glm::vec3 baseColor(0.9f, 0.5f, 0.2f);
+    auto render = [&](bool fromAttributes, float metallic) {
+        RenderSession s;
+        ANARIGeometry floor = s.floor();
+        const size_t vertices = 4;
+        s.setObject(floor, "vertex.attribute0", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32, std::vector<float>(vertices, metallic)));
+        s.setObject(floor, "vertex.attribute1", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, std::vector<float>(vertices, 0.35f)));
+        s.setObject(floor, "vertex.attribute2", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>(vertices, baseColor)));
+        s.setObject(floor, "vertex.attribute3", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, std::vector<float>(vertices, 1.0f)));
+        s.commit(floor);
+        ANARIMaterial material = s.keep(anariNewMaterial(s.device, "physicallyBased"));
+        if (fromAttributes) {
+            s.set(material, "metallic", "attribute0");
+            s.set(material, "roughness", "attribute1");
+            s.set(material, "baseColor", "attribute2");
+            s.set(material, "opacity", "attribute3");
+        } else {
+            s.set(material, "metallic", metallic);
+            s.set(material, "roughness", 0.35f);
+            s.set(material, "baseColor", baseColor);
+            s.set(material, "opacity", 1.0f);
+        }
+        s.commit(material);
+        const Image image = s.render(s.frame(s.world({s.surface(floor, material)}, {s.directional({-0.3f, -1, -0.2f}, 2.0f)}),
+                                             s.perspective({0, 3, 4}, {0, 0, 0}), s.renderer(4, 3), {24, 24},
+                                             ANARI_FLOAT32_VEC4));
+        CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+        return image;
+    };
+    const Image named = render(true, 1.0f);
+    CHECK(ripple::test::rmseRgb(named, render(false, 1.0f)) <= 1e-6);
+    CHECK(ripple::test::rmseRgb(named, render(true, 0.0f)) > 1e-2);
+}

@@ -16,6 +16,7 @@ void Material::reset(core::Material::Kind kind, glm::vec3 baseColor) {
     material_.kind = kind;
     material_.baseColor = baseColor;
     samplers_.fill(nullptr);
+    attributes_.fill(std::nullopt);
 }
 
 int32_t& textureIndexOf(core::Material& material, TextureSlot slot) {
@@ -40,6 +41,18 @@ bool Material::pullSampler(std::string_view name, TextureSlot slot) {
     return true;
 }
 
+bool Material::pullAttribute(std::string_view name, TextureSlot slot) {
+    const std::string attribute = getString(name, "");
+    const std::optional<core::Texture::Input> input = surfaceInputNamed(attribute);
+    if (!input) {
+        reportWarning("parameter '" + std::string(name) + "' names attribute '" + attribute +
+                      "', which is not one of attribute0..3, color, primitiveId, worldPosition, worldNormal; ignored");
+        return false;
+    }
+    attributes_[size_t(slot)] = input;
+    return true;
+}
+
 void Material::pullBaseColor(std::string_view name) {
     std::string quotedName = "'";  // appended: GCC 12 -O3 warns falsely (-Wrestrict) on "'" + std::string
     quotedName.append(name).append("'");
@@ -54,16 +67,13 @@ void Material::pullBaseColor(std::string_view name) {
             // The texture multiplies baseColor, so a textured colour starts from white.
             material_.baseColor = glm::vec3(1.0f);
             break;
-        case ANARI_STRING: {
-            const std::string attribute = getString(name, "");
-            if (attribute == "color") {
+        case ANARI_STRING:
+            if (getString(name, "") == "color") {
                 material_.baseColorFromVertexColor = true;
-            } else {
-                reportWarning("parameter " + quotedName + " names attribute '" + attribute +
-                              "'; only \"color\" is supported, using the default colour");
+            } else if (pullAttribute(name, TextureSlot::BaseColor)) {
+                material_.baseColor = glm::vec3(1.0f);  // the attribute multiplies it, as a texture would
             }
             break;
-        }
         default:
             reportWarning("parameter " + quotedName + " has type " + ripple_anari::typeName(parameterType(name)) +
                           ", expected FLOAT32_VEC3, SAMPLER or STRING; using the default colour");
@@ -74,6 +84,7 @@ void Material::pullBaseColor(std::string_view name) {
 
 float Material::pullFactor(std::string_view name, float fallback, TextureSlot slot) {
     if (parameterType(name) == ANARI_SAMPLER) return pullSampler(name, slot) ? 1.0f : fallback;
+    if (parameterType(name) == ANARI_STRING) return pullAttribute(name, slot) ? 1.0f : fallback;
     return pullValue(name, fallback);
 }
 

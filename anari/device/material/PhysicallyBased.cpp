@@ -1,7 +1,7 @@
 // Material subtype "physicallyBased" (KHR_MATERIAL_PHYSICALLY_BASED): the glTF metallic-roughness model.
 // baseColor, opacity (alphaMode, alphaCutoff), metallic, roughness, emissive, normal, ior, specular,
 // transmission, clearcoat and clearcoatRoughness are used (baseColor, opacity, metallic, roughness,
-// emissive and normal also from samplers); sheen, iridescence, thickness and attenuation are not yet,
+// emissive and normal also from samplers, all but normal also from surface attributes); sheen, iridescence, thickness and attenuation are not yet,
 // and are reported as unused parameters when set.
 #include "anari/device/material/Material.h"
 #include "anari/device/object/ArrayChecks.h"
@@ -39,8 +39,10 @@ private:
         const ANARIDataType type = parameterType("emissive");
         if (type == ANARI_UNKNOWN) return;
         // A sampler's rgb is the emitted radiance (the surface then is not sampled as a light).
-        if (type == ANARI_SAMPLER) {
-            if (pullSampler("emissive", TextureSlot::Emissive)) material_.emissive = glm::vec3(1.0f);
+        if (type == ANARI_SAMPLER || type == ANARI_STRING) {
+            const bool driven = type == ANARI_SAMPLER ? pullSampler("emissive", TextureSlot::Emissive)
+                                                      : pullAttribute("emissive", TextureSlot::Emissive);
+            if (driven) material_.emissive = glm::vec3(1.0f);
             return;
         }
         if (type != ANARI_FLOAT32_VEC3) {

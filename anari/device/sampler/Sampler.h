@@ -22,6 +22,10 @@ protected:
     std::optional<core::Texture> texture_;
 };
 
+// The surface value an ANARI attribute name stands for (attribute0..3, color, primitiveId, worldPosition,
+// worldNormal), as samplers' inAttribute and material parameters given as strings name them.
+std::optional<core::Texture::Input> surfaceInputNamed(std::string_view name);
+
 // image1D, image2D or image3D (dimensions 1, 2 or 3).
 Sampler* newImageSampler(DeviceState& state, int dimensions);
 Sampler* newTransformSampler(DeviceState& state);

@@ -108,9 +108,12 @@ private:
         auto [it, added] = materials_.try_emplace(&material, uint32_t(description_.materials.size()));
         if (!added) return it->second;
         core::Material described = material.material();
-        for (size_t slot = 0; slot < kTextureSlotCount; ++slot)
+        for (size_t slot = 0; slot < kTextureSlotCount; ++slot) {
             if (const Sampler* sampler = material.sampler(TextureSlot(slot)); sampler && sampler->isValid() && sampler->texture())
                 textureIndexOf(described, TextureSlot(slot)) = textureIndex(*sampler);
+            else if (const auto input = material.attribute(TextureSlot(slot)))
+                textureIndexOf(described, TextureSlot(slot)) = attributeTextureIndex(*input);
+        }
         description_.materials.push_back(described);
         return it->second;
     }
@@ -127,10 +130,18 @@ private:
         return it->second;
     }
 
+    // A material parameter given as an attribute name: the identity transform texture of that input.
+    int32_t attributeTextureIndex(core::Texture::Input input) {
+        auto [it, added] = attributeTextures_.try_emplace(input, int32_t(description_.textures.size()));
+        if (added) description_.textures.push_back(core::Texture{.kind = core::Texture::Kind::Transform, .input = input});
+        return it->second;
+    }
+
     core::SceneDescription description_;
     std::unordered_map<const Geometry*, core::GeometryRef> geometries_;
     std::unordered_map<const Material*, uint32_t> materials_;
     std::unordered_map<const Sampler*, int32_t> textures_;
+    std::unordered_map<core::Texture::Input, int32_t> attributeTextures_;
     std::unordered_map<const Light*, int32_t> lightImages_;
 };
 
@@ -184,10 +195,16 @@ bool SceneSync::setForeignTriangleLights(std::vector<gpu::LightRecord> lights) {
     return true;
 }
 
+void SceneSync::setTraversal(core::Traversal traversal) {
+    if (traversal == traversal_) return;
+    traversal_ = traversal;
+    pending_ = true;
+}
+
 const core::Scene& SceneSync::scene(const vk::Context& context, bool& rebuilt) {
     rebuilt = pending_ || !scene_;
     if (rebuilt) {
-        scene_ = std::make_unique<core::Scene>(context, description_, bvh::BuildOptions{}, scene_.get());
+        scene_ = std::make_unique<core::Scene>(context, description_, bvh::BuildOptions{}, scene_.get(), traversal_);
         pending_ = false;
         ++builds_;
     }
