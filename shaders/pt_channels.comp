@@ -10,7 +10,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ch
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= params.count) return;
+    if (i >= stageCount()) return;
     PathState path = PathsRef(params.paths).paths[i];
     if ((path.flags & PATH_FLAG_CAMERA) == 0u || (path.flags >> PATH_PASS_THROUGH_SHIFT) != 0u) return;
     SurfaceRecord r = SurfacesRef(params.surfaces).records[i];

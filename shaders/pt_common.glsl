@@ -28,6 +28,13 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer CountersRef
 
 #define INFINITY uintBitsToFloat(0x7f800000u)
 
+// Items this dispatch processes: StageParams.count, or a queue length pt_queue_advance left on the device.
+uint stageCount() {
+    if (params.countSource == COUNT_FROM_PARAMS) return params.count;
+    CountersRef c = CountersRef(FrameRef(params.frame).frame.counters);
+    return params.countSource == COUNT_PATH_QUEUE ? c.counters.pathCount : c.counters.shadowCount;
+}
+
 bool allFinite(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
 #endif

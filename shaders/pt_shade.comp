@@ -44,7 +44,7 @@ vec3 clamped(FrameConstants f, vec3 c) {
 void appendPath(Ray ray, PathState path) {
     CountersRef c = CountersRef(FrameRef(params.frame).frame.counters);
     uint slot = atomicAdd(c.counters.nextPaths, 1u);
-    if (slot >= params.count) return;
+    if (slot >= stageCount()) return;
     RaysRef(params.nextRays).rays[slot] = ray;
     PathsRef(params.nextPaths).paths[slot] = path;
 }
@@ -52,7 +52,7 @@ void appendPath(Ray ray, PathState path) {
 void appendShadow(Ray ray, vec3 contribution, uint pixel) {
     CountersRef c = CountersRef(FrameRef(params.frame).frame.counters);
     uint slot = atomicAdd(c.counters.shadowRays, 1u);
-    if (slot >= params.count) return;
+    if (slot >= stageCount()) return;
     RaysRef(params.shadowRays).rays[slot] = ray;
     ShadowRequestsRef(params.shadowRequests).requests[slot] = ShadowRequest(vec4(contribution, 0.0), pixel, 0u, 0u, 0u);
 }
@@ -83,7 +83,7 @@ void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 p
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= params.count) return;
+    if (i >= stageCount()) return;
     FrameConstants f = FrameRef(params.frame).frame;
     SceneDesc scene = SceneRef(params.scene).desc;
     Ray ray = RaysRef(params.rays).rays[i];

@@ -7,7 +7,7 @@
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= params.count) return;
+    if (i >= stageCount()) return;
     FrameConstants f = FrameRef(params.frame).frame;
     uint occlusion = UintsRef(params.results).values[i];
     if ((occlusion & ~0xFFu) != 0u) atomicAdd(CountersRef(f.counters).counters.flagged, 1u);

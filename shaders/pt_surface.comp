@@ -33,7 +33,7 @@ vec3 normalMapped(SceneDesc scene, int texture, SurfacePoint s) {
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= params.count) return;
+    if (i >= stageCount()) return;
     Hit hit = HitsRef(params.hits).hits[i];
     SurfaceRecord r;
     r.status = hit.status;

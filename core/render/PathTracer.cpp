@@ -1,7 +1,8 @@
 // Host side of the wavefront path tracer: frame and queue buffers, and the loop that dispatches the
-// pt_*.comp stages. Queue lengths are read back once per bounce (one submit per bounce): the host needs
-// them to size the trace dispatches and to stop as soon as every path has ended, and a data-parallel
-// version needs the same count for its allreduce.
+// pt_*.comp stages. With one rank the queue lengths stay on the device (pt_queue_advance sizes the next
+// bounce's indirect dispatches), so a wave's bounces are one submission and the host only checks once,
+// after the bounces a path without pass-throughs can take, whether any path remains. With several ranks
+// the host reads the lengths after every bounce: the exchange and its allreduce need them.
 #include "core/render/PathTracer.h"
 
 #include "core/render/CameraRays.h"
@@ -10,6 +11,7 @@
 #include "core/vk/ComputePipeline.h"
 #include "shaders/pt_accumulate.spv.h"
 #include "shaders/pt_generate.spv.h"
+#include "shaders/pt_queue_advance.spv.h"
 #include "shaders/pt_resolve.spv.h"
 #include "shaders/pt_shade.spv.h"
 #include "shaders/pt_shadow_resolve.spv.h"
@@ -56,13 +58,14 @@ struct PathTracer::Impl {
     const vk::Context& context;
     PathTracerOptions options;
     TraceKernels trace;
-    vk::ComputePipeline generate, surface, shade, shadowResolve, accumulate, resolve;
+    vk::ComputePipeline generate, surface, shade, shadowResolve, accumulate, resolve, queueAdvance;
     vk::Buffer frame, counters;                                     // FrameConstants, PathCounters
     vk::Buffer sampleRadiance, accumulation, sampleCount, depth, color;  // per pixel
     Queue queues[2];
     int current = 0;                                                // the queue the next bounce consumes
     vk::Buffer hits, surfaces, shadowRays, shadowRequests, occlusion; // per path in flight
     uint32_t capacity = 0;
+    bool lengthsOnDevice = false;                                   // one rank: see the header comment
     LocalRayExchange localExchange;
     PipelineCache pipelines;                                        // variants of `surface` per FeatureSet
     SurfaceChannels channels;                                       // albedo, normal and id channels
@@ -83,9 +86,13 @@ struct PathTracer::Impl {
         shadowResolve = vk::ComputePipeline(ctx, shaders::pt_shadow_resolve, "pt_shadow_resolve", bytes, constants);
         accumulate = vk::ComputePipeline(ctx, shaders::pt_accumulate, "pt_accumulate", bytes, constants);
         resolve = vk::ComputePipeline(ctx, shaders::pt_resolve, "pt_resolve", bytes, constants);
+        queueAdvance = vk::ComputePipeline(ctx, shaders::pt_queue_advance, "pt_queue_advance",
+                                           static_cast<uint32_t>(sizeof(gpu::QueueAdvanceParams)));
         frame = vk::Buffer(ctx, sizeof(gpu::FrameConstants), "path tracer frame constants");
-        // Host-visible on every device: the host reads the queue counts after each bounce.
-        counters = vk::Buffer(ctx, sizeof(gpu::PathCounters), "path tracer counters", 0, vk::Buffer::Placement::HostStaging);
+        // Host-visible on every device: the host reads the queue counts (after each bounce with several
+        // ranks, after a wave with one). Also the indirect dispatch sizes of the queue stages.
+        counters = vk::Buffer(ctx, sizeof(gpu::PathCounters), "path tracer counters", VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                              vk::Buffer::Placement::HostStaging);
     }
 
     // Camera and settings plus the frame's buffer addresses. resize() uploads it too (with no camera), so
@@ -140,6 +147,39 @@ struct PathTracer::Impl {
         }
     }
 
+    // A queue stage over the path queue (COUNT_PATH_QUEUE) or the shadow queue (COUNT_SHADOW_QUEUE): launched
+    // indirectly with its length on the device, or with the host's count.
+    void dispatchQueue(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, gpu::StageParams p, uint32_t queue,
+                       uint32_t hostCount) {
+        if (!lengthsOnDevice) {
+            dispatch(cmd, pipeline, p, hostCount);
+            return;
+        }
+        vk::computeBarrier(cmd);
+        pipeline.bind(cmd);
+        p.countSource = queue;
+        pipeline.pushConstants(cmd, &p, sizeof(p));
+        vkCmdDispatchIndirect(cmd, counters.handle(), queue == gpu::COUNT_PATH_QUEUE
+                                                          ? offsetof(gpu::PathCounters, pathGroups)
+                                                          : offsetof(gpu::PathCounters, shadowGroups));
+    }
+
+    DeviceRayCount deviceRayCount(uint32_t queue) const {
+        const bool paths = queue == gpu::COUNT_PATH_QUEUE;
+        return {&counters, paths ? offsetof(gpu::PathCounters, pathCount) : offsetof(gpu::PathCounters, shadowCount),
+                paths ? offsetof(gpu::PathCounters, pathTraceGroups) : offsetof(gpu::PathCounters, shadowTraceGroups)};
+    }
+
+    // One rank, between bounces: what the bounce appended becomes the lengths the next one consumes (the
+    // caller swaps `current`).
+    void advanceQueueLengths(VkCommandBuffer cmd) {
+        vk::computeBarrier(cmd);
+        queueAdvance.bind(cmd);
+        const gpu::QueueAdvanceParams p{counters.address(), capacity, options.workgroupSize, trace.options().workgroupSize, 0};
+        queueAdvance.pushConstants(cmd, &p, sizeof(p));
+        vkCmdDispatch(cmd, 1, 1, 1);
+    }
+
     void generateRays(VkCommandBuffer cmd, const Wave& wave, uint32_t sampleIndex) {
         for (const WavePart& part : wave.parts) {
             gpu::StageParams p = params(nullptr);
@@ -155,37 +195,40 @@ struct PathTracer::Impl {
     RayExchange& exchange() { return options.exchange ? *options.exchange : localExchange; }
 
     // Any-hit for the shadow rays of the previous bounce; their contributions follow the exchange.
+    // (With lengths on the device the host's counts below are not used.)
     void occlude(VkCommandBuffer cmd, const Scene& scene, uint32_t count) {
-        if (count == 0) return;
+        if (count == 0 && !lengthsOnDevice) return;
         vk::computeBarrier(cmd);
-        trace.traceAny(cmd, scene, shadowRays, occlusion, count);
+        if (lengthsOnDevice) trace.traceAny(cmd, scene, shadowRays, occlusion, deviceRayCount(gpu::COUNT_SHADOW_QUEUE));
+        else trace.traceAny(cmd, scene, shadowRays, occlusion, count);
     }
 
     void resolveShadows(VkCommandBuffer cmd, const Scene& scene, uint32_t count) {
-        if (count == 0) return;
+        if (count == 0 && !lengthsOnDevice) return;
         gpu::StageParams p = params(&scene);
         p.shadowRequests = shadowRequests.address();
         p.results = occlusion.address();
-        dispatch(cmd, shadowResolve, p, count);
+        dispatchQueue(cmd, shadowResolve, p, gpu::COUNT_SHADOW_QUEUE, count);
     }
 
     // Closest hit for the current queue and the surface at each hit; shading follows the exchange.
     void traceAndShade(VkCommandBuffer cmd, const Scene& scene, uint32_t count) {
-        if (count == 0) return;
+        if (count == 0 && !lengthsOnDevice) return;
         const Queue& in = queues[current];
         vk::computeBarrier(cmd);
-        trace.traceClosest(cmd, scene, in.rays, hits, count);
+        if (lengthsOnDevice) trace.traceClosest(cmd, scene, in.rays, hits, deviceRayCount(gpu::COUNT_PATH_QUEUE));
+        else trace.traceClosest(cmd, scene, in.rays, hits, count);
         gpu::StageParams p = params(&scene);
         p.paths = in.paths.address();
         p.rays = in.rays.address();
         p.hits = hits.address();
         p.surfaces = surfaces.address();
-        dispatch(cmd, surface, p, count);
+        dispatchQueue(cmd, surface, p, gpu::COUNT_PATH_QUEUE, count);
     }
 
     // Shading into the other queue and the shadow queue.
     void shadePaths(VkCommandBuffer cmd, const Scene& scene, uint32_t count, uint32_t bounce, uint32_t sampleIndex) {
-        if (count == 0) return;
+        if (count == 0 && !lengthsOnDevice) return;
         const Queue& in = queues[current];
         const Queue& out = queues[1 - current];
         gpu::StageParams p = params(&scene);
@@ -196,7 +239,7 @@ struct PathTracer::Impl {
         if (bounce == 0 && channels.any()) {  // the camera rays' first hits fill the surface channels
             gpu::StageParams c = p;
             c.results = channels.tableAddress();
-            dispatch(cmd, channels.pipeline(), c, count);
+            dispatchQueue(cmd, channels.pipeline(), c, gpu::COUNT_PATH_QUEUE, count);
         }
         p.nextPaths = out.paths.address();
         p.nextRays = out.rays.address();
@@ -204,7 +247,7 @@ struct PathTracer::Impl {
         p.shadowRequests = shadowRequests.address();
         p.bounce = bounce;
         p.sampleIndex = sampleIndex;
-        dispatch(cmd, shade, p, count);
+        dispatchQueue(cmd, shade, p, gpu::COUNT_PATH_QUEUE, count);
     }
 
     // With more than one rank: the queues as traced here go round the other ranks and come back with
@@ -238,7 +281,66 @@ struct PathTracer::Impl {
         if (shadows > 0) occlusion.upload(occluded.data(), shadows * sizeof(uint32_t));
     }
 
-    // After a bounce: the lengths of the queues it filled, which become the ones to consume next.
+    // One rank: the bounces of a wave with the queue lengths on the device. The first submission holds the
+    // bounces a path without pass-throughs can take; only where paths remain after it (pass-throughs of
+    // alpha or invisible surfaces) do more follow, up to `maxBounces` in all.
+    void traceWave(const Scene& scene, const Wave& wave, uint32_t sampleIndex, uint32_t firstBatch, uint32_t maxBounces,
+                   FrameStats& stats) {
+        gpu::PathCounters c = readCounters();  // keeps nonFinite and flagged, which count over the frame
+        c.nextPaths = wave.paths;              // what generate appends: the first advance turns it into the queue
+        c.shadowRays = c.pathCount = c.shadowCount = c.pathsTraced = c.shadowsTraced = 0;
+        writeCounters(c);
+        uint32_t bounce = 0;
+        while (bounce <= maxBounces) {
+            const uint32_t end = bounce == 0 ? std::min(firstBatch, maxBounces + 1) : maxBounces + 1;
+            context.submitAndWait([&](VkCommandBuffer cmd) {
+                if (bounce == 0) {
+                    generateRays(cmd, wave, sampleIndex);
+                    advanceQueueLengths(cmd);
+                }
+                for (; bounce < end; ++bounce) {
+                    occlude(cmd, scene, 0);
+                    traceAndShade(cmd, scene, 0);
+                    resolveShadows(cmd, scene, 0);
+                    shadePaths(cmd, scene, 0, bounce, sampleIndex);
+                    advanceQueueLengths(cmd);
+                    current = 1 - current;
+                }
+                hostReadBarrier(cmd);
+            });
+            c = readCounters();
+            if (c.pathCount + c.shadowCount == 0) break;
+        }
+        stats.raysTraced += c.pathsTraced;
+        stats.shadowRays += c.shadowsTraced;
+    }
+
+    // Several ranks: a wave's bounces with the exchange between tracing and shading; every rank takes part
+    // in each bounce until no rank has a path or shadow ray left (`wave` is null where this rank has none).
+    void traceWaveAcrossRanks(const Scene& scene, const Wave* wave, uint32_t sampleIndex, uint32_t maxBounces,
+                              FrameStats& stats) {
+        RayExchange& ranks = exchange();
+        uint32_t paths = wave ? wave->paths : 0, shadows = 0;
+        for (uint32_t bounce = 0; bounce <= maxBounces && ranks.sum(paths + shadows) > 0; ++bounce) {
+            context.submitAndWait([&](VkCommandBuffer cmd) {
+                if (bounce == 0 && paths > 0) generateRays(cmd, *wave, sampleIndex);
+                occlude(cmd, scene, shadows);
+                traceAndShade(cmd, scene, paths);
+                hostReadBarrier(cmd);
+            });
+            exchangeRays(scene, paths, shadows);
+            context.submitAndWait([&](VkCommandBuffer cmd) {
+                resolveShadows(cmd, scene, shadows);
+                shadePaths(cmd, scene, paths, bounce, sampleIndex);
+                hostReadBarrier(cmd);
+            });
+            stats.raysTraced += paths;
+            stats.shadowRays += shadows;
+            std::tie(paths, shadows) = takeQueueCounts();
+        }
+    }
+
+    // Several ranks, after a bounce: the lengths of the queues it filled, which become the ones to consume next.
     std::pair<uint32_t, uint32_t> takeQueueCounts() {
         gpu::PathCounters c = readCounters();
         const std::pair<uint32_t, uint32_t> counts{std::min(c.nextPaths, capacity), std::min(c.shadowRays, capacity)};
@@ -324,32 +426,15 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     const std::vector<PixelRange> owned = ownedPixels(size_, ranks.rank(), ranks.rankCount());
     const std::vector<Wave> waves = packWaves(owned, m.capacity);
     const uint64_t waveCount = ranks.max(waves.size());
+    m.lengthsOnDevice = ranks.rankCount() == 1;
     for (uint32_t s = 0; s < settings.pixelSamples; ++s) {
         const uint32_t sampleIndex = accumulatedSamples_;
         for (uint64_t w = 0; w < waveCount; ++w) {
-            uint32_t paths = w < waves.size() ? waves[w].paths : 0, shadows = 0;
-            for (uint32_t bounce = 0; bounce <= maxBounces && ranks.sum(paths + shadows) > 0; ++bounce) {
-                auto traceLocally = [&](VkCommandBuffer cmd) {
-                    if (bounce == 0 && paths > 0) m.generateRays(cmd, waves[w], sampleIndex);
-                    m.occlude(cmd, scene, shadows);
-                    m.traceAndShade(cmd, scene, paths);
-                };
-                auto shadeAtHome = [&](VkCommandBuffer cmd) {
-                    m.resolveShadows(cmd, scene, shadows);
-                    m.shadePaths(cmd, scene, paths, bounce, sampleIndex);
-                    Impl::hostReadBarrier(cmd);
-                };
-                if (ranks.rankCount() == 1) {
-                    m.context.submitAndWait([&](VkCommandBuffer cmd) { traceLocally(cmd); shadeAtHome(cmd); });
-                } else {
-                    m.context.submitAndWait([&](VkCommandBuffer cmd) { traceLocally(cmd); Impl::hostReadBarrier(cmd); });
-                    m.exchangeRays(scene, paths, shadows);
-                    m.context.submitAndWait(shadeAtHome);
-                }
-                stats.raysTraced += paths;
-                stats.shadowRays += shadows;
-                std::tie(paths, shadows) = m.takeQueueCounts();
-            }
+            const Wave* wave = w < waves.size() ? &waves[w] : nullptr;  // this rank may have fewer waves
+            if (m.lengthsOnDevice)
+                m.traceWave(scene, *wave, sampleIndex, std::max(1u, settings.maxPathLength) + 1, maxBounces, stats);
+            else
+                m.traceWaveAcrossRanks(scene, wave, sampleIndex, maxBounces, stats);
         }
         m.context.submitAndWait([&](VkCommandBuffer cmd) {
             for (const PixelRange& range : owned) {

@@ -13,6 +13,12 @@ namespace {
 
 constexpr uint32_t kWorkgroupSizeConstant = 0;  // layout(local_size_x_id = 0) in traverse.glsl
 
+void resetResumePool(VkCommandBuffer cmd, const vk::Buffer& pool) {
+    const gpu::ResumeHeader emptyHeader{0, 0, 1, 1};
+    vkCmdUpdateBuffer(cmd, pool.handle(), 0, sizeof(emptyHeader), &emptyHeader);
+    vk::computeBarrier(cmd);
+}
+
 }  // namespace
 
 TraceKernels::TraceKernels(const vk::Context& context, const TraceOptions& options)
@@ -20,12 +26,18 @@ TraceKernels::TraceKernels(const vk::Context& context, const TraceOptions& optio
     if (options_.stepBudget < kMinStepBudget || options_.stepBudget > kMaxStepBudget)
         throw std::invalid_argument("TraceOptions::stepBudget must be in [" + std::to_string(kMinStepBudget) + ", " +
                                     std::to_string(kMaxStepBudget) + "], not " + std::to_string(options_.stepBudget));
+    traversal_ = resolveTraversal(context, options_.traversal);
+    if (traversal_ == Traversal::RayQuery) {
+        rayQuery_ = std::make_unique<RayQueryTraversal>(context, options_.workgroupSize);
+        return;
+    }
     const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options_.workgroupSize}};
     closest_ = vk::ComputePipeline(context, shaders::trace_closest, "trace_closest", sizeof(gpu::TraceParams), constants);
     any_ = vk::ComputePipeline(context, shaders::trace_any, "trace_any", sizeof(gpu::TraceParams), constants);
 }
 
 void TraceKernels::useFeatures(uint32_t features) {
+    if (rayQuery_) return rayQuery_->useFeatures(features, pipelines_);
     const auto bytes = static_cast<uint32_t>(sizeof(gpu::TraceParams));
     pipelines_.select({shaders::trace_closest, "trace_closest", bytes, options_.workgroupSize, gpu::FEATURE_GEOMETRY},
                       features, closest_);
@@ -42,53 +54,80 @@ void TraceKernels::ensureResumePools() {
 }
 
 void TraceKernels::dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, const Scene& scene,
-                            const vk::Buffer& rays, const vk::Buffer& results, uint32_t rayCount) {
-    if (rayCount == 0) return;
+                            const vk::Buffer& rays, const vk::Buffer& results, uint32_t rayCount,
+                            const DeviceRayCount* deviceCount) {
+    if (rayCount == 0 && !deviceCount) return;
+    if (rayQuery_) {  // no step budget and no resume rounds with ray queries
+        rayQuery_->dispatch(cmd, scene, {&pipeline == &any_, rays.address(), results.address(), rayCount,
+                                         deviceCount ? deviceCount->buffer->address() + deviceCount->countOffset : 0,
+                                         deviceCount ? deviceCount->buffer->handle() : VK_NULL_HANDLE,
+                                         deviceCount ? deviceCount->groupsOffset : 0});
+        return;
+    }
     ensureResumePools();
     const bool resumable = options_.resumeRounds > 0;
-    const gpu::ResumeHeader emptyHeader{0, 0, 1, 1};
-    auto resetPool = [&](int i) {
-        vkCmdUpdateBuffer(cmd, resumePools_[i].handle(), 0, sizeof(emptyHeader), &emptyHeader);
-        vk::computeBarrier(cmd);
-    };
     const VkDeviceSize resultStride = &pipeline == &any_ ? sizeof(uint32_t) : sizeof(gpu::Hit);
 
     pipeline.bind(cmd);
-    if (resumable) resetPool(0);
+    if (resumable) resetResumePool(cmd, resumePools_[0]);
+
+    gpu::TraceParams params{};
+    params.scene = scene.descAddress();
+    params.rays = rays.address();
+    params.hits = results.address();
+    params.resumeOut = resumable ? resumePools_[0].address() : 0;
+    params.resumeCapacity = options_.resumeCapacity;
+    params.stepBudget = options_.stepBudget;
+    if (deviceCount) {
+        params.rayCountAddress = deviceCount->buffer->address() + deviceCount->countOffset;
+        pipeline.pushConstants(cmd, &params, sizeof(params));
+        vkCmdDispatchIndirect(cmd, deviceCount->buffer->handle(), deviceCount->groupsOffset);
+        resumeRounds(cmd, pipeline, params);
+        return;
+    }
 
     // Fresh rays, in chunks that respect the device's limit on workgroups per dispatch.
     const uint64_t maxRaysPerDispatch = uint64_t(context_.properties().limits.maxComputeWorkGroupCount[0]) * options_.workgroupSize;
     for (uint64_t first = 0; first < rayCount; first += maxRaysPerDispatch) {
         const uint32_t count = static_cast<uint32_t>(std::min<uint64_t>(maxRaysPerDispatch, rayCount - first));
-        gpu::TraceParams params{};
-        params.scene = scene.descAddress();
-        params.rays = rays.address() + first * sizeof(gpu::Ray);
-        params.hits = results.address() + first * resultStride;
-        params.resumeOut = resumable ? resumePools_[0].address() : 0;
-        params.rayCount = count;
-        params.resumeCapacity = options_.resumeCapacity;
-        params.stepBudget = options_.stepBudget;
-        pipeline.pushConstants(cmd, &params, sizeof(params));
+        gpu::TraceParams chunk = params;
+        chunk.rays = rays.address() + first * sizeof(gpu::Ray);
+        chunk.hits = results.address() + first * resultStride;
+        chunk.rayCount = count;
+        pipeline.pushConstants(cmd, &chunk, sizeof(chunk));
         vkCmdDispatch(cmd, (count + options_.workgroupSize - 1) / options_.workgroupSize, 1, 1);
-
-        // Resume rounds: indirect dispatches sized by the kernel itself, so the host never reads a count.
         // Parked states hold ray indices relative to this chunk's base addresses, so each chunk finishes
         // its rounds before the next chunk starts.
-        for (uint32_t round = 1; round <= options_.resumeRounds; ++round) {
-            const int in = (round - 1) % 2, out = round % 2;
-            const bool last = round == options_.resumeRounds;
-            vk::computeBarrier(cmd);
-            if (!last) resetPool(out);
-            params.resumeIn = resumePools_[in].address();
-            params.resumeOut = last ? 0 : resumePools_[out].address();
-            pipeline.pushConstants(cmd, &params, sizeof(params));
-            vkCmdDispatchIndirect(cmd, resumePools_[in].handle(), offsetof(gpu::ResumeHeader, groupsX));
-        }
+        resumeRounds(cmd, pipeline, chunk);
         if (resumable && first + count < rayCount) {
             vk::computeBarrier(cmd);
-            resetPool(0);
+            resetResumePool(cmd, resumePools_[0]);
         }
     }
+}
+
+// Resume rounds: indirect dispatches sized by the kernel itself, so the host never reads a count.
+void TraceKernels::resumeRounds(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, gpu::TraceParams params) {
+    for (uint32_t round = 1; round <= options_.resumeRounds; ++round) {
+        const int in = (round - 1) % 2, out = round % 2;
+        const bool last = round == options_.resumeRounds;
+        vk::computeBarrier(cmd);
+        if (!last) resetResumePool(cmd, resumePools_[out]);
+        params.resumeIn = resumePools_[in].address();
+        params.resumeOut = last ? 0 : resumePools_[out].address();
+        pipeline.pushConstants(cmd, &params, sizeof(params));
+        vkCmdDispatchIndirect(cmd, resumePools_[in].handle(), offsetof(gpu::ResumeHeader, groupsX));
+    }
+}
+
+void TraceKernels::traceClosest(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& hits,
+                                const DeviceRayCount& count) {
+    dispatch(cmd, closest_, scene, rays, hits, 0, &count);
+}
+
+void TraceKernels::traceAny(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& occluded,
+                            const DeviceRayCount& count) {
+    dispatch(cmd, any_, scene, rays, occluded, 0, &count);
 }
 
 void TraceKernels::traceClosest(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& hits,

@@ -1,15 +1,19 @@
 // Host side of the closest-hit and any-hit traversal kernels (shaders/trace_closest.comp,
 // trace_any.comp). A ray whose traversal spends its step budget is parked in a resume pool and continued
 // by further indirect dispatches; a ray still unfinished after the last round is flagged
-// HIT_FLAG_RAN_OUT, never silently wrong.
+// HIT_FLAG_RAN_OUT, never silently wrong. With TraceOptions::traversal resolving to RayQuery the same
+// calls run the ray-query kernels instead (RayQueryTraversal.h), on scenes built for them.
 #pragma once
 
 #include "core/render/FeatureSet.h"
+#include "core/render/RayQueryTraversal.h"
+#include "core/render/Traversal.h"
 #include "core/scene/Scene.h"
 #include "core/vk/Buffer.h"
 #include "core/vk/ComputePipeline.h"
 #include "shaders/shared/ray.h"
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -28,6 +32,15 @@ struct TraceOptions {
     uint32_t stepBudget = 30000;
     uint32_t resumeRounds = 4;          // extra dispatches for parked traversals
     uint32_t resumeCapacity = 1u << 14; // parked traversals per round; overflow is flagged RAN_OUT
+    Traversal traversal = Traversal::Auto;  // resolved at construction (Traversal.h); see traversal()
+};
+
+// A ray count that a kernel wrote on the device: the trace reads it there and is launched with
+// vkCmdDispatchIndirect, so the host never waits to learn it.
+struct DeviceRayCount {
+    const vk::Buffer* buffer = nullptr;  // holds both, made with VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT
+    VkDeviceSize countOffset = 0;        // the uint ray count
+    VkDeviceSize groupsOffset = 0;       // VkDispatchIndirectCommand for workgroups of options().workgroupSize
 };
 
 class TraceKernels {
@@ -39,6 +52,11 @@ public:
                       uint32_t rayCount);
     void traceAny(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& occluded,
                   uint32_t rayCount);
+    // The same with the count on the device; at most one dispatch's worth of rays (maxComputeWorkGroupCount).
+    void traceClosest(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& hits,
+                      const DeviceRayCount& count);
+    void traceAny(VkCommandBuffer cmd, const Scene& scene, const vk::Buffer& rays, const vk::Buffer& occluded,
+                  const DeviceRayCount& count);
 
     // Host convenience for tests and benchmarks: upload, trace, wait, download.
     std::vector<gpu::Hit> traceClosest(const Scene& scene, std::span<const gpu::Ray> rays);
@@ -46,6 +64,8 @@ public:
     std::vector<uint32_t> traceAny(const Scene& scene, std::span<const gpu::Ray> rays);
 
     const TraceOptions& options() const { return options_; }
+    // The back-end in use: Software or RayQuery (options().traversal resolved on this device).
+    Traversal traversal() const { return traversal_; }
 
     // Specialises the kernels for the geometry kinds in `features` (FEATURE_*; other bits are ignored):
     // later traces run the variant without the tests of absent kinds. Every kind by default. A scene
@@ -55,7 +75,8 @@ public:
 
 private:
     void dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, const Scene& scene, const vk::Buffer& rays,
-                  const vk::Buffer& results, uint32_t rayCount);
+                  const vk::Buffer& results, uint32_t rayCount, const DeviceRayCount* deviceCount = nullptr);
+    void resumeRounds(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, gpu::TraceParams params);
     template <class Result>
     std::vector<Result> traceOnHost(vk::ComputePipeline& pipeline, const Scene& scene, std::span<const gpu::Ray> rays);
     void ensureResumePools();
@@ -66,6 +87,8 @@ private:
     vk::ComputePipeline any_;
     PipelineCache pipelines_;
     vk::Buffer resumePools_[2];
+    Traversal traversal_ = Traversal::Software;
+    std::unique_ptr<RayQueryTraversal> rayQuery_;  // RayQuery only
 };
 
 }  // namespace ripple::core

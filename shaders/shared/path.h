@@ -51,13 +51,45 @@ struct SurfaceRecord {
     uint pad1;
 };
 
-// Counters the kernels bump with atomics; the host reads the queue counts back after each bounce.
+// Workgroup counts of one vkCmdDispatchIndirect (VkDispatchIndirectCommand).
+struct DispatchSize {
+    uint x;
+    uint y;
+    uint z;
+};
+
+// Counters the kernels bump with atomics. With one rank the queue lengths stay on the device: between
+// bounces pt_queue_advance turns the appends into the lengths the next bounce consumes and the dispatch
+// sizes that launch it. With several ranks the host reads the appends after each bounce instead (the
+// exchange needs them) and passes the lengths as StageParams.count.
 struct PathCounters {
     uint nextPaths;     // rays appended to the next path queue
     uint shadowRays;    // shadow rays appended
     uint nonFinite;     // samples dropped by pt_accumulate
     uint flagged;       // traversals flagged HIT_FLAG_* (treated as misses)
+    uint pathCount;     // length of the path queue the current bounce consumes
+    uint shadowCount;   // length of the shadow queue it consumes
+    uint pathsTraced;   // sums of the two over the bounces since the host last cleared them
+    uint shadowsTraced;
+    DispatchSize pathGroups;        // pathCount in workgroups of the path stages
+    DispatchSize shadowGroups;      // shadowCount in workgroups of the path stages
+    DispatchSize pathTraceGroups;   // the same in workgroups of the trace kernels
+    DispatchSize shadowTraceGroups;
 };
+
+// Parameters of pt_queue_advance.
+struct QueueAdvanceParams {
+    uint64_t counters;     // PathCounters
+    uint capacity;         // queue capacity: longer appends are cut (and were never written)
+    uint stageWorkgroup;   // workgroup size of the path stages
+    uint traceWorkgroup;   // workgroup size of the trace kernels
+    uint pad0;
+};
+
+// StageParams.countSource: where a queue stage finds how many items it processes.
+RIPPLE_CONST uint COUNT_FROM_PARAMS = 0u;    // StageParams.count
+RIPPLE_CONST uint COUNT_PATH_QUEUE = 1u;     // PathCounters.pathCount
+RIPPLE_CONST uint COUNT_SHADOW_QUEUE = 2u;   // PathCounters.shadowCount
 
 RIPPLE_CONST uint CAMERA_PERSPECTIVE = 0u;
 RIPPLE_CONST uint CAMERA_ORTHOGRAPHIC = 1u;
@@ -112,7 +144,7 @@ struct StageParams {
     uint sampleIndex;      // the pixel sample this pass computes (over all render() calls)
     uint bounce;           // pt_shade: interactions every path in the queue has had (RNG key)
     uint mode;             // pt_resolve: OUTPUT_*
-    uint pad0;
+    uint countSource;      // COUNT_*: the queue stages' item count (count, or a queue length on the device)
 };
 
 RIPPLE_GPU_END
