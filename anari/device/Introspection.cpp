@@ -118,12 +118,14 @@ const std::vector<Entry>& table() {
              {"primitive.radius", ANARI_ARRAY1D, "per-cylinder radius (FLOAT32)"},
              {"radius", ANARI_FLOAT32, "radius of all cylinders when primitive.radius is unset", &kOne},
              {"caps", ANARI_STRING, "which ends a flat disk closes", "none", kCaps},
+             {"vertex.cap", ANARI_ARRAY1D, "nonzero: a flat disk closes the segments ending at this vertex (UINT8)"},
          }})},
         {ANARI_GEOMETRY, "cone", "cone frusta between vertex pairs, a radius at each vertex",
          joined({kGeometryCommon, {
              {"primitive.index", ANARI_ARRAY1D, "vertex pairs (UINT32_VEC2)"},
              {"vertex.radius", ANARI_ARRAY1D, "radius at each vertex (FLOAT32)", nullptr, nullptr, true},
              {"caps", ANARI_STRING, "which ends a flat disk closes", "none", kCaps},
+             {"vertex.cap", ANARI_ARRAY1D, "nonzero: a flat disk closes the segments ending at this vertex (UINT8)"},
          }})},
         {ANARI_GEOMETRY, "curve", "round linear segments from each indexed vertex to the next",
          joined({kGeometryCommon, {

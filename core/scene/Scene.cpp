@@ -138,8 +138,9 @@ void flattenCylinders(const CylinderSet& set, UsedGeometry& g, FlatScene& flat, 
     for (uint32_t slot : p.blas.primOrder) {
         const uint32_t c = p.validPrims[slot];
         const glm::uvec2 idx = cylinderIndices(set, c);
+        const CapEnds caps = set.segmentCaps.empty() ? set.caps : set.segmentCaps[c];
         flat.cylinders.push_back({gpu::vec4(set.positions[idx.x], radiusOf(set.radii, c)),
-                                  gpu::vec4(set.positions[idx.y], 0.0f), c, static_cast<uint32_t>(set.caps), 0, 0});
+                                  gpu::vec4(set.positions[idx.y], 0.0f), c, static_cast<uint32_t>(caps), 0, 0});
     }
     record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
 }
@@ -147,10 +148,12 @@ void flattenCylinders(const CylinderSet& set, UsedGeometry& g, FlatScene& flat, 
 void flattenCones(const ConeSet& set, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
                   SceneReport& report) {
     const PreparedGeometry& p = *g.prepared;
-    const uint32_t flags = set.round ? gpu::CONE_ROUND : static_cast<uint32_t>(set.caps);
     for (uint32_t slot : p.blas.primOrder) {
         const uint32_t c = p.validPrims[slot];
         const glm::uvec2 idx = coneIndices(set, c);
+        const uint32_t flags = set.round                  ? gpu::CONE_ROUND
+                               : set.segmentCaps.empty() ? static_cast<uint32_t>(set.caps)
+                                                         : static_cast<uint32_t>(set.segmentCaps[c]);
         flat.cones.push_back({gpu::vec4(set.positions[idx.x], radiusOf(set.radii, idx.x)),
                               gpu::vec4(set.positions[idx.y], radiusOf(set.radii, idx.y)), c, flags, 0, 0});
     }

@@ -57,6 +57,7 @@ struct CylinderSet {
     std::vector<float> radii;             // one per cylinder, or a single radius for all
     std::vector<glm::vec4> colors;        // empty, or one per cylinder
     CapEnds caps = CapEnds::None;
+    std::vector<CapEnds> segmentCaps;     // empty, or one per cylinder (replacing `caps`)
     GeometryIdentity identity;
 };
 
@@ -70,6 +71,7 @@ struct ConeSet {
     std::vector<float> radii;             // one per position, or a single radius for all
     std::vector<glm::vec4> colors;        // empty, or one per segment
     CapEnds caps = CapEnds::None;         // cones only: a round segment has no caps
+    std::vector<CapEnds> segmentCaps;     // cones only: empty, or one per cone (replacing `caps`)
     bool round = false;
     GeometryIdentity identity;
 };

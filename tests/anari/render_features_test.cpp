@@ -430,3 +430,41 @@ TEST_CASE("channels: primitiveId, objectId, instanceId exact; albedo and normal 
             }
         }
 }
+
+TEST_CASE("vertex.cap closes cylinders and cones at the marked vertices only, overriding caps") {
+    // A tube along -z from z = 0 to z = -2 (radius 0.5), seen straight down its axis by an orthographic
+    // camera at z = 3: the central ray hits a cap at the near end at depth 3, else one at the far end (from
+    // inside) at depth 5, else nothing (it runs along the open tube).
+    for (const char* subtype : {"cylinder", "cone"}) {
+        for (const auto& [caps, expected] : {std::pair{glm::uvec2(1, 0), 3.0f}, std::pair{glm::uvec2(0, 1), 5.0f},
+                                             std::pair{glm::uvec2(1, 1), 3.0f},
+                                             std::pair{glm::uvec2(0, 0), std::numeric_limits<float>::infinity()}}) {
+            CAPTURE(subtype);
+            CAPTURE(caps);
+            RenderSession s;
+            ANARIGeometry tube = s.keep(anariNewGeometry(s.device, subtype));
+            s.setObject(tube, "vertex.position", ANARI_ARRAY1D,
+                        s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{0, 0, 0}, {0, 0, -2}}));
+            if (std::string(subtype) == "cone")
+                s.setObject(tube, "vertex.radius", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, std::vector<float>{0.5f, 0.5f}));
+            else
+                s.set(tube, "radius", 0.5f);
+            s.setObject(tube, "vertex.cap", ANARI_ARRAY1D,
+                        s.array(ANARI_UINT8, std::vector<uint8_t>{uint8_t(caps.x), uint8_t(caps.y)}));
+            s.set(tube, "caps", "both");  // vertex.cap wins
+            s.commit(tube);
+            ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+            s.set(camera, "position", glm::vec3(0, 0, 3));
+            s.set(camera, "direction", glm::vec3(0, 0, -1));
+            s.set(camera, "height", 0.5f);
+            s.commit(camera);
+            const Image image = s.render(s.frame(s.world({s.surface(tube, s.matte(glm::vec3(0.5f)))}, {}), camera,
+                                                 s.renderer(1, 1), {4, 4}, ANARI_FLOAT32_VEC4, true));
+            CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+            for (const float depth : image.depth) {
+                if (std::isinf(expected)) CHECK(std::isinf(depth));
+                else CHECK(depth == doctest::Approx(expected).epsilon(1e-4));
+            }
+        }
+    }
+}

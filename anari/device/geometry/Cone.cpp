@@ -1,6 +1,6 @@
 // Geometry subtype "cone" (KHR_GEOMETRY_CONE): cone frusta between vertex pairs (consecutive, or from
 // "primitive.index"), with a radius per vertex ("vertex.radius", required) and flat caps at the ends that
-// "caps" names. Per-vertex caps ("vertex.cap") are not supported: "caps" applies to every cone.
+// "caps" names, or at the vertices "vertex.cap" marks.
 #include "anari/device/geometry/Geometry.h"
 
 #include <cmath>
@@ -33,6 +33,7 @@ private:
             cones.radii.push_back(radii[i].x);
         }
         cones.caps = pullCaps();
+        cones.segmentCaps = pullSegmentCaps(*segments);
         cones.colors = pullSegmentColors(*segments);
         cones.positions = std::move(segments->positions);
         cones.indices = std::move(segments->indices);

@@ -1,5 +1,6 @@
 // Geometry subtype "cylinder" (KHR_GEOMETRY_CYLINDER): cylinders between vertex pairs (consecutive, or
-// from "primitive.index"), closed at the ends "caps" names (none, first, second, both).
+// from "primitive.index"), closed at the ends "caps" names (none, first, second, both) or at the vertices
+// "vertex.cap" marks. "radius" is the radius of all when "primitive.radius" is unset.
 #include "anari/device/geometry/Geometry.h"
 
 #include <cmath>
@@ -22,6 +23,7 @@ private:
         const std::vector<glm::vec4> radii = pullVectors("primitive.radius", cylinderCount);
         if (!radii.empty()) {
             for (const glm::vec4& r : radii) cylinders.radii.push_back(r.x);
+            (void)findParameter("radius");  // the fallback, legitimately set beside it: not an unused parameter
         } else {
             cylinders.radii = {get<float>("radius", 1.0f)};
         }
@@ -35,6 +37,7 @@ private:
         }
 
         cylinders.caps = pullCaps();
+        cylinders.segmentCaps = pullSegmentCaps(*segments);
         cylinders.colors = pullSegmentColors(*segments);
         cylinders.positions = std::move(segments->positions);
         cylinders.indices = std::move(segments->indices);

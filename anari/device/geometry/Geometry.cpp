@@ -172,11 +172,18 @@ std::vector<glm::vec4> Geometry::pullSegmentColors(const Segments& segments) {
     return colors;
 }
 
-core::CapEnds Geometry::pullCaps() {
-    if (has("vertex.cap")) {
-        (void)getArray("vertex.cap");
-        reportWarning("per-vertex caps ('vertex.cap') are not supported; 'caps' applies to every primitive");
+std::vector<core::CapEnds> Geometry::pullSegmentCaps(const Segments& segments) {
+    const std::vector<glm::vec4> vertexCaps = pullVectors("vertex.cap", segments.positions.size());
+    std::vector<core::CapEnds> caps;
+    for (size_t i = 0; i < segments.count && !vertexCaps.empty(); ++i) {
+        const glm::uvec2 ends = segments.ends(i);
+        caps.push_back(core::CapEnds((vertexCaps[ends.x].x != 0.0f ? uint32_t(core::CapEnds::First) : 0u) |
+                                     (vertexCaps[ends.y].x != 0.0f ? uint32_t(core::CapEnds::Second) : 0u)));
     }
+    return caps;
+}
+
+core::CapEnds Geometry::pullCaps() {
     const std::string caps = getString("caps", "none");
     if (caps == "first") return core::CapEnds::First;
     if (caps == "second") return core::CapEnds::Second;

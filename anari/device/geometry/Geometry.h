@@ -52,8 +52,10 @@ protected:
     // segments); else the uniform "color".
     std::vector<glm::vec4> pullSegmentColors(const Segments& segments);
     // "caps" of cylinders and cones: none, first, second or both (unknown values are reported: none).
-    // Per-vertex caps ("vertex.cap") are not supported and reported.
     core::CapEnds pullCaps();
+    // "vertex.cap" (nonzero: a flat disk closes the segments at that vertex) as the ends of each segment;
+    // empty when unset (or unusable, reported).
+    std::vector<core::CapEnds> pullSegmentCaps(const Segments& segments);
     // Triangle and quad meshes: polygons of `corners` vertices (3 or 4), quads split into two triangles.
     Shape buildPolygonMesh(int corners);
 
