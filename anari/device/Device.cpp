@@ -8,6 +8,7 @@
 #include "anari/device/array/Array.h"
 #include "anari/device/frame/Frame.h"
 #include "anari/device/object/Object.h"
+#include "core/render/Traversal.h"
 
 #include <cstdio>
 #include <cstring>
@@ -216,6 +217,13 @@ void Device::setDeviceParameter(const char* name, ANARIDataType type, const void
         callbackSet_ = true;
     } else if (key == "mpiCommunicator" && type == ANARI_VOID_POINTER) {
         state_.setCommunicatorHandle(mem);  // the address of the application's MPI_Comm
+    } else if (key == "traversal" && type == ANARI_STRING) {
+        const char* value = static_cast<const char*>(mem);
+        if (const auto traversal = core::parseTraversal(value)) state_.setTraversal(*traversal);
+        else
+            state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                          std::string("device parameter 'traversal' is '") + value + "'; use one of " +
+                              core::kTraversalNames + " (kept: " + core::traversalName(state_.traversal()) + ")");
     } else if (key == "pointer_to_mpi_communicator" && type == ANARI_UINT64) {
         const void* communicator = nullptr;  // the same address, as a number
         std::memcpy(&communicator, mem, sizeof(communicator));

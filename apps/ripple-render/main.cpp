@@ -42,6 +42,7 @@ struct Options {
     std::string size = "512x512";
     uint32_t spp = 16;
     std::string library = "ripple";
+    std::string traversal;              // the device parameter "traversal"; empty: the device's default
     uint32_t maxPathLength = 5;
     uint32_t seed = 0;                  // the renderer's "seed": a reference must not share the image's samples
     std::optional<int> camera;
@@ -236,6 +237,10 @@ void openDevice(const Options& options, StatusLog& log, Session& s) {
         throw std::runtime_error("cannot load the ANARI library '" + options.library + "' (the loader's reason is above)");
     s.device = anariNewDevice(s.library, "default");
     if (!s.device) throw std::runtime_error("the ANARI library '" + options.library + "' created no device");
+    if (!options.traversal.empty()) {
+        anariSetParameter(s.device, s.device, "traversal", ANARI_STRING, options.traversal.c_str());
+        anariCommitParameters(s.device, s.device);
+    }
 }
 
 // The scene on the device: under mpirun each rank imports only its share of the file, so that no rank holds
@@ -447,6 +452,7 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
             {"--camera", options.camera ? uint64_t(int64_t(*options.camera) + 2) : 0, false},
             {"--ambient", options.ambient ? number(*options.ambient) : 0, false},
             {"--partition", optionHash(options.partition), false},
+            {"--traversal", optionHash(options.traversal), false},
             {"--library", optionHash(options.library), false},
             {"--reference", optionHash(options.reference), false},
             {"--report", optionHash(options.report), false}};
@@ -479,6 +485,10 @@ int main(int argc, char** argv) {
     app.add_option("--report", options.report,
                    "write the convergence series to this CSV and its log-log plot beside it (.png)");
     app.add_option("--library", options.library, "ANARI library name (loads libanari_library_NAME.so)")->capture_default_str();
+    app.add_option("--traversal", options.traversal,
+                   "ray traversal back-end, the device parameter 'traversal': auto (ray queries where the device "
+                   "has them), software or rayQuery (default: the device's, which RIPPLE_TRAVERSAL may set)")
+        ->check(CLI::IsMember({"auto", "software", "rayQuery"}));
     app.add_option("--max-path-length", options.maxPathLength, "surface interactions per path")
         ->check(CLI::Range(1u, 1024u))->capture_default_str();
     app.add_option("--seed", options.seed,

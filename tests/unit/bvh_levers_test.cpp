@@ -188,7 +188,7 @@ TEST_CASE("BVH4 and single-level BVH2 kernels give the renderer's hits on random
     rays.insert(rays.end(), random.begin(), random.end());
 
     core::Scene scene(testContext(), description);
-    core::TraceKernels bvh2Kernels(testContext());
+    core::TraceKernels bvh2Kernels(testContext(), {.traversal = core::Traversal::Software});
     const auto expectedClosest = bvh2Kernels.traceClosest(scene, rays);
     const auto expectedAny = bvh2Kernels.traceAny(scene, rays);
 

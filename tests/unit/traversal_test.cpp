@@ -188,19 +188,19 @@ TEST_CASE("traversal longer than the per-invocation loop cap: resumed exactly, o
 
     core::Scene gpuScene(testContext(), scene);
     {
-        core::TraceKernels resumed(testContext(), {.resumeRounds = 12});
+        core::TraceKernels resumed(testContext(), {.resumeRounds = 12, .traversal = core::Traversal::Software});
         const Agreement a = compareClosest(scene, rays, resumed.traceClosest(gpuScene, rays), ref);
         CHECK(a.exact == rays.size());
         const auto occluded = resumed.traceAny(gpuScene, rays);
         CHECK(std::count(occluded.begin(), occluded.end(), gpu::HIT_FOUND) == 64);
     }
     {
-        core::TraceKernels unresumed(testContext(), {.resumeRounds = 0});
+        core::TraceKernels unresumed(testContext(), {.resumeRounds = 0, .traversal = core::Traversal::Software});
         const Agreement a = compareClosest(scene, rays, unresumed.traceClosest(gpuScene, rays), ref);
         CHECK(a.flagged == rays.size());
     }
     {
-        core::TraceKernels cramped(testContext(), {.resumeRounds = 12, .resumeCapacity = 16});
+        core::TraceKernels cramped(testContext(), {.resumeRounds = 12, .resumeCapacity = 16, .traversal = core::Traversal::Software});
         const Agreement a = compareClosest(scene, rays, cramped.traceClosest(gpuScene, rays), ref);
         CHECK(a.flagged >= rays.size() - 16);
         CHECK(a.flagged < rays.size());
@@ -211,8 +211,8 @@ TEST_CASE("traversal longer than the per-invocation loop cap: resumed exactly, o
         const auto soup = test::sceneOf(test::randomTriangleSoup(3000, 22));
         const auto soupRays = test::raysTowardPoints(soup, 2048, 23);
         core::Scene soupScene(testContext(), soup);
-        core::TraceKernels tiny(testContext(), {.stepBudget = core::kMinStepBudget, .resumeRounds = 400});
-        core::TraceKernels normal(testContext());
+        core::TraceKernels tiny(testContext(), {.stepBudget = core::kMinStepBudget, .resumeRounds = 400, .traversal = core::Traversal::Software});
+        core::TraceKernels normal(testContext(), {.traversal = core::Traversal::Software});
         const auto a = tiny.traceClosest(soupScene, soupRays);
         const auto b = normal.traceClosest(soupScene, soupRays);
         uint64_t same = 0;
@@ -251,13 +251,13 @@ TEST_CASE("several instances at the smallest step budget: resumed exactly, or fl
     // Costly node visits make leaves of up to eight triangles, so most parks happen inside a leaf.
     core::Scene gpuScene(testContext(), scene, bvh::BuildOptions{.traversalCost = 64.0f});
     REQUIRE(gpuScene.instanceCount() == 3);
-    core::TraceKernels normal(testContext());
+    core::TraceKernels normal(testContext(), {.traversal = core::Traversal::Software});
     const auto expected = normal.traceClosest(gpuScene, rays);
     const Agreement unbudgeted = compareClosest(scene, rays, expected, ref);
     CHECK(unbudgeted.wrong + unbudgeted.flagged == 0);
     CHECK(unbudgeted.exact > rays.size() / 2);
     // Parking and resuming change no arithmetic: the hits must be those of the unbudgeted trace, bit for bit.
-    core::TraceKernels tiny(testContext(), {.stepBudget = core::kMinStepBudget, .resumeRounds = 100});
+    core::TraceKernels tiny(testContext(), {.stepBudget = core::kMinStepBudget, .resumeRounds = 100, .traversal = core::Traversal::Software});
     const auto resumed = tiny.traceClosest(gpuScene, rays);
     uint64_t same = 0;
     for (size_t i = 0; i < rays.size(); ++i)
@@ -269,7 +269,7 @@ TEST_CASE("several instances at the smallest step budget: resumed exactly, or fl
     const auto occludedResumed = tiny.traceAny(gpuScene, rays);
     CHECK(std::equal(occludedExpected.begin(), occludedExpected.end(), occludedResumed.begin()));
 
-    core::TraceKernels unresumed(testContext(), {.stepBudget = core::kMinStepBudget, .resumeRounds = 0});
+    core::TraceKernels unresumed(testContext(), {.stepBudget = core::kMinStepBudget, .resumeRounds = 0, .traversal = core::Traversal::Software});
     const Agreement cut = compareClosest(scene, rays, unresumed.traceClosest(gpuScene, rays), ref);
     CHECK(cut.flagged > rays.size() / 8);  // 236 of 1,024 on lavapipe: the budget really cuts traversals
     CHECK(cut.wrong == 0);

@@ -272,11 +272,14 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
     vk::Context& context = state().vulkan();
     const uint64_t validationBefore = context.validationMessageCount();
     core::RayExchange* exchange = distribution_->exchange();
-    if (!tracer_) {
+    const core::Traversal traversal = state().traversal();  // the device parameter "traversal"
+    if (!tracer_ || tracerTraversal_ != traversal) {
         core::PathTracerOptions options;
         options.exchange = exchange;
-        tracer_ = std::make_unique<core::PathTracer>(context, core::TraceOptions{}, options);
+        tracer_ = std::make_unique<core::PathTracer>(context, core::TraceOptions{.traversal = traversal}, options);
+        tracerTraversal_ = traversal;
     }
+    sync_.setTraversal(traversal);
 
     bool rebuilt = false;
     const core::Scene& scene = distribution_->scene(sync_, context, rebuilt);

@@ -116,6 +116,7 @@ private:
     std::unique_ptr<FrameDistribution> distribution_;  // made at the first render (the communicator is known then)
     SceneSync sync_;                            // used by the API thread, then the worker, never both at once
     std::unique_ptr<core::PathTracer> tracer_;  // worker only
+    core::Traversal tracerTraversal_ = core::Traversal::Auto;  // what tracer_ was made with
     core::FrameChannels tracerChannels_;        // worker only: what the tracer's buffers were sized for
     std::thread worker_;
     std::atomic<bool> finished_{true};

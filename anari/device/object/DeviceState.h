@@ -14,6 +14,7 @@
 #include <string>
 
 namespace ripple::vk { class Context; }
+namespace ripple::core { enum class Traversal; }  // core/render/Traversal.h
 
 namespace ripple::device {
 
@@ -52,6 +53,10 @@ public:
     // Created on first use, which is always inside a collective call.
     void setCommunicatorHandle(const void* mpiComm);
     const mpi::Communicator& communicator();
+    // The device parameter "traversal" (core::Traversal; Auto when unset, which defers to
+    // RIPPLE_TRAVERSAL): what the frames' tracers and scenes are built for.
+    void setTraversal(core::Traversal traversal) { traversal_ = traversal; }
+    core::Traversal traversal() const { return traversal_.load(); }
     // Creation order of frames and worlds: data-parallel ANARI identifies them by it across ranks.
     uint64_t nextFrameIndex() { return frames_++; }
     uint64_t nextWorldIndex() { return worlds_++; }
@@ -75,6 +80,7 @@ private:
     std::unique_ptr<mpi::Communicator> communicator_;
     std::atomic<uint64_t> frames_{0};
     std::atomic<uint64_t> worlds_{0};
+    std::atomic<core::Traversal> traversal_{};  // Auto
 };
 
 }  // namespace ripple::device

@@ -31,6 +31,8 @@ public:
     // Worker thread, with the GPU to itself. The core scene of the latest description, built when update()
     // found a change; `rebuilt` tells the caller to pass the scene's report on.
     const core::Scene& scene(const vk::Context& context, bool& rebuilt);
+    // The traversal back-end the scene is built for (the device's "traversal"); a change rebuilds it.
+    void setTraversal(core::Traversal traversal);
     // Data-parallel: this rank's own lights as of the latest update(), and the lights of all ranks that
     // replace them in the scene (mpi/LightGather), with the whole world's radius for picking lights by
     // power and its largest |coordinate| for ray offsets. Returns whether that changed the scene.
@@ -48,6 +50,7 @@ private:
     const World* world_ = nullptr;
     uint64_t newestStamp_ = 0;
     bool pending_ = false;  // the description changed after the scene was built
+    core::Traversal traversal_ = core::Traversal::Auto;
     core::SceneDescription description_;
     std::vector<core::Light> localLights_;
     std::unique_ptr<core::Scene> scene_;
