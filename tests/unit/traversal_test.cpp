@@ -274,3 +274,24 @@ TEST_CASE("several instances at the smallest step budget: resumed exactly, or fl
     CHECK(cut.flagged > rays.size() / 8);  // 236 of 1,024 on lavapipe: the budget really cuts traversals
     CHECK(cut.wrong == 0);
 }
+
+// A device without ray queries (or a context that leaves them off): Auto is the software traversal, and
+// asking for ray queries fails at once, naming what is missing, instead of tracing wrongly later.
+TEST_CASE("traversal choice on a device without ray queries: Auto is software, RayQuery a clear error") {
+    vk::Context plain(vk::ContextOptions{.validation = true, .printDeviceChoice = false, .rayQuery = false});
+    CHECK_FALSE(plain.supportsRayQuery());
+    CHECK(plain.rayQueryMissing().find("ContextOptions::rayQuery") != std::string::npos);
+    core::TraceKernels kernels(plain, {.traversal = core::Traversal::Software});
+    CHECK(kernels.traversal() == core::Traversal::Software);
+    CHECK_THROWS_WITH_AS(core::TraceKernels(plain, {.traversal = core::Traversal::RayQuery}),
+                         doctest::Contains("lacks"), std::runtime_error);
+    CHECK_THROWS_AS(core::Scene(plain, test::sceneOf(test::randomTriangleSoup(10, 1)), {}, nullptr,
+                                core::Traversal::RayQuery),
+                    std::runtime_error);
+    core::Scene scene(plain, test::sceneOf(test::randomTriangleSoup(10, 1)), {}, nullptr, core::Traversal::Software);
+    CHECK(scene.traversal() == core::Traversal::Software);
+    CHECK(scene.report().accelerationStructureBytes == 0);
+    CHECK(core::parseTraversal("rayQuery") == core::Traversal::RayQuery);
+    CHECK_FALSE(core::parseTraversal("hardware").has_value());
+    CHECK(plain.validationMessageCount() == 0);
+}
