@@ -134,11 +134,11 @@ void printTables(std::ostream& out, const RunInfo& info, const std::vector<Scene
         << (info.embreeVersion.empty() ? "Secondary rays start from Ripple's primary hits (--no-embree).\n\n"
                                        : "Secondary rays start from Embree's primary hits (the reference).\n\n");
 
-    out << format("%-11s %11s %26s %10s %19s\n", "scene", "triangles", "build ms Ripple (BLAS part)", "Embree",
-                  "Mtri/s Ripple / E");
+    out << format("%-11s %-9s %11s %26s %10s %19s %12s\n", "scene", "back-end", "triangles",
+                  "build ms Ripple (BLAS part)", "Embree", "Mtri/s Ripple / E", "AS Mprim/s");
     for (const SceneResult& s : scenes) {
         if (s.status != "ok") {
-            out << format("%-11s %s: %s\n", s.name.c_str(), s.status.c_str(), s.message.c_str());
+            out << format("%-11s %-9s %s: %s\n", s.name.c_str(), s.backend.c_str(), s.status.c_str(), s.message.c_str());
             continue;
         }
         const double rippleWall = medianOf(s.rippleBuild.runs).wall;
@@ -146,13 +146,19 @@ void printTables(std::ostream& out, const RunInfo& info, const std::vector<Scene
         const std::string ripple = s.rippleBuild.ran
             ? format("%.1f (%.1f)", 1e3 * rippleWall, 1e3 * median(s.rippleBuild.bvhSeconds)) : std::string("-");
         const double tris = double(s.triangles);
-        out << format("%-11s %11s %26s %10s %8s / %-8s\n", s.name.c_str(), withCommas(s.triangles).c_str(),
-                      ripple.c_str(), number(s.embreeBuild.ran, 1e3 * embreeWall, "%.1f").c_str(),
+        // The BVH build rate (whole Scene construction) next to the acceleration-structure build rate
+        // (host setup, device build and wait; rayQuery back-end only).
+        const bool as = !s.rippleBuild.asSeconds.empty();
+        out << format("%-11s %-9s %11s %26s %10s %8s / %-8s %12s\n", s.name.c_str(), s.backend.c_str(),
+                      withCommas(s.triangles).c_str(), ripple.c_str(),
+                      number(s.embreeBuild.ran, 1e3 * embreeWall, "%.1f").c_str(),
                       number(s.rippleBuild.ran, perSecond(tris, rippleWall) * 1e-6).c_str(),
-                      number(s.embreeBuild.ran, perSecond(tris, embreeWall) * 1e-6).c_str());
+                      number(s.embreeBuild.ran, perSecond(tris, embreeWall) * 1e-6).c_str(),
+                      number(as, as ? perSecond(tris, median(s.rippleBuild.asSeconds)) * 1e-6 : 0.0).c_str());
     }
 
-    out << format("\n%-11s %-8s %10s %19s %19s %9s %9s %6s %7s\n", "scene", "rays", "count", "Mrays/s wall R / E",
+    out << format("\n%-11s %-9s %-8s %10s %19s %19s %9s %9s %6s %7s\n", "scene", "back-end", "rays", "count",
+                  "Mrays/s wall R / E",
                   "Mrays/CPU-s R / E", "R/E CPU", "agree %", "ties", "flagged");
     for (const SceneResult& s : scenes) {
         for (const KindResult& k : s.kinds) {
@@ -160,7 +166,8 @@ void printTables(std::ostream& out, const RunInfo& info, const std::vector<Scene
             const double n = double(k.rays);
             const double rCpu = perSecond(n, r.cpu), eCpu = perSecond(n, e.cpu);
             const bool both = k.ripple.ran && k.embree.ran;
-            out << format("%-11s %-8s %10s %8s / %-8s %8s / %-8s %9s %9s %6s %7s\n", s.name.c_str(), k.kind.c_str(),
+            out << format("%-11s %-9s %-8s %10s %8s / %-8s %8s / %-8s %9s %9s %6s %7s\n", s.name.c_str(),
+                          s.backend.c_str(), k.kind.c_str(),
                           withCommas(k.rays).c_str(), number(k.ripple.ran, perSecond(n, r.wall) * 1e-6).c_str(),
                           number(k.embree.ran, perSecond(n, e.wall) * 1e-6).c_str(),
                           number(k.ripple.ran, rCpu * 1e-6).c_str(), number(k.embree.ran, eCpu * 1e-6).c_str(),
@@ -206,6 +213,7 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
     for (const SceneResult& s : scenes) {
         j.open(nullptr, '{');
         j.value("name", s.name);
+        j.value("backend", s.backend);
         j.value("source", s.source);
         j.value("status", s.status);
         j.value("message", s.message);
@@ -219,6 +227,11 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
             for (double b : s.rippleBuild.bvhSeconds) j.value(nullptr, b);
             j.close(']');
             j.value("tlasSeconds", s.rippleTlasSeconds);
+            if (!s.rippleBuild.asSeconds.empty()) {
+                const double as = median(s.rippleBuild.asSeconds);
+                j.value("accelerationStructureSecondsMedian", as);
+                j.value("accelerationStructureMprimPerSecond", as > 0.0 ? double(s.triangles) / as * 1e-6 : 0.0);
+            }
             j.value("trianglesSkipped", s.rippleTrianglesSkipped);
             j.value("gpuBytes", s.rippleGpuBytes);
             if (s.bvh4Nodes) {

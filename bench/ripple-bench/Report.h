@@ -34,10 +34,12 @@ struct BuildResult {
     bool ran = false;
     std::vector<Sample> runs;        // wall and CPU of each whole construction, warm-up excluded
     std::vector<double> bvhSeconds;  // Ripple: SceneReport::blasBuildSeconds of each run
+    std::vector<double> asSeconds;   // Ripple, rayQuery back-end: SceneReport::accelerationStructureSeconds
 };
 
 struct SceneResult {
     std::string name;
+    std::string backend = "software";  // Ripple's traversal back-end (--backend): "software" or "rayQuery"
     std::string source;              // the glTF path, or "generated"
     std::string status = "ok";       // "ok", "skipped" or "failed"
     std::string message;             // why it was skipped or failed

@@ -33,6 +33,8 @@ RippleTracer::RippleTracer(const core::TraceOptions& options, const Levers& leve
     if (levers.packetTraversal && levers.bvhWidth == 2 && !levers.singleLevel)
         throw std::invalid_argument("--traversal packet is the single-level kernel's (--bvh-width 4 or "
                                     "--single-level); the renderer's kernel traverses one ray per lane");
+    if (kernels_.traversal() == core::Traversal::RayQuery && (levers.bvhWidth != 2 || levers.singleLevel))
+        throw std::invalid_argument("--bvh-width 4 and --single-level choose software kernels; use --backend software");
     if (levers.trianglesOnly) kernels_.useFeatures(gpu::FEATURE_TRIANGLES);
 }
 
@@ -44,7 +46,9 @@ Sample RippleTracer::build(const core::TriangleMesh& mesh) {
     core::SceneDescription description;
     description.meshes.push_back(mesh);  // copied outside the timed part
     description.instances.push_back(core::InstanceDescription{});
-    const Sample s = measure([&] { scene_ = std::make_unique<core::Scene>(context_, description); });
+    const Sample s = measure([&] {
+        scene_ = std::make_unique<core::Scene>(context_, description, bvh::BuildOptions{}, nullptr, kernels_.traversal());
+    });
     // Untimed here: its BVH2 build and collapse are reported on their own (Bvh4Mesh's timers).
     if (levers_.bvhWidth == 4 || levers_.singleLevel)
         bvh4_ = std::make_unique<bvh::Bvh4Mesh>(

@@ -45,6 +45,8 @@ public:
 
     const std::string& deviceName() const { return context_.deviceName(); }
     const std::string& driverVersion() const { return context_.driverVersion(); }
+    // The back-end TraceOptions::traversal resolved to; scenes are built for it.
+    core::Traversal traversal() const { return kernels_.traversal(); }
 
     // One mesh, one identity instance. Returns the time of the core::Scene construction (validation, BVH
     // builds, upload); report().blasBuildSeconds is the BVH part of it.

@@ -44,6 +44,8 @@ void buildBoth(const core::TriangleMesh& mesh, const std::string& name, uint32_t
     for (uint32_t r = 0; r < repeat; ++r) {
         result.rippleBuild.runs.push_back(tracers.ripple.build(mesh));
         result.rippleBuild.bvhSeconds.push_back(tracers.ripple.report().blasBuildSeconds);
+        if (tracers.ripple.traversal() == core::Traversal::RayQuery)
+            result.rippleBuild.asSeconds.push_back(tracers.ripple.report().accelerationStructureSeconds);
     }
     result.rippleBuild.ran = true;
     const core::SceneReport& report = tracers.ripple.report();

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #ifndef RIPPLE_DATA_DIR
@@ -39,6 +40,7 @@ struct Options {
     // The renderer specialises its kernels for the geometry kinds a scene has (FeatureSet), so the bench
     // measures the same by default; "all" is the unspecialised kernel the first measurements used.
     std::string features = "triangles";
+    std::string backend = "all";
     uint32_t width = 0, height = 0;
 };
 
@@ -83,6 +85,11 @@ bool parseOptions(int argc, char** argv, Options& o, int& exitCode) {
                    "Two-level kernel: all geometry kinds' tests, or specialised for triangles as the renderer "
                    "specialises it for a triangle-only scene")
         ->check(CLI::IsMember({"all", "triangles"}))
+        ->capture_default_str();
+    app.add_option("--backend", o.backend,
+                   "Ripple's traversal back-end: its own BVH4 kernels (software), ray queries over Vulkan "
+                   "acceleration structures (rayQuery), or each in turn (all: rayQuery only where the device has it)")
+        ->check(CLI::IsMember({"software", "rayQuery", "all"}))
         ->capture_default_str();
     app.add_option("--json", o.json, "Where to write all numbers as JSON")->capture_default_str();
     app.add_flag("--quick", o.quick, "Smoke run: 256x192 rays and one timed run (unless --size/--repeat say)");
@@ -168,19 +175,35 @@ int main(int argc, char** argv) {
                             .compressedNodes = options.nodes == "compressed",
                             .packetTraversal = options.traversal == "packet",
                             .mortonOrder = options.rayOrder == "morton"};
-        RippleTracer ripple(traceOptions, levers);
-        std::cerr << "[ripple-bench] Vulkan device: " << ripple.deviceName() << ", driver " << ripple.driverVersion() << "\n";
+        std::vector<core::Traversal> backends;
+        if (options.backend != "rayQuery") backends.push_back(core::Traversal::Software);
+        if (options.backend == "rayQuery") backends.push_back(core::Traversal::RayQuery);
+        if (options.backend == "all") {
+            const vk::Context probe(vk::ContextOptions{.printDeviceChoice = false});
+            if (probe.supportsRayQuery()) backends.push_back(core::Traversal::RayQuery);
+            else std::cerr << "[ripple-bench] no ray queries on " << probe.deviceName() << " (lacks "
+                           << probe.rayQueryMissing() << "): software back-end only\n";
+        }
         std::unique_ptr<EmbreeTracer> embree;
         if (!options.noEmbree) embree = std::make_unique<EmbreeTracer>();
 
+        // One tracer (context, kernels) per back-end in turn; each runs every scene, Embree beside it.
         const SceneSettings settings{options.dataDir, options.width, options.height, options.repeat};
         std::vector<SceneResult> results;
-        for (const std::string& name : options.scenes)
-            results.push_back(runScene(name, settings, Tracers{ripple, embree.get()}));
-
-        const RunInfo info = describeRun(options, ripple);
-        printTables(std::cout, info, results);
-        writeJson(options.json, info, results);
+        std::optional<RunInfo> info;
+        for (core::Traversal backend : backends) {
+            traceOptions.traversal = backend;
+            RippleTracer ripple(traceOptions, levers);
+            std::cerr << "[ripple-bench] Vulkan device: " << ripple.deviceName() << ", driver "
+                      << ripple.driverVersion() << ", back-end " << core::traversalName(ripple.traversal()) << "\n";
+            for (const std::string& name : options.scenes) {
+                results.push_back(runScene(name, settings, Tracers{ripple, embree.get()}));
+                results.back().backend = core::traversalName(ripple.traversal());
+            }
+            if (!info) info = describeRun(options, ripple);
+        }
+        printTables(std::cout, *info, results);
+        writeJson(options.json, *info, results);
         std::cerr << "[ripple-bench] wrote " << options.json << "\n";
 
         for (const SceneResult& r : results)
