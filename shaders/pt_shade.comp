@@ -16,6 +16,8 @@
 
 // Russian roulette starts once a path has had this many surface interactions.
 const uint ROULETTE_FROM_DEPTH = 3u;
+// The isotropic phase function, and the pdf of sampling it uniformly over the sphere.
+const float ISOTROPIC_PHASE = 1.0 / (4.0 * PI);
 
 SurfaceMaterial surfaceMaterial(SurfaceRecord r, SceneDesc scene) {
     SurfaceMaterial m;
@@ -60,8 +62,11 @@ void appendShadow(Ray ray, vec3 contribution, uint pixel) {
 // Next-event estimation: one light picked in proportion to power, its contribution MIS-weighted against
 // BSDF sampling (weight 1 for delta lights, and where the path ends here so no BSDF ray will follow), as a
 // shadow request.
+// In a medium (m.kind MATERIAL_VOLUME) the BSDF is the isotropic phase function and the shadow ray starts at
+// the collision itself.
 void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
                     vec3 wo, vec3 throughput, uint pixel, vec4 u, bool lastVertex) {
+    bool medium = m.kind == MATERIAL_VOLUME;
     if (scene.lightCount == 0u || !(scene.lightPowerTotal > 0.0)) return;
     LightRecord light = LightsRef(scene.lights).lights[pickLight(scene, u.x)];
     float selection = light.emission.w;
@@ -70,14 +75,14 @@ void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 p
     bool delta = ls.pdf == 0.0;
     if (!delta && f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY && !lastVertex) return;
     float side = dot(ls.direction, geometricNormal);
-    if (side == 0.0 || (side < 0.0 && m.transmission == 0.0)) return;
-    float bsdfPdf;
-    vec3 fCos = evalBsdf(m, n, wo, ls.direction, bsdfPdf);
+    if (!medium && (side == 0.0 || (side < 0.0 && m.transmission == 0.0))) return;
+    float bsdfPdf = ISOTROPIC_PHASE;
+    vec3 fCos = medium ? m.baseColor * ISOTROPIC_PHASE : evalBsdf(m, n, wo, ls.direction, bsdfPdf);
     float w = delta || lastVertex || f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 1.0 : misWeight(selection * ls.pdf, bsdfPdf);
     vec3 contribution = clamped(f, throughput * fCos * ls.incident * (w / selection));
     // Stop just short of the light, so geometry at the light itself does not shadow it.
     float tmax = isinf(ls.distance) ? INFINITY : ls.distance * (1.0 - 1e-4);
-    vec3 origin = offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
+    vec3 origin = medium ? position : offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
     if (maxComponent(contribution) > 0.0) appendShadow(Ray(vec4(origin, 0.0), vec4(ls.direction, tmax)), contribution, pixel);
 }
 
@@ -142,11 +147,18 @@ void main() {
     vec3 wi;
     vec3 weight;
     float pdf;
-    if (!sampleBsdf(m, n, wo, uBsdf.xyz, wi, weight, pdf)) return;
+    bool medium = m.kind == MATERIAL_VOLUME;
+    if (medium) {  // isotropic scattering: phase / pdf = 1, so the weight is the albedo
+        wi = sampleUniformSphere(uBsdf.yz);
+        weight = m.baseColor;
+        pdf = ISOTROPIC_PHASE;
+    } else if (!sampleBsdf(m, n, wo, uBsdf.xyz, wi, weight, pdf)) {
+        return;
+    }
     float side = dot(wi, geometricNormal);
     // Below the true surface without transmission, or a refraction that the true surface reflects: the
     // path ends.
-    if (side == 0.0 || (side < 0.0) != (dot(wi, n) < 0.0)) return;
+    if (!medium && (side == 0.0 || (side < 0.0) != (dot(wi, n) < 0.0))) return;
     vec3 throughput = path.throughput.rgb * weight;
     if (depth >= ROULETTE_FROM_DEPTH) {
         float survive = min(maxComponent(throughput), 0.95);
@@ -154,7 +166,7 @@ void main() {
         throughput /= survive;
     }
     if (!(maxComponent(throughput) > 0.0)) return;
-    vec3 origin = offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
+    vec3 origin = medium ? position : offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
     appendPath(Ray(vec4(origin, 0.0), vec4(wi, INFINITY)),
                PathState(vec4(throughput, 0.0), path.pixel, depth, path.flags & ~PATH_FLAG_CAMERA, pdf));
 }

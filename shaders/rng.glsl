@@ -23,6 +23,8 @@ uvec4 pcg4d(uvec4 v) {
 const uint RNG_CAMERA = 0u;     // pixel jitter (xy)
 const uint RNG_LIGHT = 1u;      // light choice (x), point on the light (yz), opacity (w)
 const uint RNG_BSDF = 2u;       // lobe choice (x), direction (yz), Russian roulette (w)
+const uint RNG_VOLUME = 3u;     // free-flight sampling: a stream (volume.glsl), counter in the high bits
+const uint RNG_VOLUME_SHADOW = 4u; // ratio tracking of shadow rays: a stream likewise
 
 // Four uniform numbers in [0, 1), 24 bits each (so 1.0 is never returned).
 vec4 random4(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {

@@ -34,6 +34,14 @@ vec3 sampleCosineHemisphere(vec2 u) {
     return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - u.x)));
 }
 
+// Uniform over the unit sphere (pdf 1 / 4 pi).
+vec3 sampleUniformSphere(vec2 u) {
+    float z = 1.0 - 2.0 * u.x;
+    float r = sqrt(max(0.0, 1.0 - z * z));
+    float phi = 2.0 * PI * u.y;
+    return vec3(r * cos(phi), r * sin(phi), z);
+}
+
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 float maxComponent(vec3 c) { return max(c.x, max(c.y, c.z)); }

@@ -15,6 +15,8 @@
 #include "shaders/pt_resolve.spv.h"
 #include "shaders/pt_shade.spv.h"
 #include "shaders/pt_shadow_resolve.spv.h"
+#include "shaders/pt_shadow_volume.spv.h"
+#include "shaders/pt_volume.spv.h"
 #include "shaders/pt_surface.spv.h"
 #include "shaders/shared/path.h"
 
@@ -59,6 +61,7 @@ struct PathTracer::Impl {
     PathTracerOptions options;
     TraceKernels trace;
     vk::ComputePipeline generate, surface, shade, shadowResolve, accumulate, resolve, queueAdvance;
+    vk::ComputePipeline volume, shadowVolume;                       // frames whose world has volumes
     vk::Buffer frame, counters;                                     // FrameConstants, PathCounters
     vk::Buffer sampleRadiance, accumulation, sampleCount, depth, color;  // per pixel
     Queue queues[2];
@@ -86,6 +89,8 @@ struct PathTracer::Impl {
         shadowResolve = vk::ComputePipeline(ctx, shaders::pt_shadow_resolve, "pt_shadow_resolve", bytes, constants);
         accumulate = vk::ComputePipeline(ctx, shaders::pt_accumulate, "pt_accumulate", bytes, constants);
         resolve = vk::ComputePipeline(ctx, shaders::pt_resolve, "pt_resolve", bytes, constants);
+        volume = vk::ComputePipeline(ctx, shaders::pt_volume, "pt_volume", bytes, constants);
+        shadowVolume = vk::ComputePipeline(ctx, shaders::pt_shadow_volume, "pt_shadow_volume", bytes, constants);
         queueAdvance = vk::ComputePipeline(ctx, shaders::pt_queue_advance, "pt_queue_advance",
                                            static_cast<uint32_t>(sizeof(gpu::QueueAdvanceParams)));
         frame = vk::Buffer(ctx, sizeof(gpu::FrameConstants), "path tracer frame constants");
@@ -203,16 +208,24 @@ struct PathTracer::Impl {
         else trace.traceAny(cmd, scene, shadowRays, occlusion, count);
     }
 
-    void resolveShadows(VkCommandBuffer cmd, const Scene& scene, uint32_t count) {
+    void resolveShadows(VkCommandBuffer cmd, const Scene& scene, uint32_t count, uint32_t bounce, uint32_t sampleIndex) {
         if (count == 0 && !lengthsOnDevice) return;
         gpu::StageParams p = params(&scene);
+        if (features.has(gpu::FEATURE_VOLUMES)) {  // transmittance of the volumes along each shadow ray
+            gpu::StageParams v = p;
+            v.shadowRays = shadowRays.address();
+            v.shadowRequests = shadowRequests.address();
+            v.bounce = bounce;
+            v.sampleIndex = sampleIndex;
+            dispatchQueue(cmd, shadowVolume, v, gpu::COUNT_SHADOW_QUEUE, count);
+        }
         p.shadowRequests = shadowRequests.address();
         p.results = occlusion.address();
         dispatchQueue(cmd, shadowResolve, p, gpu::COUNT_SHADOW_QUEUE, count);
     }
 
     // Closest hit for the current queue and the surface at each hit; shading follows the exchange.
-    void traceAndShade(VkCommandBuffer cmd, const Scene& scene, uint32_t count) {
+    void traceAndShade(VkCommandBuffer cmd, const Scene& scene, uint32_t count, uint32_t bounce, uint32_t sampleIndex) {
         if (count == 0 && !lengthsOnDevice) return;
         const Queue& in = queues[current];
         vk::computeBarrier(cmd);
@@ -224,6 +237,11 @@ struct PathTracer::Impl {
         p.hits = hits.address();
         p.surfaces = surfaces.address();
         dispatchQueue(cmd, surface, p, gpu::COUNT_PATH_QUEUE, count);
+        if (features.has(gpu::FEATURE_VOLUMES)) {  // free flight: a collision before the surface replaces it
+            p.bounce = bounce;
+            p.sampleIndex = sampleIndex;
+            dispatchQueue(cmd, volume, p, gpu::COUNT_PATH_QUEUE, count);
+        }
     }
 
     // Shading into the other queue and the shadow queue.
@@ -300,8 +318,8 @@ struct PathTracer::Impl {
                 }
                 for (; bounce < end; ++bounce) {
                     occlude(cmd, scene, 0);
-                    traceAndShade(cmd, scene, 0);
-                    resolveShadows(cmd, scene, 0);
+                    traceAndShade(cmd, scene, 0, bounce, sampleIndex);
+                    resolveShadows(cmd, scene, 0, bounce, sampleIndex);
                     shadePaths(cmd, scene, 0, bounce, sampleIndex);
                     advanceQueueLengths(cmd);
                     current = 1 - current;
@@ -325,12 +343,12 @@ struct PathTracer::Impl {
             context.submitAndWait([&](VkCommandBuffer cmd) {
                 if (bounce == 0 && paths > 0) generateRays(cmd, *wave, sampleIndex);
                 occlude(cmd, scene, shadows);
-                traceAndShade(cmd, scene, paths);
+                traceAndShade(cmd, scene, paths, bounce, sampleIndex);
                 hostReadBarrier(cmd);
             });
             exchangeRays(scene, paths, shadows);
             context.submitAndWait([&](VkCommandBuffer cmd) {
-                resolveShadows(cmd, scene, shadows);
+                resolveShadows(cmd, scene, shadows, bounce, sampleIndex);
                 shadePaths(cmd, scene, paths, bounce, sampleIndex);
                 hostReadBarrier(cmd);
             });

@@ -6,6 +6,7 @@
 #include "shaders/shared/path.h"
 #include "shaders/shared/ray.h"
 #include "shaders/shared/scene.h"
+#include "shaders/shared/volume.h"
 
 #include <cstddef>
 
@@ -39,7 +40,10 @@ static_assert(offsetof(GeometryRecord, attributeOffset) == 32);
 static_assert(offsetof(GeometryRecord, trianglesPerPrimitive) == 28);
 static_assert(sizeof(ConePrim) == 48);
 static_assert(offsetof(ConePrim, primId) == 32);
-static_assert(sizeof(SceneDesc) == 168);
+static_assert(sizeof(SceneDesc) == 184);
+static_assert(offsetof(SceneDesc, volumeData) == 176);
+static_assert(sizeof(VolumeRecord) == 128);
+static_assert(offsetof(VolumeRecord, dimX) == 80);
 static_assert(offsetof(SceneDesc, accelerationStructure) == 160);
 static_assert(offsetof(SceneDesc, originUnit) == 136);
 static_assert(offsetof(SceneDesc, lightPowerTotal) == 144);

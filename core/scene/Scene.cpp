@@ -7,6 +7,7 @@
 #include "core/render/FeatureSet.h"
 #include "core/scene/AccelerationStructures.h"
 #include "core/scene/ShadingTables.h"
+#include "core/scene/VolumeTable.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -297,6 +298,14 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     const bvh::Bvh tlas = bvh::buildBinnedSah(instanceBoxes, tlasOptions);
     report_.tlasBuildSeconds = secondsSince(tlasStart);
     bounds_ = tlas.bounds;
+    const VolumeTable volumes = buildVolumeTable(description.volumes);
+    report_.volumesKept = volumes.records.size();
+    report_.volumesSkipped = volumes.skipped;
+    report_.messages.insert(report_.messages.end(), volumes.messages.begin(), volumes.messages.end());
+    if (!volumes.records.empty()) {
+        bounds_.extend(volumes.bounds);
+        features_ |= gpu::FEATURE_VOLUMES;
+    }
 
     // 3. Flatten: TLAS nodes first, then each BLAS, every BVH collapsed to 4 wide (the kernels' layout);
     //    primitives in leaf order; shading data per geometry.
@@ -381,6 +390,9 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.textures = upload(textures_, shading.textures, "scene textures");
     desc.texels = upload(texels_, shading.texels, "scene texels");
     desc.lights = upload(lights_, shading.lights, "scene lights");
+    desc.volumes = upload(volumes_, volumes.records, "scene volumes");
+    desc.volumeData = upload(volumeData_, volumes.data, "scene volume data");
+    desc.volumeCount = static_cast<uint32_t>(volumes.records.size());
     desc.instanceCount = instanceCount_;
     desc.lightCount = lightCount_;
     desc.materialCount = static_cast<uint32_t>(shading.materials.size());

@@ -45,6 +45,8 @@ struct SceneReport {
     uint64_t texturesSkipped = 0;      // wrong texel count or format
     uint64_t lightsKept = 0;
     uint64_t lightsSkipped = 0;        // NaN/Inf or negative values, zero direction or area
+    uint64_t volumesKept = 0;
+    uint64_t volumesSkipped = 0;       // NaN/Inf voxels or settings, wrong value count, bad transform
     uint64_t blasBuilt = 0;
     uint64_t blasReused = 0;           // taken from `previous` (see the header comment)
     double blasBuildSeconds = 0.0;     // validation and BLAS builds (reused BLASes cost nothing)
@@ -94,7 +96,7 @@ private:
     Traversal traversal_ = Traversal::Software;
     std::unique_ptr<AccelerationStructures> accelerationStructures_;  // RayQuery only
     vk::Buffer nodes_, triangles_, spheres_, cylinders_, cones_, instances_, instanceShading_, geometries_, primSlots_,
-        vertexIndices_, attributes_, materials_, textures_, texels_, lights_, desc_;
+        vertexIndices_, attributes_, materials_, textures_, texels_, lights_, volumes_, volumeData_, desc_;
 };
 
 }  // namespace ripple::core

@@ -191,6 +191,24 @@ struct Light {
     int32_t texture = kNoTexture;         // hdri: an equirectangular Rgba32Float texture (its radiance)
 };
 
+// A structured-regular scalar field seen through a 1D transfer function (ANARI spatialField
+// "structuredRegular" inside a volume "transferFunction1D"), placed in the world by `transform`. Values are
+// cell-vertex samples: voxel (i, j, k) sits at origin + (i, j, k) * spacing in object space, so the field
+// spans origin .. origin + (dims - 1) * spacing. Opacity o means transmittance 1 - o over unitDistance
+// world units (extinction -ln(1 - o) / unitDistance); the colour is the single-scattering albedo.
+struct Volume {
+    glm::uvec3 dims{0};
+    std::vector<float> values;            // dims.x * dims.y * dims.z, x fastest
+    glm::vec3 origin{0.0f};
+    glm::vec3 spacing{1.0f};
+    bool linearFilter = true;             // false: nearest voxel
+    glm::vec2 valueRange{0.0f, 1.0f};     // maps to the ends of the colour and opacity arrays
+    std::vector<glm::vec3> colors;        // linear RGB spread evenly over the value range; empty: white
+    std::vector<float> opacities;         // likewise; empty: 1
+    float unitDistance = 1.0f;
+    glm::mat4 transform{1.0f};            // object to world; must be affine and invertible
+};
+
 struct SceneDescription {
     std::vector<TriangleMesh> meshes;
     std::vector<SphereSet> sphereSets;
@@ -200,6 +218,7 @@ struct SceneDescription {
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<Light> lights;
+    std::vector<Volume> volumes;
     // Radius of the sphere directional and hdri lights' power is measured through (their chance of being
     // picked). 0: half the diagonal of this scene's bounds. A data-parallel rank sets the whole world's.
     float lightSceneRadius = 0.0f;

@@ -8,6 +8,7 @@ RIPPLE_GPU_BEGIN
 
 RIPPLE_CONST uint MATERIAL_MATTE = 0u;
 RIPPLE_CONST uint MATERIAL_PHYSICALLY_BASED = 1u;
+RIPPLE_CONST uint MATERIAL_VOLUME = 2u;  // a SurfaceRecord only: a collision in a volume (pt_volume), isotropic scattering
 
 RIPPLE_CONST uint MATERIAL_FLAG_VERTEX_COLOR = 1u;  // the geometry's color attribute replaces baseColor
 RIPPLE_CONST uint MATERIAL_FLAG_LIGHT = 2u;         // emissive with no emission texture: its triangles are lights

@@ -121,13 +121,15 @@ struct SceneDesc {
     uint textureCount;
     uint64_t cones;           // ConePrim[]
     float originUnit;         // min(1, largest |coordinate| of the world): ray-origin offsets near 0 scale with it
-    uint pad0;
+    uint volumeCount;         // VolumeRecords in volumes
     float lightPowerTotal;    // sum of the lights' selection powers: an emissive triangle's pdf needs it
     uint testedLightCount;    // the first lights, which rays test themselves (quad, ring, hdri)
     uint bsdfTables;          // first word of the BSDF energy tables in texels (core/scene/BsdfTables.h)
     int environmentLight;     // index of the hdri light, or -1
     uint64_t accelerationStructure; // the TLAS for ray-query traversal (accelerationStructureEXT); 0 when
                                     // the scene was built without one or has no instances
+    uint64_t volumes;         // VolumeRecord[] (shared/volume.h)
+    uint64_t volumeData;      // float[]: voxels, macrocell majorants and transfer-function tables
 };
 
 RIPPLE_GPU_END

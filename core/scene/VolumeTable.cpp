@@ -1,0 +1,142 @@
+// Volume records, transfer-function tables and macrocell majorants (see VolumeTable.h).
+#include "core/scene/VolumeTable.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace ripple::core {
+
+namespace {
+
+// The array's value at x in [0, 1], linear between entries spread evenly over [0, 1].
+template <class T>
+T resampled(const std::vector<T>& values, float x) {
+    if (values.size() == 1) return values[0];
+    const float at = std::clamp(x, 0.0f, 1.0f) * float(values.size() - 1);
+    const size_t i = std::min(size_t(at), values.size() - 2);
+    const float w = at - float(i);
+    return values[i] * (1.0f - w) + values[i + 1] * w;
+}
+
+std::optional<std::string> problemOf(const Volume& v) {
+    const uint64_t voxels = uint64_t(v.dims.x) * v.dims.y * v.dims.z;
+    if (v.dims.x == 0 || v.dims.y == 0 || v.dims.z == 0) return "a dimension is 0";
+    if (voxels != v.values.size())
+        return "holds " + std::to_string(v.values.size()) + " values for " + std::to_string(v.dims.x) + "x" +
+               std::to_string(v.dims.y) + "x" + std::to_string(v.dims.z) + " voxels";
+    if (voxels > (uint64_t(1) << 31)) return "has more than 2^31 voxels";
+    for (size_t i = 0; i < v.values.size(); ++i)
+        if (!std::isfinite(v.values[i])) return "voxel " + std::to_string(i) + " is not finite";
+    if (!glm::all(glm::greaterThan(v.spacing, glm::vec3(0.0f))) || !std::isfinite(v.spacing.x + v.spacing.y + v.spacing.z))
+        return "spacing is not finite and positive";
+    if (!std::isfinite(v.origin.x + v.origin.y + v.origin.z)) return "origin is not finite";
+    if (!std::isfinite(v.valueRange.x) || !std::isfinite(v.valueRange.y)) return "valueRange is not finite";
+    if (!(v.unitDistance > 0.0f) || !std::isfinite(v.unitDistance)) return "unitDistance is not finite and positive";
+    for (const glm::vec3& c : v.colors)
+        if (!std::isfinite(c.x + c.y + c.z)) return "a colour is not finite";
+    for (float o : v.opacities)
+        if (!std::isfinite(o)) return "an opacity is not finite";
+    if (!affineAndInvertible(v.transform)) return "transform is not finite, affine and invertible";
+    return std::nullopt;
+}
+
+void storeRows(const glm::dmat4& m, gpu::vec4* rows) {
+    for (int r = 0; r < 3; ++r) rows[r] = gpu::vec4(float(m[0][r]), float(m[1][r]), float(m[2][r]), float(m[3][r]));
+}
+
+}  // namespace
+
+size_t transferTableSize(const Volume& volume) {
+    return std::max<size_t>({2, volume.colors.size(), volume.opacities.size()});
+}
+
+VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
+    VolumeTable table;
+    for (size_t index = 0; index < volumes.size(); ++index) {
+        const Volume& v = volumes[index];
+        if (const std::optional<std::string> problem = problemOf(v)) {
+            table.messages.push_back("volume " + std::to_string(index) + ": " + *problem + "; skipped");
+            ++table.skipped;
+            continue;
+        }
+        gpu::VolumeRecord record{};
+        // World -> object -> grid index space (voxel i at i).
+        const glm::dmat4 objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / glm::dvec3(v.spacing)) *
+                                        glm::translate(glm::dmat4(1.0), -glm::dvec3(v.origin));
+        storeRows(objectToGrid * glm::inverse(glm::dmat4(v.transform)), record.worldToGrid);
+        const glm::uvec3 extent = v.dims - 1u;
+        record.gridExtent = gpu::vec4(glm::vec3(extent), 0.0f);
+        const float lo = std::min(v.valueRange.x, v.valueRange.y), hi = std::max(v.valueRange.x, v.valueRange.y);
+        record.valueRange = gpu::vec4(lo, hi > lo ? 1.0f / (hi - lo) : 0.0f, 0.0f, 0.0f);
+        record.dimX = v.dims.x;
+        record.dimY = v.dims.y;
+        record.dimZ = v.dims.z;
+        record.filterMode = v.linearFilter ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
+        const glm::uvec3 macro = glm::max((extent + gpu::VOLUME_MACROCELL - 1u) / gpu::VOLUME_MACROCELL, glm::uvec3(1u));
+        record.macroX = macro.x;
+        record.macroY = macro.y;
+        record.macroZ = macro.z;
+
+        // Transfer-function table: albedo and extinction per entry.
+        const size_t entries = transferTableSize(v);
+        record.tableSize = static_cast<uint32_t>(entries);
+        record.tableOffset = static_cast<uint32_t>(table.data.size());
+        std::vector<float> extinction(entries);
+        for (size_t e = 0; e < entries; ++e) {
+            const float x = float(e) / float(entries - 1);
+            const glm::vec3 albedo = v.colors.empty() ? glm::vec3(1.0f) : glm::clamp(resampled(v.colors, x), 0.0f, 1.0f);
+            const float opacity = v.opacities.empty() ? 1.0f : std::clamp(resampled(v.opacities, x), 0.0f, gpu::VOLUME_OPACITY_CAP);
+            extinction[e] = -std::log1p(-std::min(opacity, gpu::VOLUME_OPACITY_CAP)) / v.unitDistance;
+            table.data.insert(table.data.end(), {albedo.r, albedo.g, albedo.b, extinction[e]});
+        }
+
+        record.voxelOffset = static_cast<uint32_t>(table.data.size());
+        table.data.insert(table.data.end(), v.values.begin(), v.values.end());
+
+        // Majorants: the largest extinction the table gives over the range of voxel values in each
+        // macrocell (its corners included: interpolation never leaves that range). A piecewise-linear table
+        // peaks at an end of the range or at an entry inside it.
+        record.majorantOffset = static_cast<uint32_t>(table.data.size());
+        const float scale = float(entries - 1) * record.valueRange.y;
+        auto tablePosition = [&](float value) { return std::clamp((value - lo) * scale, 0.0f, float(entries - 1)); };
+        auto extinctionAt = [&](float position) {
+            const size_t i = std::min(size_t(position), entries - 2);
+            const float w = position - float(i);
+            return extinction[i] * (1.0f - w) + extinction[i + 1] * w;
+        };
+        for (uint32_t mz = 0; mz < macro.z; ++mz)
+            for (uint32_t my = 0; my < macro.y; ++my)
+                for (uint32_t mx = 0; mx < macro.x; ++mx) {
+                    const glm::uvec3 first = glm::uvec3(mx, my, mz) * gpu::VOLUME_MACROCELL;
+                    const glm::uvec3 last = glm::min(first + gpu::VOLUME_MACROCELL, extent);
+                    float vmin = std::numeric_limits<float>::max(), vmax = -vmin;
+                    for (uint32_t z = first.z; z <= last.z; ++z)
+                        for (uint32_t y = first.y; y <= last.y; ++y)
+                            for (uint32_t x = first.x; x <= last.x; ++x) {
+                                const float value = v.values[(size_t(z) * v.dims.y + y) * v.dims.x + x];
+                                vmin = std::min(vmin, value);
+                                vmax = std::max(vmax, value);
+                            }
+                    const float p0 = tablePosition(vmin), p1 = tablePosition(vmax);
+                    float majorant = std::max(extinctionAt(p0), extinctionAt(p1));
+                    for (size_t e = size_t(std::ceil(p0)); float(e) < p1; ++e) majorant = std::max(majorant, extinction[e]);
+                    table.data.push_back(majorant * (1.0f + 1e-5f));  // float rounding on the GPU stays under it
+                }
+
+        // World bounds: the grid box's corners.
+        const glm::vec3 hiCorner = v.origin + glm::vec3(extent) * v.spacing;
+        for (int c = 0; c < 8; ++c) {
+            const glm::vec3 corner((c & 1) ? hiCorner.x : v.origin.x, (c & 2) ? hiCorner.y : v.origin.y,
+                                   (c & 4) ? hiCorner.z : v.origin.z);
+            table.bounds.extend(glm::vec3(v.transform * glm::vec4(corner, 1.0f)));
+        }
+        table.records.push_back(record);
+    }
+    return table;
+}
+
+}  // namespace ripple::core

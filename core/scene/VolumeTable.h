@@ -1,0 +1,29 @@
+// The volumes the kernels read (shaders/shared/volume.h): each valid Volume of a description becomes a
+// VolumeRecord, and its voxels, transfer-function table (albedo, extinction) and macrocell majorants are
+// appended to one float array. Volumes with bad data are skipped and reported, never uploaded.
+#pragma once
+
+#include "core/bvh/Aabb.h"
+#include "core/scene/SceneDescription.h"
+#include "shaders/shared/volume.h"
+
+#include <string>
+#include <vector>
+
+namespace ripple::core {
+
+struct VolumeTable {
+    std::vector<gpu::VolumeRecord> records;
+    std::vector<float> data;
+    bvh::Aabb bounds;                     // world box of the kept volumes
+    uint64_t skipped = 0;
+    std::vector<std::string> messages;    // one per skipped volume, naming it and the problem
+};
+
+VolumeTable buildVolumeTable(const std::vector<Volume>& volumes);
+
+// Entries of the transfer-function table for `volume`: the longer of its colour and opacity arrays, at
+// least 2 (shorter arrays are resampled linearly).
+size_t transferTableSize(const Volume& volume);
+
+}  // namespace ripple::core

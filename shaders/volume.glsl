@@ -1,0 +1,145 @@
+// Volumes (shared/volume.h): the field and its transfer function at a point, and the two estimators that
+// march a ray through a volume's macrocell grid by a 3D DDA: delta tracking (where the ray first collides,
+// for free-flight sampling) and ratio tracking (its transmittance, for shadow rays). Both are unbiased for
+// any majorant that bounds the extinction, which the macrocells do. Every step of both is one iteration of
+// ONE flat loop, counted against a budget (lavapipe silently ends a loop after 65,535 iterations); a ray that
+// spends it is reported as ran out, never given a wrong answer silently. Needs pt_common.glsl and rng.glsl.
+#ifndef RIPPLE_VOLUME_GLSL
+#define RIPPLE_VOLUME_GLSL
+
+#include "shared/volume.h"
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer VolumesRef { VolumeRecord volumes[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VolumeDataRef { float values[]; };
+
+const uint VOLUME_STEP_BUDGET = 20000u;  // DDA steps plus tentative collisions per ray and volume
+
+// Random numbers for the tracking loops: a stream keyed like random4 (rng.glsl), 4 numbers per hash.
+struct VolumeRng {
+    uvec4 key;
+    uint counter;
+    uint used;
+    vec4 numbers;
+};
+
+VolumeRng volumeRng(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {
+    return VolumeRng(uvec4(pixel, sampleIndex, (bounce << 4u) | group, seed), 0u, 4u, vec4(0.0));
+}
+
+float volumeRandom(inout VolumeRng r) {
+    if (r.used == 4u) {
+        r.numbers = vec4(pcg4d(uvec4(r.key.xy, r.key.z | (r.counter << 16u), r.key.w)) >> 8u) * (1.0 / 16777216.0);
+        ++r.counter;
+        r.used = 0u;
+    }
+    return r.numbers[r.used++];
+}
+
+float voxel(VolumeRecord v, VolumeDataRef data, uvec3 i) {
+    return data.values[v.voxelOffset + (i.z * v.dimY + i.y) * v.dimX + i.x];
+}
+
+// The field at grid-space point g (voxel i at i), clamped to the grid.
+float fieldValue(VolumeRecord v, VolumeDataRef data, vec3 g) {
+    g = clamp(g, vec3(0.0), v.gridExtent.xyz);
+    if (v.filterMode == VOLUME_FILTER_NEAREST) return voxel(v, data, uvec3(g + 0.5));
+    uvec3 last = uvec3(v.dimX - 1u, v.dimY - 1u, v.dimZ - 1u);
+    uvec3 i0 = min(uvec3(g), last);
+    uvec3 i1 = min(i0 + 1u, last);
+    vec3 w = g - vec3(i0);
+    float c00 = mix(voxel(v, data, uvec3(i0.x, i0.y, i0.z)), voxel(v, data, uvec3(i1.x, i0.y, i0.z)), w.x);
+    float c10 = mix(voxel(v, data, uvec3(i0.x, i1.y, i0.z)), voxel(v, data, uvec3(i1.x, i1.y, i0.z)), w.x);
+    float c01 = mix(voxel(v, data, uvec3(i0.x, i0.y, i1.z)), voxel(v, data, uvec3(i1.x, i0.y, i1.z)), w.x);
+    float c11 = mix(voxel(v, data, uvec3(i0.x, i1.y, i1.z)), voxel(v, data, uvec3(i1.x, i1.y, i1.z)), w.x);
+    return mix(mix(c00, c10, w.y), mix(c01, c11, w.y), w.z);
+}
+
+// (albedo rgb, extinction per world unit) of a field value, linearly interpolated in the table.
+vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
+    float x = clamp((value - v.valueRange.x) * v.valueRange.y, 0.0, 1.0) * float(v.tableSize - 1u);
+    uint i0 = min(uint(x), v.tableSize - 2u);
+    float w = x - float(i0);
+    uint at = v.tableOffset + 4u * i0;
+    vec4 a = vec4(data.values[at], data.values[at + 1u], data.values[at + 2u], data.values[at + 3u]);
+    vec4 b = vec4(data.values[at + 4u], data.values[at + 5u], data.values[at + 6u], data.values[at + 7u]);
+    return mix(a, b, w);
+}
+
+const uint TRACK_DELTA = 0u;  // stop at the first real collision
+const uint TRACK_RATIO = 1u;  // product of (1 - extinction / majorant) over tentative collisions
+
+struct TrackResult {
+    float t;             // delta: where the ray collided (tmax when it did not)
+    float transmittance; // delta: 0 at a collision, 1 without; ratio: the estimate
+    vec3 albedo;         // delta: the albedo at the collision
+    bool ranOut;         // the step budget ended the march: no answer
+};
+
+// Marches world ray origin + t * direction, t in [tmin, tmax], through volume v.
+TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 direction, float tmin, float tmax,
+                        uint mode, inout VolumeRng rng) {
+    TrackResult result = TrackResult(tmax, 1.0, vec3(0.0), false);
+    mat3x4 toGrid = mat3x4(v.worldToGrid[0], v.worldToGrid[1], v.worldToGrid[2]);
+    vec3 o = vec4(origin, 1.0) * toGrid;
+    vec3 d = vec4(direction, 0.0) * toGrid;
+    float speed = length(direction);  // world distance per unit of t
+    // The ray's extent inside the grid box.
+    vec3 inv = safeReciprocal(d);
+    vec3 ta = (vec3(0.0) - o) * inv, tb = (v.gridExtent.xyz - o) * inv;
+    float t0 = max(tmin, max(max(min(ta.x, tb.x), min(ta.y, tb.y)), min(ta.z, tb.z)));
+    float t1 = min(tmax, min(min(max(ta.x, tb.x), max(ta.y, tb.y)), max(ta.z, tb.z)));
+    if (!(t0 < t1) || !(speed > 0.0)) return result;
+
+    // DDA over macrocells, starting in the one holding the entry point.
+    ivec3 macroDims = ivec3(v.macroX, v.macroY, v.macroZ);
+    vec3 entry = o + t0 * d;
+    ivec3 cell = clamp(ivec3(floor(entry / float(VOLUME_MACROCELL))), ivec3(0), macroDims - 1);
+    ivec3 stepDir = ivec3(sign(d));
+    vec3 nextBoundary = vec3(cell + max(stepDir, ivec3(0))) * float(VOLUME_MACROCELL);
+    vec3 tNext = mix(vec3(INFINITY), (nextBoundary - o) * inv, notEqual(stepDir, ivec3(0)));
+    vec3 tDelta = abs(float(VOLUME_MACROCELL) * inv);
+    float t = t0;
+    uint cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
+    float majorant = data.values[v.majorantOffset + cellIndex] * speed;
+    for (uint steps = 0u; steps < VOLUME_STEP_BUDGET; ++steps) {
+        float tExit = min(t1, min(tNext.x, min(tNext.y, tNext.z)));
+        if (majorant > 0.0) {
+            float s = t - log(1.0 - volumeRandom(rng)) / majorant;
+            if (s < tExit) {
+                t = s;
+                vec4 medium = transferFunction(v, data, fieldValue(v, data, o + t * d));
+                float ratio = clamp(medium.w * speed / majorant, 0.0, 1.0);
+                if (mode == TRACK_RATIO) {
+                    result.transmittance *= 1.0 - ratio;
+                    if (result.transmittance <= 0.0) return result;
+                } else if (volumeRandom(rng) < ratio) {
+                    result.t = t;
+                    result.transmittance = 0.0;
+                    result.albedo = medium.rgb;
+                    return result;
+                }
+                continue;
+            }
+        }
+        // Into the next macrocell (the exponential is memoryless: the sample past the exit is dropped).
+        if (tExit >= t1) return result;
+        t = tExit;
+        if (tNext.x <= tNext.y && tNext.x <= tNext.z) {
+            cell.x += stepDir.x;
+            tNext.x += tDelta.x;
+        } else if (tNext.y <= tNext.z) {
+            cell.y += stepDir.y;
+            tNext.y += tDelta.y;
+        } else {
+            cell.z += stepDir.z;
+            tNext.z += tDelta.z;
+        }
+        if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, macroDims))) return result;
+        cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
+        majorant = data.values[v.majorantOffset + cellIndex] * speed;
+    }
+    result.ranOut = true;
+    return result;
+}
+
+#endif

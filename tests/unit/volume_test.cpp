@@ -1,0 +1,127 @@
+// Volumes against analytic answers: the transmittance of a homogeneous slab (exp(-sigma d)) and of a linear
+// extinction ramp (exp(-integral)) seen against the background by camera rays through a black absorber, at
+// extinctions from 1e-3 to 1e3 per unit; and a volumetric furnace (a white, non-absorbing medium under a
+// uniform environment of radiance 1 looks exactly like the environment). Metric: the mean over all pixels,
+// within 1% (relative) plus 4 standard errors of the Bernoulli or path noise.
+#include "tests/support/RenderHelpers.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace ripple;
+
+namespace {
+
+// A box volume filling [-1, 1]^2 x [0, depth] (x, y, z), `n` voxels per axis, all voxels `value` unless
+// ramp: value rises linearly from 0 at z = 0 to 1 at z = depth. The transfer function maps [0, 1] to
+// opacities {0, opacity} (ramp) or {opacity, opacity}, over unitDistance.
+core::Volume boxVolume(float depth, float opacity, float unitDistance, bool ramp, glm::vec3 albedo) {
+    core::Volume v;
+    const uint32_t n = 9;
+    v.dims = {n, n, n};
+    for (uint32_t z = 0; z < n; ++z)
+        for (uint32_t i = 0; i < n * n; ++i) v.values.push_back(ramp ? float(z) / float(n - 1) : 1.0f);
+    v.origin = {-1.0f, -1.0f, 0.0f};
+    v.spacing = {2.0f / float(n - 1), 2.0f / float(n - 1), depth / float(n - 1)};
+    v.valueRange = {0.0f, 1.0f};
+    v.colors = {albedo};
+    v.opacities = ramp ? std::vector<float>{0.0f, opacity} : std::vector<float>{opacity, opacity};
+    v.unitDistance = unitDistance;
+    return v;
+}
+
+struct Mean {
+    double mean = 0.0;
+    double standardError = 0.0;
+};
+
+Mean meanRed(const test::Rendered& image) {
+    double sum = 0.0, sumSquares = 0.0;
+    for (const glm::vec4& c : image.color) {
+        sum += c.r;
+        sumSquares += double(c.r) * c.r;
+    }
+    const double n = double(image.color.size());
+    const double mean = sum / n;
+    return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / n)};
+}
+
+}  // namespace
+
+TEST_CASE("volumes: transmittance of a homogeneous slab and of a linear ramp, extinction 1e-3 to 1e3") {
+    test::ValidationGuard guard;
+    core::RenderSettings settings;
+    settings.background = glm::vec4(1.0f);
+    settings.maxPathLength = 1;
+    settings.pixelSamples = 64;
+    for (const float sigma : {1e-3f, 1.0f, 1e3f}) {
+        for (const bool ramp : {false, true}) {
+            // Depth so that the expected transmittance is about exp(-1) (exp(-1e-3 * 100) for the thin one).
+            const float depth = sigma < 0.01f ? 100.0f : (ramp ? 2.0f : 1.0f) / sigma;
+            // Opacity over unitDistance 1 / sigma gives extinction -ln(1 - o) * sigma: o = 1 - e^-1 makes it sigma.
+            const float opacity = 1.0f - std::exp(-1.0f);
+            core::SceneDescription scene;
+            scene.volumes.push_back(boxVolume(depth, opacity, 1.0f / sigma, ramp, glm::vec3(0.0f)));
+            const double expected = std::exp(-double(sigma) * depth * (ramp ? 0.5 : 1.0));
+            // Above the box, every pixel looking through it.
+            const test::Rendered image = test::render(scene, test::lookingDown(depth + 1.0f, 1.8f), settings, {32, 32});
+            const Mean m = meanRed(image);
+            CAPTURE(sigma);
+            CAPTURE(ramp);
+            MESSAGE("sigma " << sigma << (ramp ? " ramp" : " slab") << ": transmittance " << m.mean << " +- "
+                             << m.standardError << ", expected " << expected);
+            CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
+            CHECK(image.stats.flaggedRays == 0);
+        }
+    }
+}
+
+TEST_CASE("volumes: volumetric furnace, a white non-absorbing medium under a uniform environment") {
+    test::ValidationGuard guard;
+    core::RenderSettings settings;
+    settings.background = glm::vec4(1.0f);   // camera rays that pass see 1 as well
+    settings.ambientRadiance = 1.0f;
+    settings.maxPathLength = 64;
+    settings.pixelSamples = 32;
+    const core::Camera camera = test::lookingDown(3.0f, 1.8f);
+    core::SceneDescription scene;
+    scene.volumes.push_back(boxVolume(2.0f, 1.0f - std::exp(-1.0f), 0.5f, false, glm::vec3(1.0f)));  // optical depth 4
+    const test::Rendered image = test::render(scene, camera, settings, {24, 24});
+    const Mean m = meanRed(image);
+    MESSAGE("furnace: " << m.mean << " +- " << m.standardError);
+    CHECK(std::abs(m.mean - 1.0) <= 0.01 + 4.0 * m.standardError);
+    CHECK(image.stats.flaggedRays == 0);
+}
+
+TEST_CASE("volumes: shadow rays carry the slab's transmittance (ratio tracking)") {
+    // A white matte floor at z = 0 lit straight down by a directional light of irradiance pi through an
+    // absorbing slab at z in [0.5, 1.5]; the camera sits below the slab, so only the shadow rays cross it.
+    // Direct light only: every pixel shows albedo * transmittance = 0.8 * exp(-sigma).
+    test::ValidationGuard guard;
+    for (const float sigma : {1.0f, 1e6f}) {
+        core::SceneDescription scene;
+        scene.meshes.push_back(test::squareMesh(4.0f));
+        core::Material white;
+        white.baseColor = glm::vec3(0.8f);
+        scene.materials.push_back(white);
+        scene.instances.push_back({{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f), 0});
+        core::Light sun;
+        sun.kind = core::Light::Kind::Directional;
+        sun.direction = {0.0f, 0.0f, -1.0f};
+        sun.intensity = float(M_PI);
+        scene.lights.push_back(sun);
+        core::Volume slab = boxVolume(1.0f, 1.0f - std::exp(-1.0f), 1.0f / sigma, false, glm::vec3(0.0f));
+        slab.origin.z = 0.5f;
+        scene.volumes.push_back(slab);
+        core::RenderSettings settings;
+        settings.maxPathLength = 1;
+        settings.pixelSamples = 64;
+        const test::Rendered image = test::render(scene, test::lookingDown(0.4f, 1.8f), settings, {24, 24});
+        const Mean m = meanRed(image);
+        const double expected = 0.8 * std::exp(-double(sigma));
+        MESSAGE("sigma " << sigma << ": " << m.mean << " +- " << m.standardError << ", expected " << expected);
+        CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError + 1e-6);
+        CHECK(image.stats.flaggedRays == 0);
+    }
+}
