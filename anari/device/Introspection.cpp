@@ -297,15 +297,35 @@ const std::vector<Entry>& table() {
              {"visible", ANARI_BOOL, "whether it renders", &kTrue},
              {"id", ANARI_UINT32, "object id for the objectId channel; ~0u when unset"},
          }})},
-        {ANARI_GROUP, "", "surfaces and lights placed together by instances",
+        {ANARI_SPATIAL_FIELD, "structuredRegular", "cell-vertex samples on a regular grid",
+         joined({kName, {
+             {"data", ANARI_ARRAY3D, "samples (UFIXED8, FIXED16, UFIXED16, FLOAT32, FLOAT64)", nullptr, nullptr, true},
+             {"origin", ANARI_FLOAT32_VEC3, "object-space position of sample (0, 0, 0)"},
+             {"spacing", ANARI_FLOAT32_VEC3, "distance between samples along each axis"},
+             {"filter", ANARI_STRING, "sample interpolation", "linear", kFilters},
+         }})},
+        {ANARI_VOLUME, "transferFunction1D", "a scalar field as a scattering medium: albedo and opacity from the value",
+         joined({kName, {
+             {"value", ANARI_SPATIAL_FIELD, "the field", nullptr, nullptr, true},
+             {"valueRange", ANARI_FLOAT32_BOX1, "values mapped to the ends of color and opacity"},
+             {"color", ANARI_FLOAT32_VEC3, "uniform albedo"},
+             {"color", ANARI_ARRAY1D, "albedo over the value range"},
+             {"opacity", ANARI_FLOAT32, "uniform opacity", &kOne},
+             {"opacity", ANARI_ARRAY1D, "opacity over the value range (FLOAT32)"},
+             {"unitDistance", ANARI_FLOAT32, "distance over which opacity o lets 1 - o through", &kOne},
+             {"visible", ANARI_BOOL, "whether it renders", &kTrue},
+         }})},
+        {ANARI_GROUP, "", "surfaces, volumes and lights placed together by instances",
          joined({kName, {
              {"surface", ANARI_ARRAY1D, "surfaces (ANARI_SURFACE)"},
+             {"volume", ANARI_ARRAY1D, "volumes (ANARI_VOLUME)"},
              {"light", ANARI_ARRAY1D, "lights (ANARI_LIGHT)"},
          }})},
         {ANARI_WORLD, "", "everything a frame renders",
          joined({kName, {
              {"instance", ANARI_ARRAY1D, "instances (ANARI_INSTANCE)"},
              {"surface", ANARI_ARRAY1D, "surfaces placed without an instance"},
+             {"volume", ANARI_ARRAY1D, "volumes placed without an instance"},
              {"light", ANARI_ARRAY1D, "lights placed without an instance"},
          }})},
         {ANARI_FRAME, "", "an image rendered asynchronously, accumulating while nothing changes",
@@ -354,7 +374,8 @@ const char** deviceExtensions() {
         "ANARI_KHR_CAMERA_DEPTH_OF_FIELD", "ANARI_KHR_FRAME_CHANNEL_ALBEDO",  "ANARI_KHR_FRAME_CHANNEL_NORMAL",
         "ANARI_KHR_FRAME_CHANNEL_PRIMITIVE_ID", "ANARI_KHR_FRAME_CHANNEL_OBJECT_ID", "ANARI_KHR_FRAME_CHANNEL_INSTANCE_ID",
         "ANARI_KHR_DATA_PARALLEL_MPI",    "ANARI_KHR_FRAME_ACCUMULATION",     "ANARI_KHR_DEVICE_SYNCHRONIZATION",
-        "ANARI_KHR_FRAME_COMPLETION_CALLBACK",
+        "ANARI_KHR_FRAME_COMPLETION_CALLBACK", "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR",
+        "ANARI_KHR_VOLUME_TRANSFER_FUNCTION1D",
         nullptr};
     return extensions;
 }

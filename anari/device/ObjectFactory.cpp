@@ -12,6 +12,7 @@
 #include "anari/device/renderer/Renderer.h"
 #include "anari/device/sampler/Sampler.h"
 #include "anari/device/surface/Surface.h"
+#include "anari/device/volume/Volume.h"
 #include "anari/device/world/World.h"
 
 #include <cctype>
@@ -66,6 +67,8 @@ constexpr Subtype kSubtypes[] = {
     {ANARI_CAMERA, "orthographic", [](DeviceState& s) -> Object* { return newOrthographicCamera(s); }},
     {ANARI_CAMERA, "omnidirectional", [](DeviceState& s) -> Object* { return newOmnidirectionalCamera(s); }},
     {ANARI_INSTANCE, "transform", [](DeviceState& s) -> Object* { return newTransformInstance(s); }},
+    {ANARI_SPATIAL_FIELD, "structuredRegular", make<SpatialField>},
+    {ANARI_VOLUME, "transferFunction1D", make<Volume>},
     {ANARI_RENDERER, "default", make<Renderer>},
     {ANARI_SURFACE, "", make<Surface>},
     {ANARI_GROUP, "", make<Group>},

@@ -434,6 +434,9 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
                         m.options.workgroupSize, gpu::FEATURE_GEOMETRY | gpu::FEATURE_TEXTURES | gpu::FEATURE_SURFACE_CHANNELS},
                        m.features.bits, m.surface);
 
+    if (m.features.has(gpu::FEATURE_VOLUMES) && m.exchange().rankCount() > 1)
+        throw std::invalid_argument("PathTracer::render: volumes are not rendered data-parallel yet (a rank's volume "
+                                    "would only dim its own rays); render worlds with volumes on one rank");
     FrameStats stats;
     // Bounces a path can take: its interactions plus pass-throughs, plus the one that resolves the last
     // shadow rays. The kernels end paths before this; the bound only guards the loop.

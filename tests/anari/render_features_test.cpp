@@ -468,3 +468,48 @@ TEST_CASE("vertex.cap closes cylinders and cones at the marked vertices only, ov
         }
     }
 }
+
+TEST_CASE("volume transferFunction1D over a structuredRegular field: transmittance through the API, exact type handling") {
+    // A 2x2x2 UFIXED8 field of value 255 (1.0 after normalisation) spanning [-1, 1]^2 x [0, 1], a black
+    // medium of opacity 1 - e^-1 over unitDistance 1: camera rays straight through it keep exp(-1) of the
+    // white background. Also: the world's bounds include the volume, and nothing is reported.
+    RenderSession s;
+    ANARIArray3D voxels = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_UFIXED8, 2, 2, 2));
+    std::memset(anariMapArray(s.device, voxels), 255, 8);
+    anariUnmapArray(s.device, voxels);
+    ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
+    s.setObject(field, "data", ANARI_ARRAY3D, voxels);
+    s.set(field, "origin", glm::vec3(-1.0f, -1.0f, 0.0f));
+    s.set(field, "spacing", glm::vec3(2.0f, 2.0f, 1.0f));
+    s.commit(field);
+    ANARIVolume volume = s.keep(anariNewVolume(s.device, "transferFunction1D"));
+    s.setObject(volume, "value", ANARI_SPATIAL_FIELD, field);
+    s.set(volume, "color", glm::vec3(0.0f));
+    s.set(volume, "opacity", 1.0f - std::exp(-1.0f));
+    const float range[2] = {0.0f, 1.0f};
+    s.setRaw(volume, "valueRange", ANARI_FLOAT32_BOX1, range);
+    s.commit(volume);
+    ANARIWorld world = s.keep(anariNewWorld(s.device));
+    s.setObject(world, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));
+    s.commit(world);
+    float bounds[6] = {};
+    REQUIRE(anariGetProperty(s.device, world, "bounds", ANARI_FLOAT32_BOX3, bounds, sizeof(bounds), ANARI_WAIT));
+    CHECK(bounds[0] == -1.0f);
+    CHECK(bounds[5] == 1.0f);
+    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+    s.set(camera, "position", glm::vec3(0, 0, 3));
+    s.set(camera, "direction", glm::vec3(0, 0, -1));
+    s.set(camera, "height", 1.5f);
+    s.commit(camera);
+    ANARIRenderer renderer = s.renderer(256, 1, glm::vec4(1.0f));
+    const float noAmbient = 0.0f;
+    s.setRaw(renderer, "ambientRadiance", ANARI_FLOAT32, &noAmbient);
+    s.commit(renderer);
+    const Image image = s.render(s.frame(world, camera, renderer, {8, 8}, ANARI_FLOAT32_VEC4));
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    double sum = 0.0;
+    for (const glm::vec4& c : image.linear) sum += c.r;
+    const double mean = sum / double(image.linear.size());
+    // 64 pixels x 256 samples of a Bernoulli(e^-1): standard error 0.0038.
+    CHECK(mean == doctest::Approx(std::exp(-1.0)).epsilon(0.05));
+}

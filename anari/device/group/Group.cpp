@@ -1,4 +1,4 @@
-// Group parameters: "surface" and "light" arrays; "volume" is accepted and ignored (no volumes yet).
+// Group parameters: "surface", "volume" and "light" arrays.
 #include "anari/device/group/Group.h"
 
 namespace ripple::device {
@@ -7,10 +7,7 @@ void Group::commit() {
     forgetDependencies();
     surfaces_ = pullObjects<Surface>("surface", ANARI_SURFACE);
     lights_ = pullObjects<Light>("light", ANARI_LIGHT);
-    if (has("volume")) {
-        (void)getArray("volume");
-        reportWarning("volumes are not supported yet; parameter 'volume' is ignored");
-    }
+    volumes_ = pullObjects<Volume>("volume", ANARI_VOLUME);
 }
 
 }  // namespace ripple::device

@@ -21,22 +21,25 @@ struct Placement {
     uint32_t instanceId = kNoInstance;
 };
 
-// Calls onSurface(surface, placement, objectId) for every renderable surface and onLight(light, placement)
-// for every valid light, in the order the application gave them. Unset ids are ~0u, as the spec says.
-template <class OnSurface, class OnLight>
-void forEachPlaced(const World& world, OnSurface&& onSurface, OnLight&& onLight) {
-    auto placeGroup = [&](const std::vector<Surface*>& surfaces, const std::vector<Light*>& lights,
-                          const Placement& placement) {
+// Calls onSurface(surface, placement, objectId) for every renderable surface, onVolume(volume, placement)
+// for every renderable volume and onLight(light, placement) for every valid light, in the order the
+// application gave them. Unset ids are ~0u, as the spec says.
+template <class OnSurface, class OnVolume, class OnLight>
+void forEachPlaced(const World& world, OnSurface&& onSurface, OnVolume&& onVolume, OnLight&& onLight) {
+    auto placeGroup = [&](const std::vector<Surface*>& surfaces, const std::vector<Volume*>& volumes,
+                          const std::vector<Light*>& lights, const Placement& placement) {
         for (size_t i = 0; i < surfaces.size(); ++i)
             if (surfaces[i]->renderable()) onSurface(*surfaces[i], placement, surfaces[i]->id().value_or(kNoInstance));
+        for (Volume* volume : volumes)
+            if (volume->renderable()) onVolume(*volume, placement);
         for (Light* light : lights)
             if (light->isValid()) onLight(*light, placement);
     };
-    placeGroup(world.surfaces(), world.lights(), Placement{});
+    placeGroup(world.surfaces(), world.volumes(), world.lights(), Placement{});
     for (size_t i = 0; i < world.instances().size(); ++i) {
         const Instance& instance = *world.instances()[i];
         if (!instance.isValid() || !instance.group() || !instance.group()->isValid()) continue;
-        placeGroup(instance.group()->surfaces(), instance.group()->lights(),
+        placeGroup(instance.group()->surfaces(), instance.group()->volumes(), instance.group()->lights(),
                    Placement{instance.transform(), instance.id().value_or(kNoInstance)});
     }
 }
@@ -71,6 +74,10 @@ public:
                 instance.objectId = objectId;
                 instance.instanceId = placement.instanceId;
                 description_.instances.push_back(instance);
+            },
+            [&](const Volume& volume, const Placement& placement) {
+                description_.volumes.push_back(volume.volume());
+                description_.volumes.back().transform = placement.transform;
             },
             [&](const Light& light, const Placement& placement) {
                 description_.lights.push_back(placedLight(light.light(), placement.transform));
@@ -218,6 +225,15 @@ bvh::Aabb worldBounds(World& world) {
         world,
         [&](const Surface& surface, const Placement& placement, uint32_t) {
             const bvh::Aabb& local = surface.geometry()->bounds();
+            if (local.empty()) return;
+            for (int corner = 0; corner < 8; ++corner) {
+                const glm::vec3 p((corner & 1) ? local.hi.x : local.lo.x, (corner & 2) ? local.hi.y : local.lo.y,
+                                  (corner & 4) ? local.hi.z : local.lo.z);
+                bounds.extend(glm::vec3(placement.transform * glm::vec4(p, 1.0f)));
+            }
+        },
+        [&](const Volume& volume, const Placement& placement) {
+            const bvh::Aabb local = volume.bounds();
             if (local.empty()) return;
             for (int corner = 0; corner < 8; ++corner) {
                 const glm::vec3 p((corner & 1) ? local.hi.x : local.lo.x, (corner & 2) ? local.hi.y : local.lo.y,

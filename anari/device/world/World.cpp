@@ -1,4 +1,4 @@
-// World parameters ("instance", "surface", "light"; "volume" accepted and ignored) and its "bounds".
+// World parameters ("instance", "surface", "volume", "light") and its "bounds".
 #include "anari/device/world/World.h"
 
 #include "anari/device/object/DeviceState.h"
@@ -16,10 +16,7 @@ void World::commit() {
     instances_ = pullObjects<Instance>("instance", ANARI_INSTANCE);
     surfaces_ = pullObjects<Surface>("surface", ANARI_SURFACE);
     lights_ = pullObjects<Light>("light", ANARI_LIGHT);
-    if (has("volume")) {
-        (void)getArray("volume");
-        reportWarning("volumes are not supported yet; parameter 'volume' is ignored");
-    }
+    volumes_ = pullObjects<Volume>("volume", ANARI_VOLUME);
 }
 
 bool World::getProperty(std::string_view name, ANARIDataType type, void* mem, uint64_t size, bool wait) {

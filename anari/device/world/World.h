@@ -1,8 +1,9 @@
-// ANARI world: everything a frame renders: instances, and surfaces and lights placed without one.
+// ANARI world: everything a frame renders: instances, and surfaces, volumes and lights placed without one.
 // Its "bounds" property is computed on the host from the committed geometry.
 #pragma once
 
 #include "anari/device/instance/Instance.h"
+#include "anari/device/volume/Volume.h"
 
 #include <vector>
 
@@ -18,6 +19,7 @@ public:
     const std::vector<Instance*>& instances() const { return instances_; }
     const std::vector<Surface*>& surfaces() const { return surfaces_; }
     const std::vector<Light*>& lights() const { return lights_; }
+    const std::vector<Volume*>& volumes() const { return volumes_; }
     // Data-parallel ANARI: the N-th world created on each rank is the same world.
     uint64_t globalIndex() const { return globalIndex_; }
 
@@ -25,6 +27,7 @@ private:
     std::vector<Instance*> instances_;  // kept alive by useChild()
     std::vector<Surface*> surfaces_;
     std::vector<Light*> lights_;
+    std::vector<Volume*> volumes_;
     uint64_t globalIndex_ = 0;
 };
 
