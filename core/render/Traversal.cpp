@@ -34,7 +34,8 @@ Traversal resolveTraversal(const vk::Context& context, Traversal requested) {
             fromEnvironment = true;
         }
     }
-    if (requested == Traversal::Auto) return context.supportsRayQuery() ? Traversal::RayQuery : Traversal::Software;
+    if (requested == Traversal::Auto)
+        return context.supportsRayQuery() && !context.isCpuDevice() ? Traversal::RayQuery : Traversal::Software;
     if (requested == Traversal::RayQuery && !context.supportsRayQuery())
         throw std::runtime_error(std::string("ray-query traversal was requested") +
                                  (fromEnvironment ? " (RIPPLE_TRAVERSAL)" : "") + " but Vulkan device " +

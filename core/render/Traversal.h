@@ -11,7 +11,7 @@
 namespace ripple::core {
 
 enum class Traversal {
-    Auto,      // RIPPLE_TRAVERSAL when set, else RayQuery where the device supports it, else Software
+    Auto,      // RIPPLE_TRAVERSAL when set, else RayQuery on a GPU that supports it, else Software
     Software,  // shaders/traverse.glsl
     RayQuery,  // shaders/traverse_rq.glsl; needs Context::supportsRayQuery()
 };
@@ -23,7 +23,9 @@ inline constexpr const char* kTraversalNames = "auto, software, rayQuery";
 
 // Software or RayQuery, never Auto. Throws std::runtime_error when RayQuery is asked for (directly or by
 // RIPPLE_TRAVERSAL) on a device without it, naming what the device lacks, and when RIPPLE_TRAVERSAL holds
-// an unknown value. Auto on a device without ray queries is Software.
+// an unknown value. Auto on a device without ray queries, or on a CPU device, is Software: lavapipe's ray
+// queries are a software traversal of their own that traces at about half the rate of Ripple's BVH4
+// kernels (docs/traversal.md).
 Traversal resolveTraversal(const vk::Context& context, Traversal requested);
 
 }  // namespace ripple::core

@@ -244,7 +244,8 @@ TEST_CASE("introspection answers from Ripple's own tables") {
     int32_t idle = 0;  // KHR_DEVICE_SYNCHRONIZATION: nothing in flight, so idle at once
     CHECK(anariGetProperty(f.device, f.device, "waitIdle", ANARI_BOOL, &idle, sizeof(idle), ANARI_WAIT) == 1);
     CHECK(idle == 1);
-    CHECK_FALSE(listContains(extensions, "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR"));  // no volumes yet
+    CHECK(listContains(extensions, "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR"));
+    CHECK(listContains(extensions, "ANARI_KHR_VOLUME_TRANSFER_FUNCTION1D"));
     CHECK(listContains(anariGetDeviceExtensions(f.library, "default"), "ANARI_KHR_GEOMETRY_TRIANGLE"));
 
     const auto* parameters = static_cast<const ANARIParameter*>(

@@ -1,5 +1,6 @@
 // The device parameter "traversal": its values, the error for an unknown one, and the same image from the
-// software traversal and from the default (ray queries where the device has them).
+// software traversal and from "auto" (RIPPLE_TRAVERSAL when set, else the device's choice: software on
+// lavapipe). anari_render_ray_query runs these with RIPPLE_TRAVERSAL=rayQuery, so there "auto" is ray queries.
 #include "tests/anari/RenderSession.h"
 
 #include <doctest/doctest.h>
