@@ -1,5 +1,6 @@
 // Built-in scenes made through ANARI with no files: "default" (spheres, a torus and pillars of several
-// materials on a tiled floor, sun and area light) and "cornell" (the Cornell box built procedurally).
+// materials on a tiled floor, sun and area light), "cornell" (the Cornell box built procedurally) and
+// "volume" (a Marschner-Lobb field as a scattering medium on a floor).
 #pragma once
 
 #include "apps/common/AnariScene.h"

@@ -78,6 +78,12 @@ ANARIArray2D anariNewArray2D(ANARIDevice, const void* appMemory, ANARIMemoryDele
     return handle<ANARIArray2D>(newArray(ANARI_ARRAY2D, appMemory, type, n1, n2));
 }
 
+// A 3D array's second and third dimensions are folded into count2.
+ANARIArray3D anariNewArray3D(ANARIDevice, const void* appMemory, ANARIMemoryDeleter, const void*, ANARIDataType type,
+                             uint64_t n1, uint64_t n2, uint64_t n3) {
+    return handle<ANARIArray3D>(newArray(ANARI_ARRAY3D, appMemory, type, n1, n2 * n3));
+}
+
 void* anariMapArray(ANARIDevice, ANARIArray array) {
     FakeObject* a = live(array, "anariMapArray");
     return a ? a->data.data() : nullptr;
@@ -91,6 +97,10 @@ ANARIGeometry anariNewGeometry(ANARIDevice, const char* type) { return handle<AN
 ANARISurface anariNewSurface(ANARIDevice) { return handle<ANARISurface>(create(ANARI_SURFACE, nullptr)); }
 ANARIMaterial anariNewMaterial(ANARIDevice, const char* type) { return handle<ANARIMaterial>(create(ANARI_MATERIAL, type)); }
 ANARISampler anariNewSampler(ANARIDevice, const char* type) { return handle<ANARISampler>(create(ANARI_SAMPLER, type)); }
+ANARISpatialField anariNewSpatialField(ANARIDevice, const char* type) {
+    return handle<ANARISpatialField>(create(ANARI_SPATIAL_FIELD, type));
+}
+ANARIVolume anariNewVolume(ANARIDevice, const char* type) { return handle<ANARIVolume>(create(ANARI_VOLUME, type)); }
 ANARIGroup anariNewGroup(ANARIDevice) { return handle<ANARIGroup>(create(ANARI_GROUP, nullptr)); }
 ANARIInstance anariNewInstance(ANARIDevice, const char* type) { return handle<ANARIInstance>(create(ANARI_INSTANCE, type)); }
 ANARIWorld anariNewWorld(ANARIDevice) { return handle<ANARIWorld>(create(ANARI_WORLD, nullptr)); }

@@ -65,7 +65,17 @@ const std::map<std::string, ParameterTable>& specification() {
           {"wrapMode2", {{ANARI_STRING}, {}, {"clampToEdge", "repeat", "mirrorRepeat"}}},
           {"outTransform", {{ANARI_FLOAT32_MAT4}}}}},
         {"surface/", {{"geometry", {{ANARI_GEOMETRY}}}, {"material", {{ANARI_MATERIAL}}}}},
-        {"group/", {{"surface", {{ANARI_ARRAY1D}, {ANARI_SURFACE}}}}},
+        {"spatial_field/structuredRegular",
+         {{"data", {{ANARI_ARRAY3D}, {ANARI_UFIXED8, ANARI_FIXED16, ANARI_UFIXED16, ANARI_FLOAT32, ANARI_FLOAT64}}},
+          {"origin", kVec3},
+          {"spacing", kVec3}}},
+        {"volume/transferFunction1D",
+         {{"value", {{ANARI_SPATIAL_FIELD}}},
+          {"valueRange", {{ANARI_FLOAT32_BOX1, ANARI_FLOAT64_BOX1}}},
+          {"color", {{ANARI_FLOAT32_VEC3, ANARI_FLOAT32_VEC4, ANARI_ARRAY1D}, {ANARI_FLOAT32_VEC3, ANARI_FLOAT32_VEC4}}},
+          {"opacity", {{ANARI_FLOAT32, ANARI_ARRAY1D}, {ANARI_FLOAT32}}},
+          {"unitDistance", kFloat}}},
+        {"group/", {{"surface", {{ANARI_ARRAY1D}, {ANARI_SURFACE}}}, {"volume", {{ANARI_ARRAY1D}, {ANARI_VOLUME}}}}},
         {"instance/transform", {{"transform", {{ANARI_FLOAT32_MAT4}}}, {"group", {{ANARI_GROUP}}}}},
         {"world/", {{"instance", {{ANARI_ARRAY1D}, {ANARI_INSTANCE}}}, {"light", {{ANARI_ARRAY1D}, {ANARI_LIGHT}}}}},
         {"light/directional", {{"color", kVec3}, {"direction", kVec3}, {"irradiance", kFloat}}},
@@ -95,6 +105,8 @@ std::string typeName(ANARIDataType type) {
         case ANARI_WORLD: return "world";
         case ANARI_LIGHT: return "light";
         case ANARI_CAMERA: return "camera";
+        case ANARI_SPATIAL_FIELD: return "spatial_field";
+        case ANARI_VOLUME: return "volume";
         default: return "type " + std::to_string(type);
     }
 }
@@ -108,7 +120,7 @@ std::string violations(const FakeDevice& device, ANARIObject kept) {
         const int expectedReferences = o.get() == fakeObject(kept) ? 1 : 0;
         if (o->appReferences != expectedReferences)
             out << typeName(o->type) << "/" << o->subtype << ": " << o->appReferences << " app references left\n";
-        if (o->type == ANARI_ARRAY1D || o->type == ANARI_ARRAY2D) continue;
+        if (o->type == ANARI_ARRAY1D || o->type == ANARI_ARRAY2D || o->type == ANARI_ARRAY3D) continue;
         const std::string key = typeName(o->type) + "/" + o->subtype;
         const auto table = specification().find(key);
         if (table == specification().end()) {
@@ -274,8 +286,17 @@ TEST_CASE("demo scenes are spec-conforming and complete") {
         CHECK(triangles == 10 + 24);  // five walls, two boxes
         CHECK(count(ANARI_LIGHT, "quad") == 1);
     }
+    SUBCASE("volume") {
+        ANARIDevice d = newFakeDevice();
+        const AnariWorld world = buildDemoScene(d, "volume");
+        CHECK(violations(fakeDevice(), world.world) == "");
+        CHECK(count(ANARI_SPATIAL_FIELD, "structuredRegular") == 1);
+        CHECK(count(ANARI_VOLUME, "transferFunction1D") == 1);
+        CHECK(count(ANARI_GEOMETRY, "triangle") == 1);  // the floor
+        CHECK(count(ANARI_LIGHT, "directional") == 1);
+    }
     SUBCASE("unknown name") {
-        CHECK_THROWS_WITH_AS(buildDemoScene(newFakeDevice(), "teapot"), "unknown demo scene 'teapot' (known: default, cornell)",
+        CHECK_THROWS_WITH_AS(buildDemoScene(newFakeDevice(), "teapot"), "unknown demo scene 'teapot' (known: default, cornell, volume)",
                              std::invalid_argument);
     }
 }
