@@ -52,7 +52,10 @@ void RingExchange::exchangeShadow(std::vector<core::WireShadowRay>& rays, core::
         travelling.back().id = uint32_t(travelling.size() - 1);
     }
     cycle(travelling, [&](std::span<core::WireShadowRay> visitors) { tracer.traceShadow(visitors); });
-    for (size_t k = 0; k < open.size(); ++k) rays[open[k]].occlusion = travelling[k].occlusion;
+    for (size_t k = 0; k < open.size(); ++k) {
+        rays[open[k]].occlusion = travelling[k].occlusion;
+        rays[open[k]].transmittance = travelling[k].transmittance;
+    }
 }
 
 }  // namespace ripple::mpi

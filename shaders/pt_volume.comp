@@ -3,6 +3,9 @@
 // Each path ray is delta-tracked through every volume up to the surface it hit (or its tmax); the nearest
 // collision over the volumes wins (the extinctions add, so this samples their union exactly), and replaces
 // the SurfaceRecord with a medium interaction (MATERIAL_VOLUME: position, albedo) that pt_shade scatters.
+// Data-parallel, a rank also runs it on rays visiting from other ranks (params.paths 0, params.mode its
+// rank + 1 to key its own random numbers), up to the closest event found so far: the nearest collision
+// over the ranks wins, as over the volumes of one rank.
 #extension GL_GOOGLE_include_directive : require
 #include "pt_common.glsl"
 #include "rng.glsl"
@@ -17,10 +20,10 @@ void main() {
     if (scene.volumeCount == 0u) return;
     Ray ray = RaysRef(params.rays).rays[i];
     SurfaceRecord r = SurfacesRef(params.surfaces).records[i];
-    PathState path = PathsRef(params.paths).paths[i];
     float tEnd = r.status == HIT_FOUND ? r.position.w : ray.direction.w;
     if ((r.status & ~0xFFu) != 0u) return;  // a flagged traversal: no trustworthy extent
-    VolumeRng rng = volumeRng(path.pixel, params.sampleIndex, params.bounce, RNG_VOLUME, f.seed);
+    uint key = params.paths != 0ul ? PathsRef(params.paths).paths[i].pixel : i;
+    VolumeRng rng = volumeRng(key, params.sampleIndex, params.bounce, RNG_VOLUME, f.seed ^ (params.mode * 0x9E3779B9u));
     VolumeDataRef data = VolumeDataRef(scene.volumeData);
     bool collided = false;
     bool ranOut = false;

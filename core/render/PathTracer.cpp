@@ -270,9 +270,11 @@ struct PathTracer::Impl {
 
     // With more than one rank: the queues as traced here go round the other ranks and come back with
     // the globally closest hits (their records) and occlusion, ready to shade.
-    void exchangeRays(const Scene& scene, uint32_t paths, uint32_t shadows) {
+    void exchangeRays(const Scene& scene, uint32_t paths, uint32_t shadows, uint32_t bounce, uint32_t sampleIndex) {
         RayExchange& ranks = exchange();
-        visitors.use(scene, frame.address(), surface);
+        VisitorTracer::Volumes here;
+        if (features.has(gpu::FEATURE_VOLUMES)) here = {&volume, &shadowVolume, bounce, sampleIndex, ranks.rank()};
+        visitors.use(scene, frame.address(), surface, here);
         std::vector<gpu::Ray> rays(std::max(paths, shadows));
         std::vector<gpu::SurfaceRecord> records(paths);
         if (paths > 0) {
@@ -292,11 +294,21 @@ struct PathTracer::Impl {
             occlusion.download(occluded.data(), shadows * sizeof(uint32_t));
         }
         std::vector<WireShadowRay> shadowWire(shadows);
-        for (uint32_t i = 0; i < shadows; ++i) shadowWire[i] = WireShadowRay{rays[i], ranks.rank(), i, occluded[i], 0};
+        for (uint32_t i = 0; i < shadows; ++i) shadowWire[i] = WireShadowRay{rays[i], ranks.rank(), i, occluded[i], 1.0f};
         ranks.exchangeShadow(shadowWire, visitors);
         if (shadowWire.size() != shadows) throw std::runtime_error("RayExchange: shadow rays came back in a different number");
         for (uint32_t i = 0; i < shadows; ++i) occluded[i] = shadowWire[i].occlusion;
         if (shadows > 0) occlusion.upload(occluded.data(), shadows * sizeof(uint32_t));
+        // The other ranks' volumes dim the shadow rays (this rank's own do in resolveShadows). Checked on
+        // every rank: another rank may hold volumes where this one has none.
+        const bool dimmed = std::any_of(shadowWire.begin(), shadowWire.end(),
+                                        [](const WireShadowRay& s) { return s.transmittance != 1.0f; });
+        if (dimmed) {
+            std::vector<gpu::ShadowRequest> requests(shadows);
+            shadowRequests.download(requests.data(), shadows * sizeof(gpu::ShadowRequest));
+            for (uint32_t i = 0; i < shadows; ++i) requests[i].contribution *= shadowWire[i].transmittance;
+            shadowRequests.upload(requests.data(), shadows * sizeof(gpu::ShadowRequest));
+        }
     }
 
     // One rank: the bounces of a wave with the queue lengths on the device. The first submission holds the
@@ -346,7 +358,7 @@ struct PathTracer::Impl {
                 traceAndShade(cmd, scene, paths, bounce, sampleIndex);
                 hostReadBarrier(cmd);
             });
-            exchangeRays(scene, paths, shadows);
+            exchangeRays(scene, paths, shadows, bounce, sampleIndex);
             context.submitAndWait([&](VkCommandBuffer cmd) {
                 resolveShadows(cmd, scene, shadows, bounce, sampleIndex);
                 shadePaths(cmd, scene, paths, bounce, sampleIndex);
@@ -434,9 +446,6 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
                         m.options.workgroupSize, gpu::FEATURE_GEOMETRY | gpu::FEATURE_TEXTURES | gpu::FEATURE_SURFACE_CHANNELS},
                        m.features.bits, m.surface);
 
-    if (m.features.has(gpu::FEATURE_VOLUMES) && m.exchange().rankCount() > 1)
-        throw std::invalid_argument("PathTracer::render: volumes are not rendered data-parallel yet (a rank's volume "
-                                    "would only dim its own rays); render worlds with volumes on one rank");
     FrameStats stats;
     // Bounces a path can take: its interactions plus pass-throughs, plus the one that resolves the last
     // shadow rays. The kernels end paths before this; the bound only guards the loop.

@@ -27,13 +27,14 @@ struct WireRay {
 static_assert(sizeof(WireRay) == sizeof(gpu::Ray) + 16 + sizeof(gpu::SurfaceRecord));
 
 // A shadow ray as it crosses ranks; occlusion is HIT_MISS or HIT_FOUND (occluded by some rank so far),
-// with HIT_FLAG_* bits where a traversal could not finish.
+// with HIT_FLAG_* bits where a traversal could not finish; transmittance is the product over the ranks so
+// far of their volumes' transmittance along it (1 without volumes).
 struct WireShadowRay {
     gpu::Ray ray;
     uint32_t homeRank = 0;
     uint32_t id = 0;
     uint32_t occlusion = 0;
-    uint32_t pad0 = 0;
+    float transmittance = 1.0f;
 };
 static_assert(sizeof(WireShadowRay) == 48);
 
@@ -44,7 +45,8 @@ public:
     // Replaces each ray's record where this rank has a closer hit than record.position.w (or any hit, where
     // the record is a miss), packing the record here, where the surface's data lives.
     virtual void traceClosest(std::span<WireRay> rays) = 0;
-    // Sets occlusion to HIT_FOUND where this rank occludes a ray that is not yet occluded.
+    // Sets occlusion to HIT_FOUND where this rank occludes a ray that is not yet occluded, and multiplies
+    // the transmittance of the others by that of this rank's volumes.
     virtual void traceShadow(std::span<WireShadowRay> rays) = 0;
 };
 

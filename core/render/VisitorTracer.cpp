@@ -26,10 +26,22 @@ void hostReadBarrier(VkCommandBuffer cmd) {
 VisitorTracer::VisitorTracer(const vk::Context& context, TraceKernels& trace, uint32_t workgroupSize)
     : context_(context), trace_(trace), workgroupSize_(workgroupSize) {}
 
-void VisitorTracer::use(const Scene& scene, VkDeviceAddress frameConstants, const vk::ComputePipeline& surface) {
+void VisitorTracer::use(const Scene& scene, VkDeviceAddress frameConstants, const vk::ComputePipeline& surface,
+                        const Volumes& volumes) {
     scene_ = &scene;
     frame_ = frameConstants;
     surface_ = &surface;
+    volumes_ = volumes;
+}
+
+gpu::StageParams VisitorTracer::volumeParams() const {
+    gpu::StageParams p{};
+    p.frame = frame_;
+    p.scene = scene_->descAddress();
+    p.bounce = volumes_.bounce;
+    p.sampleIndex = volumes_.sampleIndex;
+    p.mode = volumes_.rank + 1;  // keys this rank's random numbers apart from the home rank's
+    return p;
 }
 
 void VisitorTracer::reserve(size_t count) {
@@ -39,6 +51,7 @@ void VisitorTracer::reserve(size_t count) {
     hits_ = vk::Buffer(context_, capacity_ * sizeof(gpu::Hit), "visiting hits");
     surfaces_ = vk::Buffer(context_, capacity_ * sizeof(gpu::SurfaceRecord), "visiting surface records");
     occlusion_ = vk::Buffer(context_, capacity_ * sizeof(uint32_t), "visiting occlusion");
+    transmittance_ = vk::Buffer(context_, capacity_ * sizeof(float), "visiting transmittance");
 }
 
 void VisitorTracer::traceClosest(std::span<WireRay> rays) {
@@ -64,6 +77,16 @@ void VisitorTracer::traceClosest(std::span<WireRay> rays) {
         p.count = count;
         surface_->pushConstants(cmd, &p, sizeof(p));
         vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+        if (volumes_.freeFlight) {  // a collision in this rank's volumes before its own hit replaces it
+            vk::computeBarrier(cmd);
+            gpu::StageParams v = volumeParams();
+            v.rays = rays_.address();
+            v.surfaces = surfaces_.address();
+            v.count = count;
+            volumes_.freeFlight->bind(cmd);
+            volumes_.freeFlight->pushConstants(cmd, &v, sizeof(v));
+            vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+        }
         hostReadBarrier(cmd);
     });
     hostRecords_.resize(rays.size());
@@ -106,6 +129,21 @@ void VisitorTracer::traceShadow(std::span<WireShadowRay> rays) {
         // Occluded by any rank is occluded, even where another rank could not finish its traversal.
         carried = (found & 0xFFu) == gpu::HIT_FOUND ? gpu::HIT_FOUND : carried | (found & kStatusFlags);
     }
+    if (!volumes_.transmittance) return;
+    // This rank's volumes dim what is still unoccluded (the rays are still in rays_, in pending_ order).
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        gpu::StageParams v = volumeParams();
+        v.shadowRays = rays_.address();
+        v.results = transmittance_.address();
+        v.count = count;
+        volumes_.transmittance->bind(cmd);
+        volumes_.transmittance->pushConstants(cmd, &v, sizeof(v));
+        vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+        hostReadBarrier(cmd);
+    });
+    hostTransmittance_.resize(count);
+    transmittance_.download(hostTransmittance_.data(), count * sizeof(float));
+    for (uint32_t k = 0; k < count; ++k) rays[pending_[k]].transmittance *= hostTransmittance_[k];
 }
 
 }  // namespace ripple::core

@@ -1,6 +1,8 @@
 // The RankTracer of the wavefront path tracer: traces rays visiting from other ranks against this rank's
 // part of the scene, and where it finds a closer hit runs pt_surface on it, so the ray carries home the
-// record of the closest hit so far. Buffers grow with the largest batch seen and are kept between hops.
+// record of the closest hit so far. Where this rank has volumes it samples free flight through them up to
+// that hit (pt_volume: a nearer collision becomes the record) and multiplies shadow rays' transmittance by
+// theirs (pt_shadow_volume). Buffers grow with the largest batch seen and are kept between hops.
 #pragma once
 
 #include "core/render/RayExchange.h"
@@ -15,15 +17,26 @@ class VisitorTracer final : public RankTracer {
 public:
     VisitorTracer(const vk::Context& context, TraceKernels& trace, uint32_t workgroupSize);
 
+    // This rank's volume stages and what keys their random numbers; freeFlight null: no volumes here.
+    struct Volumes {
+        const vk::ComputePipeline* freeFlight = nullptr;     // pt_volume
+        const vk::ComputePipeline* transmittance = nullptr;  // pt_shadow_volume
+        uint32_t bounce = 0;
+        uint32_t sampleIndex = 0;
+        uint32_t rank = 0;
+    };
+
     // The scene, frame constants and pt_surface pipeline (the variant for this scene) the next visits use,
-    // set before each exchange.
-    void use(const Scene& scene, VkDeviceAddress frameConstants, const vk::ComputePipeline& surface);
+    // and the volume stages, set before each exchange.
+    void use(const Scene& scene, VkDeviceAddress frameConstants, const vk::ComputePipeline& surface,
+             const Volumes& volumes);
 
     void traceClosest(std::span<WireRay> rays) override;
     void traceShadow(std::span<WireShadowRay> rays) override;
 
 private:
     void reserve(size_t count);
+    gpu::StageParams volumeParams() const;
 
     const vk::Context& context_;
     TraceKernels& trace_;
@@ -31,11 +44,13 @@ private:
     uint32_t workgroupSize_;
     const Scene* scene_ = nullptr;
     VkDeviceAddress frame_ = 0;
+    Volumes volumes_;
     size_t capacity_ = 0;
-    vk::Buffer rays_, hits_, surfaces_, occlusion_;
+    vk::Buffer rays_, hits_, surfaces_, occlusion_, transmittance_;
     std::vector<gpu::Ray> hostRays_;
     std::vector<gpu::SurfaceRecord> hostRecords_;
     std::vector<uint32_t> hostOcclusion_, pending_;
+    std::vector<float> hostTransmittance_;
 };
 
 }  // namespace ripple::core

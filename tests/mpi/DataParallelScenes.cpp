@@ -4,7 +4,9 @@
 
 #include "tests/support/SceneGenerators.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <numeric>
 
 namespace ripple::test {
@@ -100,6 +102,43 @@ core::SceneDescription boxesPart(uint32_t rank, uint32_t ranks) {
 }
 
 core::Camera boxesCamera() { return perspective({9.0f, -11.0f, 9.0f}, {0.0f, 0.0f, 2.5f}); }
+
+core::SceneDescription volumePart(uint32_t rank, uint32_t ranks) {
+    constexpr uint32_t n = 33;  // samples per axis; the slabs split the 32 cells along x
+    const glm::vec3 lo(-2.0f, -2.0f, 0.0f), spacing(4.0f / float(n - 1));
+    auto density = [&](uint32_t x, uint32_t y, uint32_t z) {
+        const glm::vec3 p = lo + glm::vec3(x, y, z) * spacing - glm::vec3(0.0f, 0.0f, 2.0f);
+        return std::max(0.0f, 1.0f - glm::dot(p, p) / 4.0f) * (0.6f + 0.4f * std::sin(3.0f * p.x) * std::cos(2.0f * p.y));
+    };
+    const uint32_t firstCell = 32 * rank / ranks, lastCell = 32 * (rank + 1) / ranks;
+    core::SceneDescription scene;
+    if (lastCell > firstCell) {
+        core::Volume v;
+        v.dims = {lastCell - firstCell + 1, n, n};
+        for (uint32_t z = 0; z < n; ++z)
+            for (uint32_t y = 0; y < n; ++y)
+                for (uint32_t x = firstCell; x <= lastCell; ++x) v.values.push_back(density(x, y, z));
+        v.origin = lo + glm::vec3(float(firstCell) * spacing.x, 0.0f, 0.0f);
+        v.spacing = spacing;
+        v.colors = {{0.9f, 0.6f, 0.3f}, {0.8f, 0.85f, 0.9f}};
+        v.opacities = {0.0f, 0.9f};
+        v.unitDistance = 0.5f;
+        scene.volumes.push_back(std::move(v));
+    }
+    if (rank == 0) {
+        add(scene, box({-3.5f, -1.0f, 0.0f}, {-2.5f, 0.0f, 1.5f}), matte(glm::vec3(0.8f, 0.3f, 0.2f)));
+        add(scene, box({2.6f, 0.5f, 0.0f}, {3.4f, 1.5f, 2.5f}), matte(glm::vec3(0.2f, 0.5f, 0.8f)));
+        core::Light sun;
+        sun.kind = core::Light::Kind::Directional;
+        sun.direction = glm::normalize(glm::vec3(-0.4f, 0.3f, -1.0f));
+        sun.intensity = 2.0f;
+        scene.lights.push_back(sun);
+    }
+    if (rank == ranks - 1) add(scene, floorQuad(12.0f, 0.0f), matte(glm::vec3(0.6f)));
+    return scene;
+}
+
+core::Camera volumeCamera() { return perspective({0.0f, -9.0f, 4.0f}, {0.0f, 0.0f, 1.8f}); }
 
 core::SceneDescription mixedPart(uint32_t rank, uint32_t ranks) {
     core::SceneDescription scene;

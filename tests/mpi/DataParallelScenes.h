@@ -16,6 +16,12 @@ namespace ripple::test {
 core::SceneDescription boxesPart(uint32_t rank, uint32_t ranks);
 core::Camera boxesCamera();
 
+// A heterogeneous scattering volume (a smooth blob, 33^3 samples over [-2, 2]^2 x [0, 4]) split into
+// slabs along x, one per rank, each with the sample plane it shares with its neighbour (so linear
+// filtering matches across the faces), over a floor on the last rank, two boxes on rank 0 and a sun.
+core::SceneDescription volumePart(uint32_t rank, uint32_t ranks);
+core::Camera volumeCamera();
+
 // Mixed geometry (a sphere mesh, spheres, cylinders, a metal and a transparent material) under a quad
 // light, instances dealt round robin.
 core::SceneDescription mixedPart(uint32_t rank, uint32_t ranks);
