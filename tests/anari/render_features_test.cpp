@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <optional>
 
@@ -512,4 +513,83 @@ TEST_CASE("volume transferFunction1D over a structuredRegular field: transmittan
     const double mean = sum / double(image.linear.size());
     // 64 pixels x 256 samples of a Bernoulli(e^-1): standard error 0.0038.
     CHECK(mean == doctest::Approx(std::exp(-1.0)).epsilon(0.05));
+}
+
+TEST_CASE("volume hostile input: each bad field or transfer function is reported, naming it, and renders nothing") {
+    // Each case spoils one thing of a valid 2x2x2 field in a valid volume; the frame still renders (the
+    // volume left out, so the white background shows through untouched) and the log names the problem.
+    struct Case {
+        const char* name;
+        const char* expected;  // a fragment of the message
+        std::function<void(RenderSession&, ANARISpatialField, ANARIVolume)> spoil;
+    };
+    auto array3 = [](RenderSession& s, ANARIDataType type, uint64_t nx, uint64_t ny, uint64_t nz, const void* bytes, size_t size) {
+        ANARIArray3D a = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, type, nx, ny, nz));
+        std::memcpy(anariMapArray(s.device, a), bytes, size);
+        anariUnmapArray(s.device, a);
+        return a;
+    };
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const std::vector<Case> cases = {
+        {"NaN voxel", "not finite",
+         [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
+             const float v[8] = {1, 1, 1, nan, 1, 1, 1, 1};
+             s.setObject(f, "data", ANARI_ARRAY3D, array3(s, ANARI_FLOAT32, 2, 2, 2, v, sizeof(v)));
+         }},
+        {"Inf voxel", "not finite",
+         [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
+             const float v[8] = {1, 1, 1, 1, 1, 1, 1, inf};
+             s.setObject(f, "data", ANARI_ARRAY3D, array3(s, ANARI_FLOAT32, 2, 2, 2, v, sizeof(v)));
+         }},
+        {"zero dimension", "zero elements",
+         [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
+             s.setObject(f, "data", ANARI_ARRAY3D, array3(s, ANARI_FLOAT32, 2, 0, 2, nullptr, 0));
+         }},
+        {"unsupported element type", "element type",
+         [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
+             const int32_t v[8] = {};
+             s.setObject(f, "data", ANARI_ARRAY3D, array3(s, ANARI_INT32, 2, 2, 2, v, sizeof(v)));
+         }},
+        {"data not a 3D array", "ARRAY3D",
+         [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
+             s.setObject(f, "data", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, std::vector<float>(8, 1.0f)));
+         }},
+        {"negative spacing", "spacing",
+         [&](RenderSession& s, ANARISpatialField f, ANARIVolume) { s.set(f, "spacing", glm::vec3(1, -1, 1)); }},
+        {"unitDistance 0", "unitDistance",
+         [&](RenderSession& s, ANARISpatialField, ANARIVolume v) { s.set(v, "unitDistance", 0.0f); }},
+        {"NaN valueRange", "valueRange",
+         [&](RenderSession& s, ANARISpatialField, ANARIVolume v) {
+             const float range[2] = {0.0f, nan};
+             s.setRaw(v, "valueRange", ANARI_FLOAT32_BOX1, range);
+         }},
+        {"NaN opacity", "opacity",
+         [&](RenderSession& s, ANARISpatialField, ANARIVolume v) { s.set(v, "opacity", nan); }},
+        {"no field", "value",
+         [&](RenderSession& s, ANARISpatialField, ANARIVolume v) { anariUnsetParameter(s.device, v, "value"); }},
+    };
+    for (const Case& c : cases) {
+        const std::string name = c.name;
+        CAPTURE(name);
+        RenderSession s;
+        const float ones[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+        ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
+        s.setObject(field, "data", ANARI_ARRAY3D, array3(s, ANARI_FLOAT32, 2, 2, 2, ones, sizeof(ones)));
+        ANARIVolume volume = s.keep(anariNewVolume(s.device, "transferFunction1D"));
+        s.setObject(volume, "value", ANARI_SPATIAL_FIELD, field);
+        s.set(volume, "color", glm::vec3(0.0f));
+        c.spoil(s, field, volume);
+        s.commit(field);
+        s.commit(volume);
+        ANARIWorld world = s.keep(anariNewWorld(s.device));
+        s.setObject(world, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));
+        s.commit(world);
+        ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+        s.set(camera, "position", glm::vec3(0.5f, 0.5f, 3.0f));
+        s.set(camera, "direction", glm::vec3(0, 0, -1));
+        s.commit(camera);
+        const Image image = s.render(s.frame(world, camera, s.renderer(2, 1, glm::vec4(1.0f)), {4, 4}, ANARI_FLOAT32_VEC4));
+        CHECK_MESSAGE(s.log.count({c.expected}) >= 1, s.log.dump());
+        for (const glm::vec4& p : image.linear) CHECK(p.r == 1.0f);  // nothing of the spoilt volume rendered
+    }
 }
