@@ -16,6 +16,8 @@ void writeSurfaceIds(inout SurfaceRecord r, Hit hit) {
     GeometryRecord geom = GeometriesRef(scene.geometries).geometries[inst.geometry];
     // Quads reach the kernels as two triangles each: the application numbered the quads.
     r.primitiveId = hit.primId / max(geom.trianglesPerPrimitive, 1u);
+    // An iso-surface's primitives are the cells it crosses; the application numbered its isovalues.
+    if (hasFeature(FEATURE_ISOSURFACES) && geom.kind == GEOMETRY_ISOSURFACES) r.primitiveId = uint(hit.u);
     r.objectId = inst.objectId;
     r.instanceId = inst.userInstanceId;
 }

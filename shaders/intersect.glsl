@@ -261,4 +261,93 @@ vec3 safeReciprocal(vec3 d) {
     return 1.0 / mix(d, s, lessThan(abs(d), vec3(tiny)));
 }
 
+// Iso-surface inside one cell of a structured-regular field (Marmitt et al. 2004, "Fast and accurate
+// ray-voxel intersection techniques for iso-surface ray tracing"). Along the ray the trilinear interpolant
+// of the cell's corner values is a cubic in the distance s travelled inside the cell; the roots of its
+// derivative split the segment into pieces where it is monotone, and the nearest piece whose ends differ in
+// sign holds the nearest crossing, found by bisection to float precision. No fixed-step marching: a
+// crossing is missed only where the surface only touches the ray (a double root), which has measure zero.
+// The cubic is formed relative to the cell's corner and the ray's entry point, so it stays well
+// conditioned for cells far from the origin.
+float isoCubic(vec4 k, float s) {
+    return ((k.x * s + k.y) * s + k.z) * s + k.w;
+}
+
+// Returns true and updates tBest when the iso-surface in `cell` is crossed with tmin < t < tBest.
+bool intersectIsoCell(vec3 origin, vec3 direction, IsoCellPrim cell, float tmin, inout float tBest) {
+    vec3 lo = cell.lowCorner.xyz;
+    vec3 inv = safeReciprocal(direction);
+    vec3 t0 = (lo - origin) * inv;
+    vec3 t1 = (lo + cell.size.xyz - origin) * inv;
+    vec3 tn = min(t0, t1);
+    vec3 tf = max(t0, t1);
+    float enter = max(max(tn.x, tn.y), max(tn.z, tmin));
+    float leave = min(min(tf.x, tf.y), min(tf.z, tBest));
+    if (!(enter < leave)) return false;
+
+    // Cell-local coordinates (0..1 across the cell) along the ray: a + s * b for s in [0, length].
+    vec3 a = (origin + enter * direction - lo) / cell.size.xyz;
+    vec3 b = direction / cell.size.xyz;
+    float len = leave - enter;
+    // The corner factors (1 - x) and x of the trilinear weights, each linear in s: p + s * q.
+    vec3 p[2] = vec3[2](vec3(1.0) - a, a);
+    vec3 q[2] = vec3[2](-b, b);
+    vec4 k = vec4(0.0, 0.0, 0.0, -cell.lowCorner.w);  // s^3, s^2, s, 1 coefficients, minus the isovalue
+    for (int n = 0; n < 8; ++n) {
+        int i = n & 1, j = (n >> 1) & 1, l = n >> 2;
+        float c = n < 4 ? cell.values0[n] : cell.values1[n - 4];
+        float px = p[i].x, qx = q[i].x, py = p[j].y, qy = q[j].y, pz = p[l].z, qz = q[l].z;
+        k += c * vec4(qx * qy * qz, qx * qy * pz + qx * py * qz + px * qy * qz,
+                      qx * py * pz + px * qy * pz + px * py * qz, px * py * pz);
+    }
+
+    // Extrema of the cubic inside (0, len): roots of 3 k.x s^2 + 2 k.y s + k.z, in order.
+    float pieces[4] = float[4](0.0, len, len, len);
+    uint count = 1u;
+    float A = 3.0 * k.x, B = 2.0 * k.y, C = k.z;
+    float e0 = -1.0, e1 = -1.0;
+    if (A != 0.0) {
+        float disc = B * B - 4.0 * A * C;
+        if (disc > 0.0) {
+            float h = -0.5 * (B + (B < 0.0 ? -sqrt(disc) : sqrt(disc)));
+            e0 = h / A;
+            e1 = h != 0.0 ? C / h : -1.0;
+            if (e0 > e1) { float t = e0; e0 = e1; e1 = t; }
+        }
+    } else if (B != 0.0) {
+        e0 = -C / B;
+    }
+    if (e0 > 0.0 && e0 < len) pieces[count++] = e0;
+    if (e1 > 0.0 && e1 < len && e1 != e0) pieces[count++] = e1;
+    pieces[count] = len;
+
+    float ga = isoCubic(k, 0.0);
+    for (uint piece = 0u; piece < count; ++piece) {
+        float sa = pieces[piece], sb = pieces[piece + 1u];
+        float gb = isoCubic(k, sb);
+        if (ga == 0.0 && (piece > 0u || enter > tmin)) {  // on the surface where the piece starts
+            sb = sa;
+        } else if ((ga < 0.0) != (gb < 0.0) || gb == 0.0) {
+            float g0 = ga;
+            for (int it = 0; it < 40 && sb - sa > 0.0; ++it) {
+                float mid = 0.5 * (sa + sb);
+                if (mid <= sa || mid >= sb) break;  // no float between the ends: converged
+                float gm = isoCubic(k, mid);
+                if ((gm < 0.0) == (g0 < 0.0) && gm != 0.0) sa = mid;
+                else sb = mid;
+            }
+        } else {
+            ga = gb;
+            continue;
+        }
+        float t = enter + sb;
+        if (t > tmin && t < tBest) {
+            tBest = t;
+            return true;
+        }
+        return false;
+    }
+    return false;
+}
+
 #endif

@@ -16,8 +16,28 @@
 
 // Russian roulette starts once a path has had this many surface interactions.
 const uint ROULETTE_FROM_DEPTH = 3u;
-// The isotropic phase function, and the pdf of sampling it uniformly over the sphere.
-const float ISOTROPIC_PHASE = 1.0 / (4.0 * PI);
+// The Henyey-Greenstein phase function of mean cosine g, at the cosine between the direction light
+// travelled before and after scattering; it is also the pdf of samplePhase. g = 0: isotropic, 1 / (4 pi).
+float phaseHG(float cosTheta, float g) {
+    float denom = 1.0 + g * g - 2.0 * g * cosTheta;
+    return (1.0 - g * g) / (4.0 * PI * denom * sqrt(max(denom, 1e-12)));
+}
+
+// A direction scattered from `forward` with density phaseHG (inverting its CDF in the cosine).
+vec3 samplePhase(vec3 forward, float g, vec2 u) {
+    float cosTheta;
+    if (abs(g) < 1e-3) {
+        cosTheta = 1.0 - 2.0 * u.x;
+    } else {
+        float s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u.x);
+        cosTheta = clamp((1.0 + g * g - s * s) / (2.0 * g), -1.0, 1.0);
+    }
+    float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+    float phi = 2.0 * PI * u.y;
+    vec3 t = normalize(abs(forward.x) > 0.5 ? cross(forward, vec3(0.0, 1.0, 0.0)) : cross(forward, vec3(1.0, 0.0, 0.0)));
+    vec3 b = cross(forward, t);
+    return normalize(sinTheta * (cos(phi) * t + sin(phi) * b) + cosTheta * forward);
+}
 
 SurfaceMaterial surfaceMaterial(SurfaceRecord r, SceneDesc scene) {
     SurfaceMaterial m;
@@ -62,8 +82,8 @@ void appendShadow(Ray ray, vec3 contribution, uint pixel) {
 // Next-event estimation: one light picked in proportion to power, its contribution MIS-weighted against
 // BSDF sampling (weight 1 for delta lights, and where the path ends here so no BSDF ray will follow), as a
 // shadow request.
-// In a medium (m.kind MATERIAL_VOLUME) the BSDF is the isotropic phase function and the shadow ray starts at
-// the collision itself.
+// In a medium (m.kind MATERIAL_VOLUME) the BSDF is the phase function (times the albedo) and the shadow ray
+// starts at the collision itself.
 void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
                     vec3 wo, vec3 throughput, uint pixel, vec4 u, bool lastVertex) {
     bool medium = m.kind == MATERIAL_VOLUME;
@@ -76,8 +96,8 @@ void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 p
     if (!delta && f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY && !lastVertex) return;
     float side = dot(ls.direction, geometricNormal);
     if (!medium && (side == 0.0 || (side < 0.0 && m.transmission == 0.0))) return;
-    float bsdfPdf = ISOTROPIC_PHASE;
-    vec3 fCos = medium ? m.baseColor * ISOTROPIC_PHASE : evalBsdf(m, n, wo, ls.direction, bsdfPdf);
+    float bsdfPdf = medium ? phaseHG(dot(-wo, ls.direction), f.phaseAnisotropy) : 0.0;
+    vec3 fCos = medium ? m.baseColor * bsdfPdf : evalBsdf(m, n, wo, ls.direction, bsdfPdf);
     float w = delta || lastVertex || f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 1.0 : misWeight(selection * ls.pdf, bsdfPdf);
     vec3 contribution = clamped(f, throughput * fCos * ls.incident * (w / selection));
     // Stop just short of the light, so geometry at the light itself does not shadow it.
@@ -148,10 +168,10 @@ void main() {
     vec3 weight;
     float pdf;
     bool medium = m.kind == MATERIAL_VOLUME;
-    if (medium) {  // isotropic scattering: phase / pdf = 1, so the weight is the albedo
-        wi = sampleUniformSphere(uBsdf.yz);
+    if (medium) {  // the phase function sampled exactly: phase / pdf = 1, so the weight is the albedo
+        wi = samplePhase(-wo, f.phaseAnisotropy, uBsdf.yz);
         weight = m.baseColor;
-        pdf = ISOTROPIC_PHASE;
+        pdf = phaseHG(dot(-wo, wi), f.phaseAnisotropy);
     } else if (!sampleBsdf(m, n, wo, uBsdf.xyz, wi, weight, pdf)) {
         return;
     }

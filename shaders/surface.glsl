@@ -9,8 +9,24 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Tr
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ConesRef { ConePrim cones[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer IsoCellsRef { IsoCellPrim cells[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceShadingRef { InstanceShading instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GeometriesRef { GeometryRecord geometries[]; };
+
+// Gradient of the cell's trilinear interpolant at object-space point x (clamped into the cell): the
+// iso-surface's normal direction, pointing to higher values.
+vec3 isoCellGradient(IsoCellPrim cell, vec3 x) {
+    vec3 w = clamp((x - cell.lowCorner.xyz) / cell.size.xyz, vec3(0.0), vec3(1.0));
+    vec3 g = vec3(0.0);
+    for (int n = 0; n < 8; ++n) {
+        int i = n & 1, j = (n >> 1) & 1, l = n >> 2;
+        float c = n < 4 ? cell.values0[n] : cell.values1[n - 4];
+        vec3 f = vec3(i == 1 ? w.x : 1.0 - w.x, j == 1 ? w.y : 1.0 - w.y, l == 1 ? w.z : 1.0 - w.z);
+        vec3 s = vec3(i == 1 ? 1.0 : -1.0, j == 1 ? 1.0 : -1.0, l == 1 ? 1.0 : -1.0);
+        g += c * vec3(s.x * f.y * f.z, f.x * s.y * f.z, f.x * f.y * s.z);
+    }
+    return g / cell.size.xyz;
+}
 
 struct SurfacePoint {
     vec3 position;         // world space
@@ -129,6 +145,17 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
         } else if (geom.primitiveColorOffset != NO_ATTRIBUTE) {
             s.hasColor = true;
             s.color = attributeAt(scene, geom.primitiveColorOffset, hit.primId);
+        }
+    } else if (hasFeature(FEATURE_ISOSURFACES) && geom.kind == GEOMETRY_ISOSURFACES) {
+        // The hit point from the ray (the root is found to float precision); the normal from the gradient
+        // of the cell's interpolant. Colour: one per isovalue.
+        objectPoint = transformPoint(inst.worldToObject, ray.origin.xyz + hit.t * ray.direction.xyz);
+        objectNormal = safeNormalize(isoCellGradient(IsoCellsRef(scene.isoCells).cells[slot], objectPoint), vec3(0.0, 0.0, 1.0));
+        objectShadingNormal = objectNormal;
+        s.primitiveId = uint(hit.u);  // the isovalue's index
+        if (geom.colorOffset != NO_ATTRIBUTE) {
+            s.hasColor = true;
+            s.color = attributeAt(scene, geom.colorOffset, s.primitiveId);
         }
     } else if (hasFeature(FEATURE_SPHERES | FEATURE_CYLINDERS | FEATURE_CONES)) {
         // Analytic shapes: the hit point from the ray in object space, then put back on the surface.

@@ -23,6 +23,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Tr
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ConesRef { ConePrim cones[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer IsoCellsRef { IsoCellPrim cells[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstancesRef { InstancePrim instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RaysRef { Ray rays[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer HitsRef { Hit hits[]; };
@@ -50,6 +51,7 @@ uint64_t sceneTriangles;
 uint64_t sceneSpheres;
 uint64_t sceneCylinders;
 uint64_t sceneCones;
+uint64_t sceneIsoCells;
 
 // The ray in the space of the BVH being traversed (world for the TLAS, object for a BLAS).
 InstancePrim instance;
@@ -124,6 +126,11 @@ void testPrimitive(uint primSlot) {
         ConePrim cone = ConesRef(sceneCones).cones[primSlot];
         hit = intersectCone(origin, direction, cone.p0Radius, cone.p1Radius, cone.flags, tmin, t, u, v);
         primId = cone.primId;
+    } else if (hasFeature(FEATURE_ISOSURFACES) && instance.geometryKind == GEOMETRY_ISOSURFACES) {
+        IsoCellPrim cell = IsoCellsRef(sceneIsoCells).cells[primSlot];
+        hit = intersectIsoCell(origin, direction, cell, tmin, t);
+        primId = cell.primId;
+        u = float(cell.isovalueIndex);
     }
     if (hit) best = Hit(t, u, v, instance.instanceId, primId, HIT_FOUND);
 }
@@ -159,6 +166,7 @@ void main() {
     sceneSpheres = sceneRef.desc.spheres;
     sceneCylinders = sceneRef.desc.cylinders;
     sceneCones = sceneRef.desc.cones;
+    sceneIsoCells = sceneRef.desc.isoCells;
     NodesRef nodes = NodesRef(sceneRef.desc.nodes);
     Ray worldRay = RaysRef(params.rays).rays[rayIndex];
     tmin = worldRay.origin.w;

@@ -22,6 +22,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Tr
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ConesRef { ConePrim cones[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer IsoCellsRef { IsoCellPrim cells[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstancesRef { InstancePrim instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RaysRef { Ray rays[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer HitsRef { Hit hits[]; };
@@ -95,6 +96,11 @@ void main() {
             ConePrim cone = ConesRef(sceneRef.desc.cones).cones[primSlot];
             hit = intersectCone(origin, direction, cone.p0Radius, cone.p1Radius, cone.flags, tmin, t, u, v);
             primId = cone.primId;
+        } else if (hasFeature(FEATURE_ISOSURFACES) && kind == GEOMETRY_ISOSURFACES) {
+            IsoCellPrim cell = IsoCellsRef(sceneRef.desc.isoCells).cells[primSlot];
+            hit = intersectIsoCell(origin, direction, cell, tmin, t);
+            primId = cell.primId;
+            u = float(cell.isovalueIndex);
         }
         if (hit) {
             rayQueryGenerateIntersectionEXT(rq, t);

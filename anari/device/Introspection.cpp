@@ -133,6 +133,14 @@ const std::vector<Entry>& table() {
              {"vertex.radius", ANARI_ARRAY1D, "radius at each vertex (FLOAT32)"},
              {"radius", ANARI_FLOAT32, "radius of all vertices when vertex.radius is unset", &kOne},
          }})},
+        {ANARI_GEOMETRY, "isosurface", "surfaces of equal value of a structuredRegular field, traced exactly",
+         joined({kName, {
+             {"field", ANARI_SPATIAL_FIELD, "the field (its trilinear interpolant)", nullptr, nullptr, true},
+             {"isovalue", ANARI_FLOAT32, "the value of the one surface", nullptr, nullptr, true},
+             {"isovalue", ANARI_ARRAY1D, "values of several surfaces (FLOAT32)"},
+             {"primitive.color", ANARI_ARRAY1D, "colour per isovalue"},
+             {"color", ANARI_FLOAT32_VEC4, "uniform colour, when primitive.color is unset"},
+         }})},
         {ANARI_MATERIAL, "matte", "Lambertian diffuse",
          joined({kName, kAlpha, {
              {"color", ANARI_FLOAT32_VEC3, "diffuse colour", kGrey},
@@ -286,6 +294,7 @@ const std::vector<Entry>& table() {
              {"ambientRadiance", ANARI_FLOAT32, "radiance of the uniform environment light", &kZero},
              {"pixelSamples", ANARI_INT32, "samples per pixel added by each anariRenderFrame", &kOneSample},
              {"maxPathLength", ANARI_INT32, "surface interactions per path", &kPathLength},
+             {"volumeAnisotropy", ANARI_FLOAT32, "Henyey-Greenstein mean cosine of volume scattering, in (-1, 1); 0: isotropic"},
              {"maxRadiance", ANARI_FLOAT32, "largest component of one contribution (biased, less noise); 0: off",
               &kZero},
              {"seed", ANARI_UINT32, "varies the random numbers; images with different seeds share no samples", &kSeed},
@@ -375,7 +384,7 @@ const char** deviceExtensions() {
         "ANARI_KHR_FRAME_CHANNEL_PRIMITIVE_ID", "ANARI_KHR_FRAME_CHANNEL_OBJECT_ID", "ANARI_KHR_FRAME_CHANNEL_INSTANCE_ID",
         "ANARI_KHR_DATA_PARALLEL_MPI",    "ANARI_KHR_FRAME_ACCUMULATION",     "ANARI_KHR_DEVICE_SYNCHRONIZATION",
         "ANARI_KHR_FRAME_COMPLETION_CALLBACK", "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR",
-        "ANARI_KHR_VOLUME_TRANSFER_FUNCTION1D",
+        "ANARI_KHR_VOLUME_TRANSFER_FUNCTION1D", "ANARI_KHR_GEOMETRY_ISOSURFACE",
         nullptr};
     return extensions;
 }

@@ -50,6 +50,7 @@ constexpr Subtype kSubtypes[] = {
     {ANARI_GEOMETRY, "cylinder", [](DeviceState& s) -> Object* { return newCylinderGeometry(s); }},
     {ANARI_GEOMETRY, "cone", [](DeviceState& s) -> Object* { return newConeGeometry(s); }},
     {ANARI_GEOMETRY, "curve", [](DeviceState& s) -> Object* { return newCurveGeometry(s); }},
+    {ANARI_GEOMETRY, "isosurface", [](DeviceState& s) -> Object* { return newIsosurfaceGeometry(s); }},
     {ANARI_MATERIAL, "matte", [](DeviceState& s) -> Object* { return newMatteMaterial(s); }},
     {ANARI_MATERIAL, "physicallyBased", [](DeviceState& s) -> Object* { return newPhysicallyBasedMaterial(s); }},
     {ANARI_SAMPLER, "image1D", [](DeviceState& s) -> Object* { return newImageSampler(s, 1); }},

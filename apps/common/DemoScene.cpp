@@ -165,10 +165,8 @@ public:
         lights_.push_back(l);
     }
 
-    // A structuredRegular field of FLOAT32 samples (x fastest) spanning [lo, hi], as a transferFunction1D
-    // volume over the value range [0, 1] with the given colours and opacities.
-    void volume(glm::uvec3 dims, const std::vector<float>& samples, const glm::vec3& lo, const glm::vec3& hi,
-                const std::vector<glm::vec3>& colors, const std::vector<float>& opacities, float unitDistance) {
+    // A structuredRegular field of FLOAT32 samples (x fastest) spanning [lo, hi].
+    ANARISpatialField field(glm::uvec3 dims, const std::vector<float>& samples, const glm::vec3& lo, const glm::vec3& hi) {
         ANARIArray3D data = handles_.keep(anariNewArray3D(d_, nullptr, nullptr, nullptr, ANARI_FLOAT32, dims.x, dims.y, dims.z),
                                           "3D array");
         void* mapped = anariMapArray(d_, data);
@@ -180,6 +178,13 @@ public:
         set(d_, field, "origin", lo);
         set(d_, field, "spacing", (hi - lo) / glm::vec3(dims - 1u));
         anariCommitParameters(d_, field);
+        return field;
+    }
+
+    // The field as a transferFunction1D volume over the value range [0, 1] with the given colours and
+    // opacities.
+    void volume(ANARISpatialField field, const std::vector<glm::vec3>& colors, const std::vector<float>& opacities,
+                float unitDistance) {
         ANARIVolume v = handles_.keep(anariNewVolume(d_, "transferFunction1D"), "volume");
         setObject(d_, v, "value", ANARI_SPATIAL_FIELD, field);
         setObject(d_, v, "color", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, colors), "array"));
@@ -189,6 +194,14 @@ public:
         set(d_, v, "unitDistance", unitDistance);
         anariCommitParameters(d_, v);
         volumes_.push_back(v);
+    }
+
+    // The surface where the field equals `isovalue`.
+    void isosurface(ANARISpatialField field, float isovalue, ANARIMaterial material) {
+        ANARIGeometry g = handles_.keep(anariNewGeometry(d_, "isosurface"), "isosurface geometry");
+        setObject(d_, g, "field", ANARI_SPATIAL_FIELD, field);
+        set(d_, g, "isovalue", isovalue);
+        surface(g, material);
     }
 
     // Everything in one group under one identity instance, as a glTF scene's meshes are.
@@ -304,27 +317,26 @@ float marschnerLobb(const glm::vec3& p) {
     return (1.0f - std::sin(pi * p.z / 2.0f) + alpha * (1.0f + rho)) / (2.0f * (1.0f + alpha));
 }
 
-// A Marschner-Lobb volume (64^3 samples) standing on a floor, under a sun and a sky: the medium scatters
-// (albedo from a warm colour map) and casts its shadow.
-AnariWorld volumeScene(ANARIDevice d) {
-    DemoBuilder b(d);
-    b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
-    const glm::uvec3 dims(64);
+// The Marschner-Lobb signal sampled on a dims^3 grid over [-1, 1]^3, its z axis turned to point up (world y).
+std::vector<float> marschnerLobbSamples(glm::uvec3 dims) {
     std::vector<float> samples;
     samples.reserve(size_t(dims.x) * dims.y * dims.z);
     for (uint32_t z = 0; z < dims.z; ++z)
         for (uint32_t y = 0; y < dims.y; ++y)
             for (uint32_t x = 0; x < dims.x; ++x) {
-                // The field's z axis points up (world y).
                 const glm::vec3 p = glm::vec3(x, y, z) / glm::vec3(dims - 1u) * 2.0f - 1.0f;
                 samples.push_back(marschnerLobb(glm::vec3(p.x, p.z, p.y)));
             }
-    b.volume(dims, samples, {-1.0f, 0.05f, -1.0f}, {1.0f, 2.05f, 1.0f},
-             {{0.15f, 0.2f, 0.6f}, {0.2f, 0.7f, 0.8f}, {0.95f, 0.85f, 0.4f}, {0.95f, 0.35f, 0.15f}},
-             // A thin shell around the value 0.5, where the signal's rings are.
-             {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.8f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
-              0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
-             0.01f);
+    return samples;
+}
+
+// The floor, sun and sky the field demos stand in; `addField` puts the field on it.
+template <class AddField>
+AnariWorld fieldScene(ANARIDevice d, AddField addField) {
+    DemoBuilder b(d);
+    b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
+    const glm::uvec3 dims(64);
+    addField(b, b.field(dims, marschnerLobbSamples(dims), {-1.0f, 0.05f, -1.0f}, {1.0f, 2.05f, 1.0f}));
     b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);
     AnariWorld out = b.finish(lookAt({0.0f, 2.4f, 4.6f}, {0.0f, 0.9f, 0.0f}, 40.0f), {-4.0f, 0.0f, -4.0f}, {4.0f, 2.05f, 4.0f});
     out.ambientRadiance = 0.3f;
@@ -332,9 +344,29 @@ AnariWorld volumeScene(ANARIDevice d) {
     return out;
 }
 
+// A Marschner-Lobb volume (64^3 samples) standing on a floor, under a sun and a sky: the medium scatters
+// (albedo from a warm colour map) and casts its shadow.
+AnariWorld volumeScene(ANARIDevice d) {
+    return fieldScene(d, [](DemoBuilder& b, ANARISpatialField field) {
+        b.volume(field, {{0.15f, 0.2f, 0.6f}, {0.2f, 0.7f, 0.8f}, {0.95f, 0.85f, 0.4f}, {0.95f, 0.35f, 0.15f}},
+                 // A thin shell around the value 0.5, where the signal's rings are.
+                 {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.8f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+                  0.0f, 0.0f, 0.0f, 0.0f, 0.0f},
+                 0.01f);
+    });
+}
+
+// The same field's iso-surface at 0.5 as polished gold: the rings, traced exactly through the trilinear
+// interpolant of the 64^3 samples.
+AnariWorld isosurfaceScene(ANARIDevice d) {
+    return fieldScene(d, [](DemoBuilder& b, ANARISpatialField field) {
+        b.isosurface(field, 0.5f, b.pbr({1.0f, 0.78f, 0.34f}, 1.0f, 0.3f));
+    });
+}
+
 }  // namespace
 
-std::vector<std::string> demoSceneNames() { return {"default", "cornell", "volume"}; }
+std::vector<std::string> demoSceneNames() { return {"default", "cornell", "volume", "isosurface"}; }
 
 void checkDemoSceneName(const std::string& name) {
     const std::vector<std::string> names = demoSceneNames();
@@ -348,6 +380,7 @@ AnariWorld buildDemoScene(ANARIDevice device, const std::string& name) {
     checkDemoSceneName(name);
     if (name == "cornell") return cornellScene(device);
     if (name == "volume") return volumeScene(device);
+    if (name == "isosurface") return isosurfaceScene(device);
     return defaultScene(device);
 }
 

@@ -1,6 +1,7 @@
 // Built-in scenes made through ANARI with no files: "default" (spheres, a torus and pillars of several
 // materials on a tiled floor, sun and area light), "cornell" (the Cornell box built procedurally) and
-// "volume" (a Marschner-Lobb field as a scattering medium on a floor).
+// "volume" (a Marschner-Lobb field as a scattering medium on a floor) and "isosurface" (the same field's
+// surface at 0.5, in gold).
 #pragma once
 
 #include "apps/common/AnariScene.h"

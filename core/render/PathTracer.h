@@ -56,6 +56,9 @@ struct RenderSettings {
     // converges to the same image.
     enum class LightSampling : uint32_t { Mis = 0, LightsOnly = 1, BsdfOnly = 2 };
     LightSampling lightSampling = LightSampling::Mis;
+    // Henyey-Greenstein mean cosine of scattering in volumes: > 0 forward, < 0 backward, 0 isotropic.
+    // Clamped to [-0.99, 0.99] (the phase function is a delta at +-1).
+    float phaseAnisotropy = 0.0f;
 };
 
 struct PathTracerOptions {

@@ -69,6 +69,13 @@ void appendBoxes(const AccelerationGeometry& g, const AccelerationInputs& in, st
                                          (p.flags & gpu::CONE_ROUND) != 0)));
             break;
         }
+        case GeometryKind::Isosurfaces: {
+            const gpu::IsoCellPrim& p = in.isoCells[i];
+            const glm::vec3 lo(p.lowCorner), size(p.size);
+            const glm::vec3 pad = 1e-6f * (glm::abs(lo) + size);
+            out.push_back(toAabb({lo - pad, lo + size + pad}));
+            break;
+        }
         case GeometryKind::Triangles: break;
         }
     }

@@ -32,6 +32,7 @@ struct AccelerationInputs {
     std::span<const gpu::SpherePrim> spheres;
     std::span<const gpu::CylinderPrim> cylinders;
     std::span<const gpu::ConePrim> cones;
+    std::span<const gpu::IsoCellPrim> isoCells;
     std::span<const gpu::InstancePrim> instances;  // TLAS order
     std::span<const uint32_t> instanceGeometry;    // per instance: its index in `geometries`
 };

@@ -68,6 +68,7 @@ std::string geometryLabel(GeometryKind kind, uint32_t index) {
     case GeometryKind::Spheres: return "sphere set " + std::to_string(index);
     case GeometryKind::Cylinders: return "cylinder set " + std::to_string(index);
     case GeometryKind::Cones: return "cone set " + std::to_string(index);
+    case GeometryKind::Isosurfaces: return "isosurface set " + std::to_string(index);
     }
     return "geometry of kind " + std::to_string(static_cast<uint32_t>(kind)) + " " + std::to_string(index);
 }
@@ -257,6 +258,82 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(const ConeSet& set, cons
     note(*g, nonFinite, "segment(s) with a NaN or Inf end");
     note(*g, badRadius, "segment(s) with a radius that is negative or not finite, or 0 at both ends");
     note(*g, zeroLength, "segment(s) of zero length");
+    return finish(std::move(g), boxes);
+}
+
+namespace {
+
+// Whether an iso-surface set's arrays describe a field of at least one cell with a usable grid.
+std::string isosurfaceFieldProblem(const IsosurfaceSet& set) {
+    const glm::uvec3 d = set.dims;
+    if (d.x < 2 || d.y < 2 || d.z < 2) return "a field needs at least 2 voxels along each axis";
+    if (uint64_t(d.x) * d.y * d.z != set.values.size()) return "the voxel count does not match the dimensions";
+    if (!finite(set.origin)) return "origin is not finite";
+    if (!(finite(set.spacing) && set.spacing.x > 0.0f && set.spacing.y > 0.0f && set.spacing.z > 0.0f))
+        return "spacing is not finite and positive";
+    for (float v : set.isovalues)
+        if (!std::isfinite(v)) return "an isovalue is not finite";
+    return {};
+}
+
+}  // namespace
+
+bool fits(const PreparedGeometry& prepared, const IsosurfaceSet& set) {
+    if (!isosurfaceFieldProblem(set).empty() || prepared.positionCount != set.values.size()) return false;
+    const glm::uvec3 cells = set.dims - 1u;
+    const uint64_t pairs = uint64_t(cells.x) * cells.y * cells.z * set.isovalues.size();
+    for (uint64_t pair : prepared.isoCells)
+        if (pair >= pairs) return false;
+    return true;
+}
+
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const IsosurfaceSet& set, const bvh::BuildOptions& options) {
+    auto g = std::make_shared<PreparedGeometry>();
+    g->kind = GeometryKind::Isosurfaces;
+    g->identity = set.identity;
+    g->buildOptions = options;
+    g->positionCount = set.values.size();
+    if (const std::string problem = isosurfaceFieldProblem(set); !problem.empty()) {
+        g->problems.push_back(problem + "; set skipped");
+        return g;
+    }
+    const glm::uvec3 d = set.dims;
+    const uint64_t isoCount = set.isovalues.size();
+    auto at = [&](uint32_t x, uint32_t y, uint32_t z) { return set.values[(uint64_t(z) * d.y + y) * d.x + x]; };
+    std::vector<bvh::Aabb> boxes;
+    uint64_t nonFinite = 0;
+    for (uint32_t z = 0; z + 1 < d.z; ++z)
+        for (uint32_t y = 0; y + 1 < d.y; ++y)
+            for (uint32_t x = 0; x + 1 < d.x; ++x) {
+                float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+                bool finiteCorners = true;
+                for (uint32_t n = 0; n < 8; ++n) {
+                    const float v = at(x + (n & 1), y + ((n >> 1) & 1), z + (n >> 2));
+                    finiteCorners = finiteCorners && std::isfinite(v);
+                    lo = std::min(lo, v);
+                    hi = std::max(hi, v);
+                }
+                if (!finiteCorners) { ++nonFinite; continue; }
+                if (!(lo < hi)) continue;  // constant: no surface, or the whole cell (left out)
+                const uint64_t cell = (uint64_t(z) * (d.y - 1) + y) * (d.x - 1) + x;
+                const glm::vec3 corner = set.origin + glm::vec3(x, y, z) * set.spacing;
+                const glm::vec3 pad = 1e-6f * (glm::abs(corner) + set.spacing);
+                for (uint64_t i = 0; i < isoCount; ++i) {
+                    if (set.isovalues[i] < lo || set.isovalues[i] > hi) continue;
+                    g->isoCells.push_back(cell * isoCount + i);
+                    boxes.push_back({corner - pad, corner + set.spacing + pad});
+                }
+            }
+    note(*g, nonFinite, "cell(s) with a NaN or Inf voxel");
+    g->inputPrimCount = g->isoCells.size();
+    if (g->inputPrimCount > std::numeric_limits<uint32_t>::max()) {
+        g->problems.push_back("more than 2^32 cells crossed; set skipped");
+        g->isoCells.clear();
+        g->inputPrimCount = 0;
+        return g;
+    }
+    g->validPrims.resize(g->inputPrimCount);
+    for (uint32_t i = 0; i < g->validPrims.size(); ++i) g->validPrims[i] = i;
     return finish(std::move(g), boxes);
 }
 

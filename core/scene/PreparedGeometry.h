@@ -21,7 +21,10 @@ struct PreparedGeometry {
                                         // nodes are dropped once collapsed: only blas4 is traced
     bvh::Bvh4 blas4;                    // blas collapsed 4 wide (the kernels' layout), reused with it
     uint64_t inputPrimCount = 0;
-    uint64_t positionCount = 0;         // positions (or centers) it was validated against
+    uint64_t positionCount = 0;         // positions (or centers, or voxels) it was validated against
+    // Isosurfaces only: the primitives are the (cell, isovalue) pairs where the surface crosses a cell,
+    // each stored as cell * isovalues + isovalue index (cells numbered x fastest over dims - 1).
+    std::vector<uint64_t> isoCells;
     uint64_t skipped = 0;
     // Why primitives were skipped, without the geometry's name (which depends on where it sits in a
     // description, so it is added when reported).
@@ -53,6 +56,7 @@ bool fits(const PreparedGeometry& prepared, const TriangleMesh& mesh);
 bool fits(const PreparedGeometry& prepared, const SphereSet& set);
 bool fits(const PreparedGeometry& prepared, const CylinderSet& set);
 bool fits(const PreparedGeometry& prepared, const ConeSet& set);
+bool fits(const PreparedGeometry& prepared, const IsosurfaceSet& set);
 
 // Validates the primitives of one geometry and builds its BLAS. Skips (and names in `problems`) NaN or
 // Inf positions, indices out of range, zero-area triangles, zero-length cylinders and radii that are not
@@ -63,5 +67,9 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(const CylinderSet& set, 
 // Cones and curve segments: also skips radii that are negative or not finite, and cones whose both radii
 // are 0.
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const ConeSet& set, const bvh::BuildOptions& options);
+// Iso-surfaces: one primitive per cell and isovalue that the surface crosses (the cell's corner values
+// span the isovalue), so the BLAS over them skips every cell the surface does not enter. Cells with a
+// NaN or Inf corner are skipped; a field whose dims, values or spacing do not fit skips the whole set.
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const IsosurfaceSet& set, const bvh::BuildOptions& options);
 
 }  // namespace ripple::core

@@ -68,6 +68,7 @@ struct FlatScene {
     std::vector<gpu::SpherePrim> spheres;
     std::vector<gpu::CylinderPrim> cylinders;
     std::vector<gpu::ConePrim> cones;
+    std::vector<gpu::IsoCellPrim> isoCells;
     std::vector<gpu::GeometryRecord> geometries;
     std::vector<uint32_t> primSlots;
     std::vector<uint32_t> vertexIndices;
@@ -161,6 +162,29 @@ void flattenCones(const ConeSet& set, UsedGeometry& g, FlatScene& flat, gpu::Geo
     record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
 }
 
+void flattenIsosurfaces(const IsosurfaceSet& set, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
+                        SceneReport& report) {
+    const PreparedGeometry& p = *g.prepared;
+    const glm::uvec3 d = set.dims, cells = d - 1u;
+    const uint64_t isoCount = set.isovalues.size();
+    auto at = [&](uint64_t x, uint64_t y, uint64_t z) { return set.values[(z * d.y + y) * d.x + x]; };
+    for (uint32_t slot : p.blas.primOrder) {
+        const uint32_t prim = p.validPrims[slot];
+        const uint64_t pair = p.isoCells[prim], cell = pair / isoCount;
+        const uint32_t iso = static_cast<uint32_t>(pair % isoCount);
+        const uint64_t x = cell % cells.x, y = (cell / cells.x) % cells.y, z = cell / (uint64_t(cells.x) * cells.y);
+        gpu::IsoCellPrim c{};
+        c.lowCorner = gpu::vec4(set.origin + glm::vec3(x, y, z) * set.spacing, set.isovalues[iso]);
+        c.size = gpu::vec4(set.spacing, 0.0f);
+        c.values0 = gpu::vec4(at(x, y, z), at(x + 1, y, z), at(x, y + 1, z), at(x + 1, y + 1, z));
+        c.values1 = gpu::vec4(at(x, y, z + 1), at(x + 1, y, z + 1), at(x, y + 1, z + 1), at(x + 1, y + 1, z + 1));
+        c.primId = prim;
+        c.isovalueIndex = iso;
+        flat.isoCells.push_back(c);
+    }
+    record.colorOffset = appendAttribute(set.colors, isoCount, "colors", geometryLabel(g.kind, g.index), flat, report);
+}
+
 // Appends a geometry's BLAS, primitives, slot map and attributes; returns its GeometryRecord index.
 uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, FlatScene& flat, SceneReport& report) {
     const PreparedGeometry& p = *g.prepared;
@@ -170,6 +194,7 @@ uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, F
     case GeometryKind::Spheres: g.primOffset = static_cast<uint32_t>(flat.spheres.size()); break;
     case GeometryKind::Cylinders: g.primOffset = static_cast<uint32_t>(flat.cylinders.size()); break;
     case GeometryKind::Cones: g.primOffset = static_cast<uint32_t>(flat.cones.size()); break;
+    case GeometryKind::Isosurfaces: g.primOffset = static_cast<uint32_t>(flat.isoCells.size()); break;
     }
     flat.nodes.insert(flat.nodes.end(), p.blas4.nodes.begin(), p.blas4.nodes.end());
     gpu::GeometryRecord record{};
@@ -187,6 +212,7 @@ uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, F
     case GeometryKind::Spheres: flattenSpheres(description.sphereSets[g.index], g, flat, record, report); break;
     case GeometryKind::Cylinders: flattenCylinders(description.cylinderSets[g.index], g, flat, record, report); break;
     case GeometryKind::Cones: flattenCones(description.coneSets[g.index], g, flat, record, report); break;
+    case GeometryKind::Isosurfaces: flattenIsosurfaces(description.isosurfaceSets[g.index], g, flat, record, report); break;
     }
     flat.geometries.push_back(record);
     return static_cast<uint32_t>(flat.geometries.size() - 1);
@@ -198,6 +224,7 @@ size_t geometryCount(const SceneDescription& d, GeometryKind kind) {
     case GeometryKind::Spheres: return d.sphereSets.size();
     case GeometryKind::Cylinders: return d.cylinderSets.size();
     case GeometryKind::Cones: return d.coneSets.size();
+    case GeometryKind::Isosurfaces: return d.isosurfaceSets.size();
     }
     return 0;
 }
@@ -224,6 +251,7 @@ std::shared_ptr<const PreparedGeometry> prepareOrReuse(const SceneDescription& d
     case GeometryKind::Spheres: return lookup(d.sphereSets[index]);
     case GeometryKind::Cylinders: return lookup(d.cylinderSets[index]);
     case GeometryKind::Cones: return lookup(d.coneSets[index]);
+    case GeometryKind::Isosurfaces: return lookup(d.isosurfaceSets[index]);
     }
     return nullptr;
 }
@@ -235,10 +263,11 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     // 1. Validate every instance and every geometry it references (once per geometry); what cannot be
     //    traced is skipped and reported.
     std::vector<UsedGeometry> used;
-    std::vector<int64_t> slots[4] = {std::vector<int64_t>(description.meshes.size(), -1),
+    std::vector<int64_t> slots[5] = {std::vector<int64_t>(description.meshes.size(), -1),
                                      std::vector<int64_t>(description.sphereSets.size(), -1),
                                      std::vector<int64_t>(description.cylinderSets.size(), -1),
-                                     std::vector<int64_t>(description.coneSets.size(), -1)};
+                                     std::vector<int64_t>(description.coneSets.size(), -1),
+                                     std::vector<int64_t>(description.isosurfaceSets.size(), -1)};
     struct ValidInstance { uint32_t input; uint32_t geometry; };
     std::vector<ValidInstance> valid;
     auto skipInstance = [&](uint32_t i, const std::string& why) {
@@ -249,7 +278,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     for (uint32_t i = 0; i < description.instances.size(); ++i) {
         const InstanceDescription& inst = description.instances[i];
         const auto kindIndex = static_cast<uint32_t>(inst.geometry.kind);
-        if (kindIndex > static_cast<uint32_t>(GeometryKind::Cones)) {
+        if (kindIndex > static_cast<uint32_t>(GeometryKind::Isosurfaces)) {
             skipInstance(i, "unknown geometry kind " + std::to_string(kindIndex));
             continue;
         }
@@ -273,6 +302,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
             case GeometryKind::Spheres: report_.spheresKept += kept; report_.spheresSkipped += prepared->skipped; break;
             case GeometryKind::Cylinders: report_.cylindersKept += kept; report_.cylindersSkipped += prepared->skipped; break;
             case GeometryKind::Cones: report_.conesKept += kept; report_.conesSkipped += prepared->skipped; break;
+            case GeometryKind::Isosurfaces: report_.isoCellsKept += kept; report_.isoCellsSkipped += prepared->skipped; break;
             }
             if (prepared->identity.key != 0) reusable_.push_back(prepared);
             slot = static_cast<int64_t>(used.size());
@@ -283,7 +313,8 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
             continue;
         }
         valid.push_back({i, static_cast<uint32_t>(slot)});
-        features_ |= 1u << kindIndex;  // FEATURE_TRIANGLES.. FEATURE_CONES
+        // FEATURE_TRIANGLES.. FEATURE_CONES are bit GEOMETRY_*; iso-surfaces have a bit of their own.
+        features_ |= inst.geometry.kind == GeometryKind::Isosurfaces ? gpu::FEATURE_ISOSURFACES : 1u << kindIndex;
     }
     report_.instancesKept = valid.size();
     report_.blasBuildSeconds = secondsSince(start);
@@ -380,6 +411,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.spheres = upload(spheres_, flat.spheres, "scene spheres");
     desc.cylinders = upload(cylinders_, flat.cylinders, "scene cylinders");
     desc.cones = upload(cones_, flat.cones, "scene cones");
+    desc.isoCells = upload(isoCells_, flat.isoCells, "scene iso-surface cells");
     desc.instances = upload(instances_, instances, "scene instances");
     desc.instanceShading = upload(instanceShading_, instanceShading, "scene instance shading");
     desc.geometries = upload(geometries_, flat.geometries, "scene geometry records");
@@ -417,7 +449,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
             geometries.push_back({g.prepared, g.kind, g.primOffset, static_cast<uint32_t>(g.prepared->validPrims.size())});
         std::vector<uint32_t> instanceGeometry;
         for (uint32_t slot : tlas.primOrder) instanceGeometry.push_back(valid[slot].geometry);
-        const AccelerationInputs inputs{geometries, desc.triangles, flat.spheres, flat.cylinders, flat.cones, instances,
+        const AccelerationInputs inputs{geometries, desc.triangles, flat.spheres, flat.cylinders, flat.cones, flat.isoCells, instances,
                                         instanceGeometry};
         accelerationStructures_ = std::make_unique<AccelerationStructures>(
             context, inputs, previous ? previous->accelerationStructures_.get() : nullptr);

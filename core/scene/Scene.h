@@ -38,6 +38,8 @@ struct SceneReport {
     uint64_t cylindersSkipped = 0;     // NaN/Inf end, index out of range, zero length, bad radius
     uint64_t conesKept = 0;            // cone and curve segments
     uint64_t conesSkipped = 0;         // as cylinders; radii may be 0 at one end
+    uint64_t isoCellsKept = 0;         // (cell, isovalue) pairs an iso-surface crosses
+    uint64_t isoCellsSkipped = 0;      // cells with a NaN or Inf voxel
     uint64_t instancesKept = 0;
     uint64_t instancesSkipped = 0;     // empty geometry, bad reference, or non-finite/singular transform
     uint64_t attributesIgnored = 0;    // optional attributes with a wrong length or NaN/Inf values
@@ -95,7 +97,7 @@ private:
     std::vector<std::shared_ptr<const PreparedGeometry>> reusable_;
     Traversal traversal_ = Traversal::Software;
     std::unique_ptr<AccelerationStructures> accelerationStructures_;  // RayQuery only
-    vk::Buffer nodes_, triangles_, spheres_, cylinders_, cones_, instances_, instanceShading_, geometries_, primSlots_,
+    vk::Buffer nodes_, triangles_, spheres_, cylinders_, cones_, isoCells_, instances_, instanceShading_, geometries_, primSlots_,
         vertexIndices_, attributes_, materials_, textures_, texels_, lights_, volumes_, volumeData_, desc_;
 };
 

@@ -76,11 +76,26 @@ struct ConeSet {
     GeometryIdentity identity;
 };
 
-enum class GeometryKind : uint32_t { Triangles = 0, Spheres = 1, Cylinders = 2, Cones = 3 };
+// Iso-surfaces of a structured-regular scalar field (ANARI geometry "isosurface"): where the trilinear
+// interpolant of the cell-vertex samples equals one of the isovalues. Voxel (i, j, k) sits at
+// origin + (i, j, k) * spacing; the primitive id a frame reports is the isovalue's index. Cells with a
+// NaN or Inf corner are left out (reported).
+struct IsosurfaceSet {
+    glm::uvec3 dims{0};
+    std::vector<float> values;            // dims.x * dims.y * dims.z, x fastest
+    glm::vec3 origin{0.0f};
+    glm::vec3 spacing{1.0f};              // each component finite and positive
+    std::vector<float> isovalues;         // finite
+    std::vector<glm::vec4> colors;        // empty, or one per isovalue
+    GeometryIdentity identity;
+};
+
+enum class GeometryKind : uint32_t { Triangles = 0, Spheres = 1, Cylinders = 2, Cones = 3, Isosurfaces = 4 };
 
 struct GeometryRef {
     GeometryKind kind = GeometryKind::Triangles;
-    uint32_t index = 0;                   // into SceneDescription::meshes, ::sphereSets, ::cylinderSets or ::coneSets
+    uint32_t index = 0;                   // into SceneDescription::meshes, ::sphereSets, ::cylinderSets, ::coneSets
+                                          // or ::isosurfaceSets
 };
 
 // A sampler as materials read it: an input from the surface, mapped to linear RGBA. Image texels are
@@ -214,6 +229,7 @@ struct SceneDescription {
     std::vector<SphereSet> sphereSets;
     std::vector<CylinderSet> cylinderSets;
     std::vector<ConeSet> coneSets;
+    std::vector<IsosurfaceSet> isosurfaceSets;
     std::vector<InstanceDescription> instances;
     std::vector<Material> materials;
     std::vector<Texture> textures;

@@ -12,7 +12,8 @@ RIPPLE_CONST uint FEATURE_TRIANGLES = 1u << 0;
 RIPPLE_CONST uint FEATURE_SPHERES = 1u << 1;
 RIPPLE_CONST uint FEATURE_CYLINDERS = 1u << 2;
 RIPPLE_CONST uint FEATURE_CONES = 1u << 3;     // cones and curves
-RIPPLE_CONST uint FEATURE_GEOMETRY = 0xFu;
+RIPPLE_CONST uint FEATURE_ISOSURFACES = 1u << 23; // GEOMETRY_ISOSURFACES (bit 4 was taken by volumes)
+RIPPLE_CONST uint FEATURE_GEOMETRY = 0xFu | FEATURE_ISOSURFACES;
 RIPPLE_CONST uint FEATURE_VOLUMES = 1u << 4;   // the world has volumes: pt_volume and pt_shadow_volume run
 RIPPLE_CONST uint FEATURE_TEXTURES = 1u << 5;  // a material reads a texture
 RIPPLE_CONST uint FEATURE_EMISSIVE = 1u << 6;  // a material emits
@@ -29,7 +30,7 @@ RIPPLE_CONST uint FEATURE_CHANNEL_OBJECT_ID = 1u << 20;
 RIPPLE_CONST uint FEATURE_CHANNEL_INSTANCE_ID = 1u << 21;
 RIPPLE_CONST uint FEATURE_SURFACE_CHANNELS = 0x1Fu << 17;  // written by pt_channels from the first hit
 RIPPLE_CONST uint FEATURE_MULTI_RANK = 1u << 22;           // rays cross ranks: exchange stages run
-RIPPLE_CONST uint FEATURE_ALL = 0x7FFFFFu;
+RIPPLE_CONST uint FEATURE_ALL = 0xFFFFFFu;
 
 RIPPLE_GPU_END
 #endif

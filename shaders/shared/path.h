@@ -124,6 +124,8 @@ struct FrameConstants {
     uint64_t counters;        // PathCounters
     float maxRadiance;        // clamp of each contribution's largest component; 0: no clamp
     uint lightSampling;       // LIGHT_SAMPLING_*
+    float phaseAnisotropy;    // Henyey-Greenstein g of scattering in volumes, in (-1, 1); 0: isotropic
+    uint pad0;
 };
 
 // Push constants of every pt_*.comp stage; each reads the fields it needs (0 where unused).

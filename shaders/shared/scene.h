@@ -11,6 +11,7 @@ RIPPLE_CONST uint GEOMETRY_TRIANGLES = 0u;
 RIPPLE_CONST uint GEOMETRY_SPHERES = 1u;
 RIPPLE_CONST uint GEOMETRY_CYLINDERS = 2u;
 RIPPLE_CONST uint GEOMETRY_CONES = 3u;     // cones, and curves of round linear segments
+RIPPLE_CONST uint GEOMETRY_ISOSURFACES = 4u; // iso-surfaces of a structured-regular field
 
 // Which ends of a cylinder or cone are closed by a flat disk (CylinderPrim.caps, ConePrim.flags).
 RIPPLE_CONST uint CAP_FIRST = 1u;
@@ -60,13 +61,28 @@ struct ConePrim {
     uint pad1;
 };
 
+// One cell of a structured-regular field that an iso-surface passes through, in leaf order: the surface
+// inside it is where the trilinear interpolant of its 8 corner values equals the isovalue. primId is its
+// index among the geometry's (cell, isovalue) pairs. A hit reports u = isovalueIndex (the primitive id
+// ANARI applications see) and v = 0.
+struct IsoCellPrim {
+    vec4 lowCorner;  // xyz: the cell's corner of lowest coordinates, object space; w: the isovalue
+    vec4 size;       // xyz: the cell's edge lengths (the field's spacing); w: 0
+    vec4 values0;    // corner values at (x, y, z) offsets 000, 100, 010, 110
+    vec4 values1;    // 001, 101, 011, 111
+    uint primId;
+    uint isovalueIndex;
+    uint pad0;
+    uint pad1;
+};
+
 // One instance of a BLAS, in TLAS leaf order. Rays are moved into object space with worldToObject
 // without renormalising the direction, so a hit's t is the same in both spaces.
 struct InstancePrim {
     vec4 worldToObject[3];  // rows of the affine 3x4 matrix
     vec4 objectToWorld[3];  // rows
     uint blasNodeOffset;    // first node of this instance's BLAS in SceneDesc.nodes
-    uint primOffset;        // first primitive of the BLAS in triangles[], spheres[], cylinders[] or cones[]
+    uint primOffset;        // first primitive of the BLAS in triangles[], spheres[], cylinders[], cones[] or isoCells[]
     uint geometryKind;      // GEOMETRY_*
     uint instanceId;        // the instance's index in SceneDescription::instances (what a Hit reports)
 };
@@ -130,6 +146,7 @@ struct SceneDesc {
                                     // the scene was built without one or has no instances
     uint64_t volumes;         // VolumeRecord[] (shared/volume.h)
     uint64_t volumeData;      // float[]: voxels, macrocell majorants and transfer-function tables
+    uint64_t isoCells;        // IsoCellPrim[]
 };
 
 RIPPLE_GPU_END

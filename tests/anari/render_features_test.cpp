@@ -593,3 +593,125 @@ TEST_CASE("volume hostile input: each bad field or transfer function is reported
         for (const glm::vec4& p : image.linear) CHECK(p.r == 1.0f);  // nothing of the spoilt volume rendered
     }
 }
+
+TEST_CASE("isosurface: exact crossing of the trilinear interpolant, its gradient as normal, the isovalue as primitive id") {
+    // f(x, y, z) = x y z sampled on a 5^3 grid over the unit cube: trilinear in every cell, so the
+    // interpolant is f itself and the surfaces f = c are known exactly. Seen straight down from z = 3, the ray
+    // at (x, y) meets f = c at z = c / (x y) when x y > c: the higher isovalue first.
+    const std::vector<float> isovalues = {0.125f, 0.3f};
+    const uint32_t n = 5;
+    std::vector<float> voxels;
+    for (uint32_t k = 0; k < n; ++k)
+        for (uint32_t j = 0; j < n; ++j)
+            for (uint32_t i = 0; i < n; ++i) voxels.push_back(float(i) / (n - 1) * float(j) / (n - 1) * float(k) / (n - 1));
+    RenderSession s;
+    ANARIArray3D data = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, n, n, n));
+    std::memcpy(anariMapArray(s.device, data), voxels.data(), voxels.size() * sizeof(float));
+    anariUnmapArray(s.device, data);
+    ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
+    s.setObject(field, "data", ANARI_ARRAY3D, data);
+    s.set(field, "spacing", glm::vec3(1.0f / (n - 1)));
+    s.commit(field);
+    ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
+    s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
+    s.setObject(iso, "isovalue", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, isovalues));
+    s.commit(iso);
+    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+    s.set(camera, "position", glm::vec3(0.5f, 0.5f, 3.0f));
+    s.set(camera, "direction", glm::vec3(0, 0, -1));
+    s.set(camera, "height", 1.0f);
+    s.commit(camera);
+    const uint32_t size = 16;
+    ANARIFrame frame = s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera, s.renderer(1, 1),
+                               {size, size}, ANARI_FLOAT32_VEC4, true);
+    setChannel(s, frame, "channel.primitiveId", ANARI_UINT32);
+    setChannel(s, frame, "channel.normal", ANARI_FLOAT32_VEC3);
+    s.commit(frame);
+    const Image image = s.render(frame);
+    const auto primitive = mapChannel<uint32_t>(s, frame, "channel.primitiveId", ANARI_UINT32);
+    const auto normal = mapChannel<glm::vec3>(s, frame, "channel.normal", ANARI_FLOAT32_VEC3);
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    uint32_t checked[3] = {0, 0, 0};  // pixels that see nothing, the lower and the higher surface
+    for (uint32_t py = 0; py < size; ++py)
+        for (uint32_t px = 0; px < size; ++px) {
+            const float x = (px + 0.5f) / size, y = (py + 0.5f) / size, xy = x * y;
+            const size_t i = size_t(py) * size + px;
+            INFO("pixel " << px << "," << py);
+            int surface = -1;
+            for (int k = 0; k < 2; ++k)
+                if (xy > isovalues[k]) surface = k;
+            // Samples are jittered within the pixel: skip pixels whose footprint holds an edge.
+            const float h = 0.5f / size, xyLow = (x - h) * (y - h), xyHigh = (x + h) * (y + h);
+            bool nearEdge = false;
+            for (float c : isovalues) nearEdge = nearEdge || (xyLow <= c && c <= xyHigh);
+            if (nearEdge) continue;
+            if (surface < 0) {
+                CHECK(std::isinf(image.depth[i]));
+                CHECK(primitive[i] == kNoId);
+                ++checked[0];
+                continue;
+            }
+            // The sample's position in the pixel is jittered, so the hit is checked for consistency with the
+            // exact surface: its height from the depth, its x and y from the normal (parallel to the gradient
+            // (yz, xz, xy), so x = z n.z / n.x and y = z n.z / n.y), and those must lie on f = c in the pixel.
+            CHECK(primitive[i] == uint32_t(surface));
+            const float z = 3.0f - image.depth[i];
+            const glm::vec3 nrm = normal[i];
+            REQUIRE(nrm.x > 0.0f);
+            REQUIRE(nrm.y > 0.0f);
+            const float hx = z * nrm.z / nrm.x, hy = z * nrm.z / nrm.y;
+            CHECK(hx * hy * z == doctest::Approx(isovalues[surface]).epsilon(1e-4));
+            CHECK(std::abs(hx - x) <= 0.5f / size + 1e-4f);
+            CHECK(std::abs(hy - y) <= 0.5f / size + 1e-4f);
+            CHECK(glm::length(nrm) == doctest::Approx(1.0f).epsilon(1e-5));
+            ++checked[surface + 1];
+        }
+    CHECK(checked[0] > 20);  // each case is seen by enough pixels to mean something
+    CHECK(checked[1] > 20);
+    CHECK(checked[2] > 20);
+}
+
+TEST_CASE("isosurface hostile input: a missing field or isovalue, a NaN isovalue, the wrong element type") {
+    struct Case {
+        const char* name;
+        const char* expected;
+        std::function<void(RenderSession&, ANARIGeometry)> spoil;
+    };
+    const std::vector<Case> cases = {
+        {"no field", "field", [](RenderSession& s, ANARIGeometry g) { anariUnsetParameter(s.device, g, "field"); }},
+        {"no isovalue", "isovalue", [](RenderSession& s, ANARIGeometry g) { anariUnsetParameter(s.device, g, "isovalue"); }},
+        {"NaN isovalue", "not finite",
+         [](RenderSession& s, ANARIGeometry g) { s.set(g, "isovalue", std::numeric_limits<float>::quiet_NaN()); }},
+        {"INT32 isovalues", "isovalue",
+         [](RenderSession& s, ANARIGeometry g) { s.setObject(g, "isovalue", ANARI_ARRAY1D, s.array(ANARI_INT32, std::vector<int32_t>{1})); }},
+        {"empty isovalues", "zero elements",
+         [](RenderSession& s, ANARIGeometry g) {
+             s.setObject(g, "isovalue", ANARI_ARRAY1D, s.keep(anariNewArray1D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, 0)));
+         }},
+    };
+    for (const Case& c : cases) {
+        const std::string name = c.name;
+        CAPTURE(name);
+        RenderSession s;
+        const float ramp[8] = {0, 1, 0, 1, 0, 1, 0, 1};
+        ANARIArray3D data = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, 2, 2, 2));
+        std::memcpy(anariMapArray(s.device, data), ramp, sizeof(ramp));
+        anariUnmapArray(s.device, data);
+        ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
+        s.setObject(field, "data", ANARI_ARRAY3D, data);
+        s.commit(field);
+        ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
+        s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
+        s.set(iso, "isovalue", 0.5f);
+        c.spoil(s, iso);
+        s.commit(iso);
+        ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+        s.set(camera, "position", glm::vec3(0.5f, 0.5f, 3.0f));
+        s.set(camera, "direction", glm::vec3(0, 0, -1));
+        s.commit(camera);
+        const Image image = s.render(s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera,
+                                             s.renderer(1, 1, glm::vec4(1.0f)), {4, 4}, ANARI_FLOAT32_VEC4));
+        CHECK_MESSAGE(s.log.count({c.expected}) >= 1, s.log.dump());
+        for (const glm::vec4& p : image.linear) CHECK(p.r == 1.0f);  // nothing of the spoilt surface rendered
+    }
+}

@@ -42,6 +42,7 @@ const std::map<std::string, ParameterTable>& specification() {
           {"vertex.color", {{ANARI_ARRAY1D}, kFloatVecs}},
           {"primitive.color", {{ANARI_ARRAY1D}, kFloatVecs}},
           {"primitive.index", {{ANARI_ARRAY1D}, {ANARI_UINT32_VEC3}}}}},
+        {"geometry/isosurface", {{"field", {{ANARI_SPATIAL_FIELD}}}, {"isovalue", {{ANARI_FLOAT32, ANARI_ARRAY1D}, {ANARI_FLOAT32}}}}},
         {"geometry/sphere", {{"vertex.position", {{ANARI_ARRAY1D}, {ANARI_FLOAT32_VEC3}}}, {"radius", kFloat}}},
         {"geometry/cylinder",
          {{"vertex.position", {{ANARI_ARRAY1D}, {ANARI_FLOAT32_VEC3}}},
@@ -295,8 +296,18 @@ TEST_CASE("demo scenes are spec-conforming and complete") {
         CHECK(count(ANARI_GEOMETRY, "triangle") == 1);  // the floor
         CHECK(count(ANARI_LIGHT, "directional") == 1);
     }
+    SUBCASE("isosurface") {
+        ANARIDevice d = newFakeDevice();
+        const AnariWorld world = buildDemoScene(d, "isosurface");
+        CHECK(violations(fakeDevice(), world.world) == "");
+        CHECK(count(ANARI_SPATIAL_FIELD, "structuredRegular") == 1);
+        CHECK(count(ANARI_GEOMETRY, "isosurface") == 1);
+        CHECK(count(ANARI_VOLUME, "transferFunction1D") == 0);
+        CHECK(count(ANARI_GEOMETRY, "triangle") == 1);  // the floor
+    }
     SUBCASE("unknown name") {
-        CHECK_THROWS_WITH_AS(buildDemoScene(newFakeDevice(), "teapot"), "unknown demo scene 'teapot' (known: default, cornell, volume)",
+        CHECK_THROWS_WITH_AS(buildDemoScene(newFakeDevice(), "teapot"),
+                             "unknown demo scene 'teapot' (known: default, cornell, volume, isosurface)",
                              std::invalid_argument);
     }
 }

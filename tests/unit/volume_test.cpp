@@ -125,3 +125,52 @@ TEST_CASE("volumes: shadow rays carry the slab's transmittance (ratio tracking)"
         CHECK(image.stats.flaggedRays == 0);
     }
 }
+
+TEST_CASE("volumes: single scattering under the Henyey-Greenstein phase function, g = -0.5, 0, 0.5") {
+    // A white non-absorbing slab of optical depth 1 (z in [0, 2]) lit straight down by a sun of irradiance
+    // E, seen straight down from above against black. Single scattering only (maxPathLength 1): light that
+    // enters at the top, collides at depth z and scatters back up (cos theta = -1 between the directions light
+    // travels) is attenuated by e^(-sigma z) on each way, so the radiance is
+    //   E p(-1) int_0^2 sigma e^(-2 sigma z) dz = E p(-1) (1 - e^-2) / 2,  p(-1) = (1 - g^2) / (4 pi (1 + g)^3).
+    // The test tells sampling from evaluation: NEE evaluates p(-1), and a wrong g or sign moves it 4-27x.
+    test::ValidationGuard guard;
+    const double irradiance = 10.0;
+    for (const float g : {-0.5f, 0.0f, 0.5f}) {
+        CAPTURE(g);
+        core::SceneDescription scene;
+        core::Light sun;
+        sun.kind = core::Light::Kind::Directional;
+        sun.direction = {0.0f, 0.0f, -1.0f};
+        sun.intensity = float(irradiance);
+        scene.lights.push_back(sun);
+        scene.volumes.push_back(boxVolume(2.0f, 1.0f - std::exp(-1.0f), 2.0f, false, glm::vec3(1.0f)));
+        core::RenderSettings settings;
+        settings.maxPathLength = 1;
+        settings.pixelSamples = 64;
+        settings.phaseAnisotropy = g;
+        const test::Rendered image = test::render(scene, test::lookingDown(3.0f, 1.8f), settings, {24, 24});
+        const Mean m = meanRed(image);
+        const double phase = (1.0 - double(g) * g) / (4.0 * M_PI * std::pow(1.0 + g, 3.0));
+        const double expected = irradiance * phase * (1.0 - std::exp(-2.0)) / 2.0;
+        MESSAGE("g " << g << ": " << m.mean << " +- " << m.standardError << ", expected " << expected);
+        CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
+        CHECK(image.stats.flaggedRays == 0);
+    }
+    // And the furnace (all orders of scattering, white medium, uniform environment) stays 1 for strongly
+    // forward and backward scattering: sampling the phase function keeps energy.
+    for (const float g : {-0.8f, 0.8f}) {
+        CAPTURE(g);
+        core::RenderSettings settings;
+        settings.background = glm::vec4(1.0f);
+        settings.ambientRadiance = 1.0f;
+        settings.maxPathLength = 64;
+        settings.pixelSamples = 32;
+        settings.phaseAnisotropy = g;
+        core::SceneDescription scene;
+        scene.volumes.push_back(boxVolume(2.0f, 1.0f - std::exp(-1.0f), 0.5f, false, glm::vec3(1.0f)));
+        const test::Rendered image = test::render(scene, test::lookingDown(3.0f, 1.8f), settings, {24, 24});
+        const Mean m = meanRed(image);
+        MESSAGE("furnace, g " << g << ": " << m.mean << " +- " << m.standardError);
+        CHECK(std::abs(m.mean - 1.0) <= 0.01 + 4.0 * m.standardError);
+    }
+}

@@ -44,6 +44,9 @@ struct BoundsOf {
         }
         return box;
     }
+    bvh::Aabb operator()(const core::IsosurfaceSet& set) const {  // the whole field: no surface leaves it
+        return {set.origin, set.origin + glm::vec3(set.dims - 1u) * set.spacing};
+    }
     bvh::Aabb operator()(const core::ConeSet& cones) const {
         bvh::Aabb box;
         for (size_t i = 0; i < cones.positions.size(); ++i) {

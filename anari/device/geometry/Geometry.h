@@ -1,4 +1,4 @@
-// ANARI geometry: the subtypes (triangle, quad, sphere, cylinder, cone, curve) pull their arrays at commit, validate
+// ANARI geometry: the subtypes (triangle, quad, sphere, cylinder, cone, curve, isosurface) pull their arrays at commit, validate
 // them and keep the core geometry they describe, ready to be copied into a core::SceneDescription.
 #pragma once
 
@@ -14,7 +14,8 @@ namespace ripple::device {
 class Geometry : public SceneObject {
 public:
     // monostate: nothing valid was committed.
-    using Shape = std::variant<std::monostate, core::TriangleMesh, core::SphereSet, core::CylinderSet, core::ConeSet>;
+    using Shape = std::variant<std::monostate, core::TriangleMesh, core::SphereSet, core::CylinderSet, core::ConeSet,
+                               core::IsosurfaceSet>;
 
     Geometry(DeviceState& state, std::string subtype);
 
@@ -70,5 +71,6 @@ Geometry* newSphereGeometry(DeviceState& state);
 Geometry* newCylinderGeometry(DeviceState& state);
 Geometry* newConeGeometry(DeviceState& state);
 Geometry* newCurveGeometry(DeviceState& state);
+Geometry* newIsosurfaceGeometry(DeviceState& state);
 
 }  // namespace ripple::device

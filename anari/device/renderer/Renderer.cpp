@@ -1,5 +1,6 @@
 // Renderer parameters: "background" (KHR_RENDERER_BACKGROUND_COLOR), "ambientColor" and
-// "ambientRadiance" (KHR_RENDERER_AMBIENT_LIGHT), "pixelSamples", "maxPathLength", "maxRadiance" and "seed".
+// "ambientRadiance" (KHR_RENDERER_AMBIENT_LIGHT), "pixelSamples", "maxPathLength", "maxRadiance", "seed" and
+// "volumeAnisotropy".
 #include "anari/device/renderer/Renderer.h"
 
 #include "anari/device/scene/ArrayConversion.h"
@@ -34,6 +35,12 @@ void Renderer::commit() {
     if (!std::isfinite(settings_.maxRadiance) || settings_.maxRadiance < 0.0f) {
         reportWarning("parameter 'maxRadiance' must be finite and not negative; no clamp");
         settings_.maxRadiance = 0.0f;
+    }
+    // Scattering in volumes: the Henyey-Greenstein mean cosine g (0, the default, is isotropic).
+    settings_.phaseAnisotropy = get<float>("volumeAnisotropy", 0.0f);
+    if (!std::isfinite(settings_.phaseAnisotropy) || std::abs(settings_.phaseAnisotropy) >= 1.0f) {
+        reportWarning("parameter 'volumeAnisotropy' must be finite and within (-1, 1); using 0 (isotropic)");
+        settings_.phaseAnisotropy = 0.0f;
     }
     // Two images with different seeds share no random numbers: a reference rendered with one judges an image
     // rendered with another without sharing its samples. INT32 (bit pattern kept) or UINT32.

@@ -107,6 +107,10 @@ private:
             ref = {core::GeometryKind::Cones, uint32_t(description_.coneSets.size())};
             description_.coneSets.push_back(*cones);
             description_.coneSets.back().identity = identityOf(geometry);
+        } else if (const auto* isosurfaces = std::get_if<core::IsosurfaceSet>(&geometry.shape())) {
+            ref = {core::GeometryKind::Isosurfaces, uint32_t(description_.isosurfaceSets.size())};
+            description_.isosurfaceSets.push_back(*isosurfaces);
+            description_.isosurfaceSets.back().identity = identityOf(geometry);
         }
         return ref;
     }
