@@ -14,6 +14,7 @@
 #include "apps/ripple-render/Progress.h"
 #include "apps/ripple-render/RankAgreement.h"
 #include "apps/ripple-render/RankStats.h"
+#include "apps/ripple-render/TimeBudget.h"
 #include "mpi/Communicator.h"
 #include "mpi/Runtime.h"
 
@@ -53,7 +54,7 @@ struct Options {
     bool stats = false;
     std::string reference;              // converged image of the same view: the true error is reported too
     std::string report;                 // CSV of the convergence series; its plot goes beside it as .png
-    std::optional<double> seconds;      // stop after this much render time
+    std::optional<double> seconds;      // --time: the whole run, start-up included, ends within this
     std::optional<double> targetError;  // stop when the estimated relMSE reaches this
     bool sppGiven = false;              // --spp on the command line: it caps --time and --target-error too
 
@@ -318,20 +319,28 @@ FrameSetup makeFrame(const Options& options, const AnariWorld& scene, ANARICamer
     return setup;
 }
 
+// The start-up on its own line: loading the library, reading the scene, making its objects, and the first
+// frame, in which the device builds the scene and creates its pipelines.
+void reportStartUp(const TimeBudget& budget) {
+    std::printf("start-up %.2f s (library and scene %.2f s, first frame with its pipelines %.2f s)\n",
+                budget.startUpSeconds(), budget.firstFrameBegin(), budget.firstFrameSeconds());
+    std::fflush(stdout);
+}
+
 struct RenderOutcome {
     HalfBufferEstimator estimator;
     std::vector<ConvergencePoint> series;
     uint32_t frames = 0;
-    double seconds = 0.0;
 };
 
 // Frames until a stop: --time, --target-error, whichever comes first (and --spp when given); with neither,
 // --spp. The largest --spp bounds a target that is never reached. Only rank 0 holds the image
-// (data-parallel ANARI): it decides when to stop, and tells the others.
+// (data-parallel ANARI): it decides when to stop, and tells the others. The first frame ends the start-up
+// (the device builds the scene and its pipelines in it); `budget` times it and every frame after it.
 RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const FrameSetup& setup,
-                           const mpi::Communicator& ranks, Session& s, RankStats& stats) {
+                           const mpi::Communicator& ranks, Session& s, RankStats& stats, TimeBudget& budget) {
     // Only rank 0 holds the image, so only it needs the estimator's buffers.
-    RenderOutcome out{HalfBufferEstimator(plan.root ? plan.size.x : 0, plan.root ? plan.size.y : 0), {}, 0, 0.0};
+    RenderOutcome out{HalfBufferEstimator(plan.root ? plan.size.x : 0, plan.root ? plan.size.y : 0), {}, 0};
     const bool stopOnSpp = options.sppGiven || (!options.seconds && !options.targetError);
     const uint32_t sppLimit = stopOnSpp ? options.spp : kMaxSpp;
     const bool printPoints = options.reporting() && !options.quiet && plan.root;
@@ -340,15 +349,10 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
     uint32_t nextReport = 2;  // the first spp with a batch in each half
     bool reportsRays = true;  // until the device says it has no such property (only Ripple has it)
     const ANARIFrame frame = setup.frame;
-    std::array<double, 4> recentFrames{};
     for (bool stop = false; !stop;) {
-        const double frameStart = clock.seconds();
+        const double frameBegin = budget.elapsed();
         anariRenderFrame(s.device, frame);
         anariFrameReady(s.device, frame, ANARI_WAIT);
-        // The longest of the last few frames predicts the next one (a single frame's time is noisy on a loaded
-        // machine); the first frame, which compiles the kernels, drops out after four more.
-        recentFrames[out.frames % recentFrames.size()] = clock.seconds() - frameStart;
-        const double nextFrame = *std::max_element(recentFrames.begin(), recentFrames.end());
         ++out.frames;
         float raysPerSecond = 0.0f;
         if (reportsRays)
@@ -362,17 +366,23 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
             stats.bytesSent += bytes;
             ++stats.frames;
         }
-        if (plan.root) {
+        if (plan.root)
             addFrameToEstimator(s.device, frame, plan.size, out.frames, setup.batch, setup.accumulationExtension,
                                 out.estimator);
+        budget.frameEnded(frameBegin, budget.elapsed());
+        if (out.frames == 1 && plan.root && !options.quiet) reportStartUp(budget);
+        if (plan.root) {
             const uint32_t spp = out.estimator.samples();
             progress.update(spp, reportsRays ? raysPerSecond : 0.0f);
             const double estimate =
                 options.targetError || spp >= nextReport ? out.estimator.estimatedRelMse() : 0.0;
-            // --time stops before a frame that would end past the limit: the render ends within it, at most
-            // one frame early; only a first frame longer than the limit, or a frame far slower than the
-            // ones before, overruns it.
-            stop = spp >= sppLimit || (options.seconds && clock.seconds() + nextFrame > *options.seconds) ||
+            // --time stops before a frame predicted to end past the limit, counted from the process's start:
+            // the run ends within it, at most one frame early; a start-up past it leaves the first frame
+            // alone, and a frame far slower than the ones before overruns it. Under --time every frame is
+            // one sample, the smallest batch, so the last cannot shrink to fit (nor should it change:
+            // Ripple restarts its accumulation when pixelSamples changes): a frame that does not fit is
+            // not started.
+            stop = spp >= sppLimit || !budget.nextFrameFits(budget.elapsed()) ||
                    (options.targetError && spp >= kMinSamplesForTarget && estimate <= *options.targetError);
             if (options.reporting() && (spp >= nextReport || stop)) {
                 clock.pause();  // metrics and printing are not render time
@@ -388,11 +398,11 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
         if (ranks.distributed()) stop = ranks.max(uint64_t(stop ? 1 : 0)) > 0;
     }
     progress.finish();
-    out.seconds = clock.seconds();
     return out;
 }
 
-void writeResults(const Options& options, const RenderPlan& plan, const RenderOutcome& out, uint32_t batch) {
+void writeResults(const Options& options, const RenderPlan& plan, const RenderOutcome& out, uint32_t batch,
+                  const TimeBudget& budget) {
     const std::vector<float> image = out.estimator.meanRgbaBottomUp();
     writeOutputImage(options.output, plan.format, plan.size.x, plan.size.y, image.data());
     if (!options.report.empty()) {
@@ -404,12 +414,23 @@ void writeResults(const Options& options, const RenderPlan& plan, const RenderOu
     const double finalEstimate = out.estimator.estimatedRelMse();
     char estimateText[48] = "n/a (one frame)";
     if (!std::isnan(finalEstimate)) std::snprintf(estimateText, sizeof estimateText, "%.3e", finalEstimate);
-    std::printf("rendered %ux%u, %u spp (%u frames of %u) in %.2f s, estimated relMSE %s -> %s\n", plan.size.x,
-                plan.size.y, out.estimator.samples(), out.frames, batch, out.seconds, estimateText, options.output.c_str());
+    // The whole run so far, start-up included (what --time bounds), then its parts.
+    char timeText[160];
+    if (out.frames > 1)
+        std::snprintf(timeText, sizeof timeText, "%.2f s (start-up %.2f s, then frames of up to %.3f s)",
+                      budget.elapsed(), budget.startUpSeconds(), budget.longestFrame());
+    else
+        std::snprintf(timeText, sizeof timeText, "%.2f s (start-up %.2f s with the only frame)", budget.elapsed(),
+                      budget.startUpSeconds());
+    std::printf("rendered %ux%u, %u spp (%u frames of %u) in %s, estimated relMSE %s -> %s\n", plan.size.x,
+                plan.size.y, out.estimator.samples(), out.frames, batch, timeText, estimateText, options.output.c_str());
+    if (budget.startUpExceeded())
+        std::printf("time limit exceeded by start-up: --time %g s, start-up %.2f s; one frame of %u spp rendered\n",
+                    *budget.limit(), budget.startUpSeconds(), batch);
     if (!options.report.empty()) std::printf("report: %s, plot: %s\n", plan.reportFile.c_str(), plan.plotFile.c_str());
 }
 
-int render(const Options& options, const mpi::Communicator& ranks, Session& s) {
+int render(const Options& options, const mpi::Communicator& ranks, Session& s, TimeBudget& budget) {
     RenderPlan plan = checkOptions(options, ranks);
     StatusLog log{options.quiet, 0};
     openDevice(options, log, s);
@@ -417,14 +438,14 @@ int render(const Options& options, const mpi::Communicator& ranks, Session& s) {
     const AnariWorld scene = buildScene(plan, ranks, s, stats);
     const ANARICamera camera = makeCamera(options, scene, plan.size, s);
     const FrameSetup setup = makeFrame(options, scene, camera, plan.size, s);
-    const RenderOutcome out = renderFrames(options, plan, setup, ranks, s, stats);
+    const RenderOutcome out = renderFrames(options, plan, setup, ranks, s, stats, budget);
     if (options.stats) {
         anariGetProperty(s.device, setup.frame, "ripple.sceneBytes", ANARI_UINT64, &stats.sceneBytes,
                          sizeof stats.sceneBytes, ANARI_WAIT);
         printRankStats(ranks, stats);
     }
     if (!plan.root) return log.errors > 0 ? 1 : 0;
-    writeResults(options, plan, out, setup.batch);
+    writeResults(options, plan, out, setup.batch, budget);
     if (log.errors > 0) {
         std::fprintf(stderr, "[ripple-render] ERROR: the device reported %d error(s); the image may be wrong\n", log.errors);
         return 1;
@@ -462,6 +483,8 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
 }  // namespace ripple::apps
 
 int main(int argc, char** argv) {
+    // --time counts from here: loading the library and the scene are part of the run it bounds.
+    const auto processStart = std::chrono::steady_clock::now();
     // Under mpirun every rank runs this program on its share of the scene (data-parallel ANARI).
     ripple::mpi::Runtime runtime(&argc, &argv);
     // Made before anything can fail: duplicating the communicator is collective.
@@ -477,7 +500,10 @@ int main(int argc, char** argv) {
     app.add_option("--size", options.size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--spp", options.spp, "samples per pixel (with --time or --target-error: a cap, when given)")
         ->check(CLI::Range(1u, ripple::apps::kMaxSpp))->capture_default_str();
-    app.add_option("--time", options.seconds, "render for at most this many seconds: stop before a frame that would end past it")->check(CLI::PositiveNumber);
+    app.add_option("--time", options.seconds,
+                   "end the whole run, start-up (library, scene, first frame's pipelines) included, within this many "
+                   "seconds: stop before a frame predicted to end past it; a start-up past it gets one frame of 1 spp")
+        ->check(CLI::PositiveNumber);
     app.add_option("--target-error", options.targetError, "stop when the estimated relMSE falls to this")
         ->check(CLI::PositiveNumber);
     app.add_option("--reference", options.reference,
@@ -532,7 +558,8 @@ int main(int argc, char** argv) {
 
     ripple::apps::Session session;
     try {
-        return ripple::apps::render(options, ranks, session);
+        ripple::apps::TimeBudget budget(options.seconds, processStart);
+        return ripple::apps::render(options, ranks, session, budget);
     } catch (const std::exception& e) {
         // Other ranks may wait for this one in a collective call (the device's release among them): end
         // them all, before this rank's session is released, never hang.
