@@ -39,7 +39,7 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
     }
     SUBCASE("unknown demo scene") {
         arguments = "--demo nonesuch --library no_such_ripple_library";
-        expected = "unknown demo scene 'nonesuch' (known: default, cornell, volume)";
+        expected = "unknown demo scene 'nonesuch' (known: default, cornell, volume, isosurface)";
     }
     SUBCASE("size that is not WIDTHxHEIGHT") {
         arguments = "--size 12by5";
