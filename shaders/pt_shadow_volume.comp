@@ -22,6 +22,7 @@ void main() {
     VolumeRng rng = volumeRng(key, params.sampleIndex, params.bounce, RNG_VOLUME_SHADOW, f.seed ^ (params.mode * 0x9E3779B9u));
     VolumeDataRef data = VolumeDataRef(scene.volumeData);
     float transmittance = 1.0;
+    uint collisions = 0u;
     for (uint v = 0u; v < scene.volumeCount && transmittance > 0.0; ++v) {
         VolumeRecord volume = VolumesRef(scene.volumes).volumes[v];
         TrackResult track = trackVolume(volume, data, ray.origin.xyz, ray.direction.xyz, ray.origin.w, ray.direction.w,
@@ -31,7 +32,9 @@ void main() {
             transmittance = 0.0;
         }
         transmittance *= track.transmittance;
+        collisions += track.collisions;
     }
+    if (collisions > 0u) countVolumeSteps(CountersRef(f.counters).counters, ratioCollisions, collisions);
     if (visiting) FloatsRef(params.results).values[i] = transmittance;
     else ShadowRequestsRef(params.shadowRequests).requests[i].contribution.rgb *= transmittance;
 }

@@ -28,16 +28,23 @@ void main() {
     bool collided = false;
     bool ranOut = false;
     vec3 albedo = vec3(0.0);
+    uint collisions = 0u;
     for (uint v = 0u; v < scene.volumeCount; ++v) {
         VolumeRecord volume = VolumesRef(scene.volumes).volumes[v];
         TrackResult track = trackVolume(volume, data, ray.origin.xyz, ray.direction.xyz, ray.origin.w, tEnd, TRACK_DELTA, rng);
         ranOut = ranOut || track.ranOut;
+        collisions += track.collisions;
         if (track.transmittance == 0.0 && track.t < tEnd) {
             tEnd = track.t;
             albedo = track.albedo;
             collided = true;
         }
     }
+    // One real collision (the nearest, if any); every other tentative collision counts as null.
+    CountersRef counters = CountersRef(f.counters);
+    const uint real = collided ? 1u : 0u;
+    if (collided) countVolumeSteps(counters.counters, realCollisions, 1u);
+    if (collisions > real) countVolumeSteps(counters.counters, nullCollisions, collisions - real);
     if (ranOut) {
         SurfacesRef(params.surfaces).records[i].status = r.status | HIT_FLAG_RAN_OUT;
         return;

@@ -73,12 +73,20 @@ struct TrackResult {
     float transmittance; // delta: 0 at a collision, 1 without; ratio: the estimate
     vec3 albedo;         // delta: the albedo at the collision
     bool ranOut;         // the step budget ended the march: no answer
+    uint collisions;     // tentative collisions (delta: the real one, if any, and the null ones before it)
 };
+
+// Adds n to one of PathCounters' 64-bit sums (two words, low first): the carry goes to the high word.
+#define countVolumeSteps(counters, field, n)                                        \
+    {                                                                               \
+        uint countedBefore = atomicAdd(counters.field[0], n);                       \
+        if (countedBefore + (n) < countedBefore) atomicAdd(counters.field[1], 1u);  \
+    }
 
 // Marches world ray origin + t * direction, t in [tmin, tmax], through volume v.
 TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 direction, float tmin, float tmax,
                         uint mode, inout VolumeRng rng) {
-    TrackResult result = TrackResult(tmax, 1.0, vec3(0.0), false);
+    TrackResult result = TrackResult(tmax, 1.0, vec3(0.0), false, 0u);
     mat3x4 toGrid = mat3x4(v.worldToGrid[0], v.worldToGrid[1], v.worldToGrid[2]);
     vec3 o = vec4(origin, 1.0) * toGrid;
     vec3 d = vec4(direction, 0.0) * toGrid;
@@ -107,6 +115,7 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
             float s = t - log(1.0 - volumeRandom(rng)) / majorant;
             if (s < tExit) {
                 t = s;
+                ++result.collisions;
                 vec4 medium = transferFunction(v, data, fieldValue(v, data, o + t * d));
                 float ratio = clamp(medium.w * speed / majorant, 0.0, 1.0);
                 if (mode == TRACK_RATIO) {

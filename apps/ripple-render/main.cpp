@@ -327,10 +327,34 @@ void reportStartUp(const TimeBudget& budget) {
     std::fflush(stdout);
 }
 
+// What the frames' rays did, summed over frames (and ranks) from the device's "ripple.*" frame properties;
+// all 0 on devices without them.
+struct TracingWork {
+    uint64_t flaggedRays = 0;      // ran out of their step budget: treated as misses
+    uint64_t realCollisions = 0;   // volumes: delta tracking
+    uint64_t nullCollisions = 0;
+    uint64_t ratioCollisions = 0;  // volumes: ratio tracking of shadow rays
+
+    void addFrame(ANARIDevice device, ANARIFrame frame) {
+        const std::pair<const char*, uint64_t*> counters[] = {{"ripple.flaggedRays", &flaggedRays},
+                                                              {"ripple.realCollisions", &realCollisions},
+                                                              {"ripple.nullCollisions", &nullCollisions},
+                                                              {"ripple.ratioCollisions", &ratioCollisions}};
+        for (const auto& [name, total] : counters) {
+            uint64_t value = 0;
+            if (anariGetProperty(device, frame, name, ANARI_UINT64, &value, sizeof value, ANARI_WAIT)) *total += value;
+        }
+    }
+    void sumOverRanks(const mpi::Communicator& ranks) {
+        for (uint64_t* total : {&flaggedRays, &realCollisions, &nullCollisions, &ratioCollisions}) *total = ranks.sum(*total);
+    }
+};
+
 struct RenderOutcome {
     HalfBufferEstimator estimator;
     std::vector<ConvergencePoint> series;
     uint32_t frames = 0;
+    TracingWork work;
 };
 
 // Frames until a stop: --time, --target-error, whichever comes first (and --spp when given); with neither,
@@ -340,7 +364,7 @@ struct RenderOutcome {
 RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const FrameSetup& setup,
                            const mpi::Communicator& ranks, Session& s, RankStats& stats, TimeBudget& budget) {
     // Only rank 0 holds the image, so only it needs the estimator's buffers.
-    RenderOutcome out{HalfBufferEstimator(plan.root ? plan.size.x : 0, plan.root ? plan.size.y : 0), {}, 0};
+    RenderOutcome out{HalfBufferEstimator(plan.root ? plan.size.x : 0, plan.root ? plan.size.y : 0), {}, 0, {}};
     const bool stopOnSpp = options.sppGiven || (!options.seconds && !options.targetError);
     const uint32_t sppLimit = stopOnSpp ? options.spp : kMaxSpp;
     const bool printPoints = options.reporting() && !options.quiet && plan.root;
@@ -354,6 +378,7 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
         anariRenderFrame(s.device, frame);
         anariFrameReady(s.device, frame, ANARI_WAIT);
         ++out.frames;
+        out.work.addFrame(s.device, frame);
         float raysPerSecond = 0.0f;
         if (reportsRays)
             reportsRays = anariGetProperty(s.device, frame, "ripple.raysPerSecond", ANARI_FLOAT32, &raysPerSecond,
@@ -428,6 +453,17 @@ void writeResults(const Options& options, const RenderPlan& plan, const RenderOu
         std::printf("time limit exceeded by start-up: --time %g s, start-up %.2f s; one frame of %u spp rendered\n",
                     *budget.limit(), budget.startUpSeconds(), batch);
     if (!options.report.empty()) std::printf("report: %s, plot: %s\n", plan.reportFile.c_str(), plan.plotFile.c_str());
+    const TracingWork& work = out.work;
+    if (work.realCollisions + work.nullCollisions + work.ratioCollisions > 0) {
+        const double ratio = work.realCollisions > 0 ? double(work.nullCollisions) / double(work.realCollisions) : 0.0;
+        std::printf("volumes: %llu real and %llu null collisions in free flight (null/real %.2f), %llu in ratio "
+                    "tracking of shadow rays\n",
+                    (unsigned long long)work.realCollisions, (unsigned long long)work.nullCollisions, ratio,
+                    (unsigned long long)work.ratioCollisions);
+    }
+    if (work.flaggedRays > 0)
+        std::printf("warning: %llu rays ran out of their step budget and were treated as misses (the image is "
+                    "biased there)\n", (unsigned long long)work.flaggedRays);
 }
 
 int render(const Options& options, const mpi::Communicator& ranks, Session& s, TimeBudget& budget) {
@@ -438,7 +474,8 @@ int render(const Options& options, const mpi::Communicator& ranks, Session& s, T
     const AnariWorld scene = buildScene(plan, ranks, s, stats);
     const ANARICamera camera = makeCamera(options, scene, plan.size, s);
     const FrameSetup setup = makeFrame(options, scene, camera, plan.size, s);
-    const RenderOutcome out = renderFrames(options, plan, setup, ranks, s, stats, budget);
+    RenderOutcome out = renderFrames(options, plan, setup, ranks, s, stats, budget);
+    if (ranks.distributed()) out.work.sumOverRanks(ranks);
     if (options.stats) {
         anariGetProperty(s.device, setup.frame, "ripple.sceneBytes", ANARI_UINT64, &stats.sceneBytes,
                          sizeof stats.sceneBytes, ANARI_WAIT);

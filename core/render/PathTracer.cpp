@@ -480,6 +480,10 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     const gpu::PathCounters c = m.readCounters();
     stats.nonFiniteSamples = c.nonFinite;
     stats.flaggedRays = c.flagged;
+    auto sum64 = [](const uint32_t (&words)[2]) { return uint64_t(words[0]) | (uint64_t(words[1]) << 32); };
+    stats.realCollisions = sum64(c.realCollisions);
+    stats.nullCollisions = sum64(c.nullCollisions);
+    stats.ratioCollisions = sum64(c.ratioCollisions);
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;
 }

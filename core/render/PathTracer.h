@@ -82,6 +82,12 @@ struct FrameStats {
     uint64_t shadowRays = 0;
     uint64_t nonFiniteSamples = 0;        // dropped, never accumulated
     uint64_t flaggedRays = 0;             // traversals that ran out of budget (HIT_FLAG_*), treated as misses
+    // Volume tracking (docs/volumes.md): real and null collisions of the path rays' free-flight sampling
+    // (their ratio is the cost of the majorants' looseness), and the tentative collisions of shadow rays'
+    // ratio tracking.
+    uint64_t realCollisions = 0;
+    uint64_t nullCollisions = 0;
+    uint64_t ratioCollisions = 0;
     double seconds = 0.0;
 };
 

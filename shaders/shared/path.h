@@ -75,6 +75,12 @@ struct PathCounters {
     DispatchSize shadowGroups;      // shadowCount in workgroups of the path stages
     DispatchSize pathTraceGroups;   // the same in workgroups of the trace kernels
     DispatchSize shadowTraceGroups;
+    // Volume tracking over the frame, each a 64-bit sum in two words (low, high; countVolumeSteps in
+    // volume.glsl carries): real and null collisions of delta tracking (free flight of path rays), and the
+    // tentative collisions of ratio tracking (shadow rays).
+    uint realCollisions[2];
+    uint nullCollisions[2];
+    uint ratioCollisions[2];
 };
 
 // Parameters of pt_queue_advance.

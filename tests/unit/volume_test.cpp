@@ -73,6 +73,15 @@ TEST_CASE("volumes: transmittance of a homogeneous slab and of a linear ramp, ex
                              << m.standardError << ", expected " << expected);
             CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
             CHECK(image.stats.flaggedRays == 0);
+            // Each sample either passes (1) or collides once in the black medium (0): the real collisions
+            // counted on the device are exactly the samples that did not pass. A constant field's majorant is
+            // its extinction, so no collision is null; the ramp's single macrocell holds the top extinction.
+            double blocked = 0.0;
+            for (const glm::vec4& c : image.color) blocked += (1.0 - double(c.r)) * settings.pixelSamples;
+            CHECK(image.stats.realCollisions == uint64_t(std::llround(blocked)));
+            if (ramp) CHECK(image.stats.nullCollisions > 0);
+            else CHECK(image.stats.nullCollisions == 0);
+            CHECK(image.stats.ratioCollisions == 0);  // no lights: no shadow rays
         }
     }
 }
@@ -123,6 +132,9 @@ TEST_CASE("volumes: shadow rays carry the slab's transmittance (ratio tracking)"
         MESSAGE("sigma " << sigma << ": " << m.mean << " +- " << m.standardError << ", expected " << expected);
         CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError + 1e-6);
         CHECK(image.stats.flaggedRays == 0);
+        // Only the shadow rays cross the slab: ratio tracking, no free flight.
+        CHECK(image.stats.ratioCollisions > 0);
+        CHECK(image.stats.realCollisions + image.stats.nullCollisions == 0);
     }
 }
 

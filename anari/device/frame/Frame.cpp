@@ -314,6 +314,10 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
         results.numSamples = tracer_->accumulatedSamples();
         const double rays = double(stats.raysTraced + stats.shadowRays);
         results.raysPerSecond = stats.seconds > 0.0 ? float(rays / stats.seconds) : 0.0f;
+        results.flaggedRays = stats.flaggedRays;
+        results.realCollisions = stats.realCollisions;
+        results.nullCollisions = stats.nullCollisions;
+        results.ratioCollisions = stats.ratioCollisions;
         results.sceneBuilds = sync_.builds();
         results.blasBuilt = scene.report().blasBuilt;
         results.blasReused = scene.report().blasReused;
@@ -427,7 +431,11 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
                                                                      {"ripple.blasReused", &results_.blasReused},
                                                                      {"ripple.raysSent", &results_.raysSent},
                                                                      {"ripple.bytesSent", &results_.bytesSent},
-                                                                     {"ripple.sceneBytes", &results_.sceneBytes}};
+                                                                     {"ripple.sceneBytes", &results_.sceneBytes},
+                                                                     {"ripple.flaggedRays", &results_.flaggedRays},
+                                                                     {"ripple.realCollisions", &results_.realCollisions},
+                                                                     {"ripple.nullCollisions", &results_.nullCollisions},
+                                                                     {"ripple.ratioCollisions", &results_.ratioCollisions}};
     for (const auto& [counter, value] : counters) {
         if (name == counter && type == ANARI_UINT64 && size >= sizeof(uint64_t)) {
             std::memcpy(mem, value, sizeof(uint64_t));

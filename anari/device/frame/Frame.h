@@ -31,7 +31,10 @@ public:
     // "ripple.raysPerSecond" (FLOAT32, closest-hit and shadow rays of the last frame), and for tests of
     // what a change rebuilds: "ripple.sceneBuilds" (UINT64, scenes built so far) and "ripple.blasBuilt" /
     // "ripple.blasReused" (UINT64, of the latest scene build); "ripple.raysSent", "ripple.bytesSent" (UINT64,
-    // rays and bytes this rank passed on in the last frame) and "ripple.sceneBytes" (UINT64, its scene's GPU memory).
+    // rays and bytes this rank passed on in the last frame) and "ripple.sceneBytes" (UINT64, its scene's GPU memory);
+    // of the last frame on this rank: "ripple.flaggedRays" (UINT64, traversals and volume marches that ran out
+    // of their step budget), "ripple.realCollisions", "ripple.nullCollisions" (UINT64, delta tracking in
+    // volumes) and "ripple.ratioCollisions" (UINT64, ratio tracking of shadow rays).
     bool getProperty(std::string_view name, ANARIDataType type, void* mem, uint64_t size, bool wait) override;
 
     // The calls the Device forwards. map() waits for a frame in progress; rows start at the bottom.
@@ -73,6 +76,10 @@ private:
         uint64_t raysSent = 0;                 // data-parallel traffic of this rank in the last frame
         uint64_t bytesSent = 0;
         uint64_t sceneBytes = 0;               // GPU memory of this rank's part of the scene
+        uint64_t flaggedRays = 0;              // core::FrameStats of the last frame
+        uint64_t realCollisions = 0;
+        uint64_t nullCollisions = 0;
+        uint64_t ratioCollisions = 0;
     };
 
     // Why this frame cannot render now, or empty when it can; includes the memory check of a new size.
