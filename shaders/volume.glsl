@@ -12,27 +12,49 @@
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer VolumesRef { VolumeRecord volumes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VolumeDataRef { float values[]; };
 
-const uint VOLUME_STEP_BUDGET = 20000u;  // DDA steps plus tentative collisions per ray and volume
+// DDA steps plus tentative collisions per ray and volume: VOLUME_STEP_CHUNKS loops of VOLUME_STEP_CHUNK,
+// nested because lavapipe ends any one loop after 65,535 iterations. About a million steps cross a
+// macrocell whose majorant is 1e6 per unit over a unit of its thin part (extinction from 1e-6 to 1e6 in one
+// scene); a ray that needs more is flagged, never given a silently wrong answer.
+const uint VOLUME_STEP_CHUNK = 32768u;
+const uint VOLUME_STEP_CHUNKS = 32u;
 
 // Random numbers for the tracking loops: a stream keyed like random4 (rng.glsl), 4 numbers per hash.
 struct VolumeRng {
     uvec4 key;
     uint counter;
     uint used;
-    vec4 numbers;
+    uvec4 bits;
 };
 
 VolumeRng volumeRng(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {
-    return VolumeRng(uvec4(pixel, sampleIndex, (bounce << 4u) | group, seed), 0u, 4u, vec4(0.0));
+    return VolumeRng(uvec4(pixel, sampleIndex, (bounce << 4u) | group, seed), 0u, 4u, uvec4(0u));
 }
 
-float volumeRandom(inout VolumeRng r) {
+uint volumeRandomBits(inout VolumeRng r) {
     if (r.used == 4u) {
-        r.numbers = vec4(pcg4d(uvec4(r.key.xy, r.key.z | (r.counter << 16u), r.key.w)) >> 8u) * (1.0 / 16777216.0);
+        r.bits = pcg4d(uvec4(r.key.xy, r.key.z | (r.counter << 16u), r.key.w));
         ++r.counter;
         r.used = 0u;
     }
-    return r.numbers[r.used++];
+    return r.bits[r.used++];
+}
+
+// Uniform in [0, 1) in steps of 2^-24 (so 1 - u is never 0).
+float volumeRandom(inout VolumeRng r) {
+    return float(volumeRandomBits(r) >> 8u) * (1.0 / 16777216.0);
+}
+
+// True with probability p, resolved to 2^-32 near 0: delta tracking accepts collisions with probability
+// extinction / majorant, which in stiff media is far below the 2^-24 step of volumeRandom (whose
+// P(u < p) = 2^-24 for any tiny p > 0 would turn a million null collisions into a few percent of false
+// real ones).
+bool volumeChance(inout VolumeRng r, float p) {
+    uint bits = volumeRandomBits(r);
+    if (p >= 1.0) return true;
+    // u = bits / 2^32 in two parts, exact near 0 where it matters.
+    float u = (float(bits >> 8u) + float(bits & 0xFFu) * (1.0 / 256.0)) * (1.0 / 16777216.0);
+    return u < p;
 }
 
 float voxel(VolumeRecord v, VolumeDataRef data, uvec3 i) {
@@ -109,43 +131,45 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
     float t = t0;
     uint cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
     float majorant = data.values[v.majorantOffset + cellIndex] * speed;
-    for (uint steps = 0u; steps < VOLUME_STEP_BUDGET; ++steps) {
-        float tExit = min(t1, min(tNext.x, min(tNext.y, tNext.z)));
-        if (majorant > 0.0) {
-            float s = t - log(1.0 - volumeRandom(rng)) / majorant;
-            if (s < tExit) {
-                t = s;
-                ++result.collisions;
-                vec4 medium = transferFunction(v, data, fieldValue(v, data, o + t * d));
-                float ratio = clamp(medium.w * speed / majorant, 0.0, 1.0);
-                if (mode == TRACK_RATIO) {
-                    result.transmittance *= 1.0 - ratio;
-                    if (result.transmittance <= 0.0) return result;
-                } else if (volumeRandom(rng) < ratio) {
-                    result.t = t;
-                    result.transmittance = 0.0;
-                    result.albedo = medium.rgb;
-                    return result;
+    for (uint chunk = 0u; chunk < VOLUME_STEP_CHUNKS; ++chunk) {
+        for (uint steps = 0u; steps < VOLUME_STEP_CHUNK; ++steps) {
+            float tExit = min(t1, min(tNext.x, min(tNext.y, tNext.z)));
+            if (majorant > 0.0) {
+                float s = t - log(1.0 - volumeRandom(rng)) / majorant;
+                if (s < tExit) {
+                    t = s;
+                    ++result.collisions;
+                    vec4 medium = transferFunction(v, data, fieldValue(v, data, o + t * d));
+                    float ratio = clamp(medium.w * speed / majorant, 0.0, 1.0);
+                    if (mode == TRACK_RATIO) {
+                        result.transmittance *= 1.0 - ratio;
+                        if (result.transmittance <= 0.0) return result;
+                    } else if (volumeChance(rng, ratio)) {
+                        result.t = t;
+                        result.transmittance = 0.0;
+                        result.albedo = medium.rgb;
+                        return result;
+                    }
+                    continue;
                 }
-                continue;
             }
+            // Into the next macrocell (the exponential is memoryless: the sample past the exit is dropped).
+            if (tExit >= t1) return result;
+            t = tExit;
+            if (tNext.x <= tNext.y && tNext.x <= tNext.z) {
+                cell.x += stepDir.x;
+                tNext.x += tDelta.x;
+            } else if (tNext.y <= tNext.z) {
+                cell.y += stepDir.y;
+                tNext.y += tDelta.y;
+            } else {
+                cell.z += stepDir.z;
+                tNext.z += tDelta.z;
+            }
+            if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, macroDims))) return result;
+            cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
+            majorant = data.values[v.majorantOffset + cellIndex] * speed;
         }
-        // Into the next macrocell (the exponential is memoryless: the sample past the exit is dropped).
-        if (tExit >= t1) return result;
-        t = tExit;
-        if (tNext.x <= tNext.y && tNext.x <= tNext.z) {
-            cell.x += stepDir.x;
-            tNext.x += tDelta.x;
-        } else if (tNext.y <= tNext.z) {
-            cell.y += stepDir.y;
-            tNext.y += tDelta.y;
-        } else {
-            cell.z += stepDir.z;
-            tNext.z += tDelta.z;
-        }
-        if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, macroDims))) return result;
-        cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
-        majorant = data.values[v.majorantOffset + cellIndex] * speed;
     }
     result.ranOut = true;
     return result;

@@ -186,3 +186,38 @@ TEST_CASE("volumes: single scattering under the Henyey-Greenstein phase function
         CHECK(std::abs(m.mean - 1.0) <= 0.01 + 4.0 * m.standardError);
     }
 }
+
+TEST_CASE("volumes: extinction from 1e-6 to 1e6 in one macrocell completes without flagged rays and stays unbiased") {
+    // One macrocell (9^3 voxels) of depth 0.5 whose extinction is 1e-6 everywhere except next to one corner
+    // voxel, where it reaches 1e6: its majorant is 1e6, so a ray through the thin part makes about 5e5 null
+    // collisions (lavapipe stops a single loop at 65,535 iterations; the march's nested loops allow about a
+    // million steps). Rays far from the dense corner must see transmittance exp(-1e-6 * 0.5), i.e. 1.
+    test::ValidationGuard guard;
+    core::Volume v = boxVolume(0.5f, 0.0f, 1.0f, false, glm::vec3(0.0f));
+    std::fill(v.values.begin(), v.values.end(), 0.0f);
+    v.values.back() = 1.0f;  // voxel (8, 8, 8): x = y = 1, z = 0.5
+    // Opacity o over unitDistance u gives extinction -ln(1 - o) / u: o = 0.999999 (the cap) over
+    // u = 13.8155 / 1e6 is 1e6; the low end is 1e-6 per unit.
+    v.unitDistance = float(-std::log(1.0 - 0.999999) / 1e6);
+    v.opacities = {float(1e-6 * v.unitDistance), 0.999999f};
+    core::SceneDescription scene;
+    scene.volumes.push_back(v);
+    core::RenderSettings settings;
+    settings.background = glm::vec4(1.0f);
+    settings.maxPathLength = 1;
+    settings.pixelSamples = 2;
+    const uint32_t size = 8;
+    const test::Rendered image = test::render(scene, test::lookingDown(1.5f, 1.8f), settings, {size, size});
+    CHECK(image.stats.flaggedRays == 0);
+    // The stiff path really ran: far more null collisions than a single lavapipe loop could take.
+    CHECK(image.stats.nullCollisions > uint64_t(size) * size * settings.pixelSamples * 100000);
+    double far = 0.0;
+    uint32_t count = 0;
+    for (uint32_t y = 0; y < size / 2; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            far += image.at(x, y).r;  // the lower half of the image: y < 0, away from the dense corner
+            ++count;
+        }
+    MESSAGE("null collisions " << image.stats.nullCollisions << ", far transmittance " << far / count);
+    CHECK(far / count == doctest::Approx(1.0).epsilon(1e-3));
+}
