@@ -103,7 +103,17 @@ core::SceneDescription boxesPart(uint32_t rank, uint32_t ranks) {
 
 core::Camera boxesCamera() { return perspective({9.0f, -11.0f, 9.0f}, {0.0f, 0.0f, 2.5f}); }
 
-core::SceneDescription volumePart(uint32_t rank, uint32_t ranks) {
+namespace {
+
+// This rank's slab of the blob field: its samples (x fastest), dims and origin; empty when it has no cell.
+struct FieldSlab {
+    glm::uvec3 dims{0};
+    std::vector<float> values;
+    glm::vec3 origin{0.0f};
+    glm::vec3 spacing{0.0f};
+};
+
+FieldSlab blobSlab(uint32_t rank, uint32_t ranks) {
     constexpr uint32_t n = 33;  // samples per axis; the slabs split the 32 cells along x
     const glm::vec3 lo(-2.0f, -2.0f, 0.0f), spacing(4.0f / float(n - 1));
     auto density = [&](uint32_t x, uint32_t y, uint32_t z) {
@@ -111,20 +121,20 @@ core::SceneDescription volumePart(uint32_t rank, uint32_t ranks) {
         return std::max(0.0f, 1.0f - glm::dot(p, p) / 4.0f) * (0.6f + 0.4f * std::sin(3.0f * p.x) * std::cos(2.0f * p.y));
     };
     const uint32_t firstCell = 32 * rank / ranks, lastCell = 32 * (rank + 1) / ranks;
-    core::SceneDescription scene;
-    if (lastCell > firstCell) {
-        core::Volume v;
-        v.dims = {lastCell - firstCell + 1, n, n};
-        for (uint32_t z = 0; z < n; ++z)
-            for (uint32_t y = 0; y < n; ++y)
-                for (uint32_t x = firstCell; x <= lastCell; ++x) v.values.push_back(density(x, y, z));
-        v.origin = lo + glm::vec3(float(firstCell) * spacing.x, 0.0f, 0.0f);
-        v.spacing = spacing;
-        v.colors = {{0.9f, 0.6f, 0.3f}, {0.8f, 0.85f, 0.9f}};
-        v.opacities = {0.0f, 0.9f};
-        v.unitDistance = 0.5f;
-        scene.volumes.push_back(std::move(v));
-    }
+    FieldSlab slab;
+    if (lastCell <= firstCell) return slab;
+    slab.dims = {lastCell - firstCell + 1, n, n};
+    for (uint32_t z = 0; z < n; ++z)
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = firstCell; x <= lastCell; ++x) slab.values.push_back(density(x, y, z));
+    slab.origin = lo + glm::vec3(float(firstCell) * spacing.x, 0.0f, 0.0f);
+    slab.spacing = spacing;
+    return slab;
+}
+
+// The boxes on rank 0, the floor on the last rank and the sun around the blob of volumePart and
+// isosurfacePart.
+void addBlobSurroundings(core::SceneDescription& scene, uint32_t rank, uint32_t ranks) {
     if (rank == 0) {
         add(scene, box({-3.5f, -1.0f, 0.0f}, {-2.5f, 0.0f, 1.5f}), matte(glm::vec3(0.8f, 0.3f, 0.2f)));
         add(scene, box({2.6f, 0.5f, 0.0f}, {3.4f, 1.5f, 2.5f}), matte(glm::vec3(0.2f, 0.5f, 0.8f)));
@@ -135,6 +145,49 @@ core::SceneDescription volumePart(uint32_t rank, uint32_t ranks) {
         scene.lights.push_back(sun);
     }
     if (rank == ranks - 1) add(scene, floorQuad(12.0f, 0.0f), matte(glm::vec3(0.6f)));
+}
+
+}  // namespace
+
+core::SceneDescription isosurfacePart(uint32_t rank, uint32_t ranks) {
+    core::SceneDescription scene;
+    FieldSlab slab = blobSlab(rank, ranks);
+    if (!slab.values.empty()) {
+        core::IsosurfaceSet iso;
+        iso.dims = slab.dims;
+        iso.values = std::move(slab.values);
+        iso.origin = slab.origin;
+        iso.spacing = slab.spacing;
+        iso.isovalues = {0.25f, 0.6f};
+        iso.colors = {{0.9f, 0.6f, 0.3f, 1.0f}, {0.3f, 0.8f, 0.5f, 1.0f}};
+        scene.isosurfaceSets.push_back(std::move(iso));
+        core::Material material = matte(glm::vec3(1.0f));
+        material.baseColorFromVertexColor = true;
+        scene.materials.push_back(material);
+        core::InstanceDescription instance;
+        instance.geometry = {core::GeometryKind::Isosurfaces, 0};
+        instance.materialIndex = uint32_t(scene.materials.size() - 1);
+        scene.instances.push_back(instance);
+    }
+    addBlobSurroundings(scene, rank, ranks);
+    return scene;
+}
+
+core::SceneDescription volumePart(uint32_t rank, uint32_t ranks) {
+    core::SceneDescription scene;
+    FieldSlab slab = blobSlab(rank, ranks);
+    if (!slab.values.empty()) {
+        core::Volume v;
+        v.dims = slab.dims;
+        v.values = std::move(slab.values);
+        v.origin = slab.origin;
+        v.spacing = slab.spacing;
+        v.colors = {{0.9f, 0.6f, 0.3f}, {0.8f, 0.85f, 0.9f}};
+        v.opacities = {0.0f, 0.9f};
+        v.unitDistance = 0.5f;
+        scene.volumes.push_back(std::move(v));
+    }
+    addBlobSurroundings(scene, rank, ranks);
     return scene;
 }
 

@@ -21,6 +21,9 @@ core::Camera boxesCamera();
 // filtering matches across the faces), over a floor on the last rank, two boxes on rank 0 and a sun.
 core::SceneDescription volumePart(uint32_t rank, uint32_t ranks);
 core::Camera volumeCamera();
+// The same blob's iso-surfaces at 0.25 and 0.6 (coloured per isovalue), split into the same slabs, in the
+// same surroundings; seen through volumeCamera().
+core::SceneDescription isosurfacePart(uint32_t rank, uint32_t ranks);
 
 // Mixed geometry (a sphere mesh, spheres, cylinders, a metal and a transparent material) under a quad
 // light, instances dealt round robin.

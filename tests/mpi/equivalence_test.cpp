@@ -105,6 +105,10 @@ TEST_CASE("data parallel: mixed meshes, spheres, cylinders, metal and transparen
     checkEquivalence(test::mixedPart, test::mixedCamera());
 }
 
+TEST_CASE("data parallel: iso-surfaces of a field split into slabs over the ranks") {
+    checkEquivalence(test::isosurfacePart, test::volumeCamera());
+}
+
 TEST_CASE("data parallel: world bounds are reduced, lights gathered in rank order") {
     const mpi::Communicator world = mpi::Communicator::world();
     std::vector<core::Light> mine(size_t(world.rank()) + 1);
