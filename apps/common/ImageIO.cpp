@@ -164,6 +164,19 @@ void writePfmBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
     if (!out) throw std::runtime_error(file.string() + ": write failed");
 }
 
+void writeExrBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba) {
+    checkSize(file, width, height, rgba);
+    std::vector<float> topDown(size_t(width) * height * 4);
+    for (uint32_t y = 0; y < height; ++y)
+        std::copy_n(rgba + size_t(height - 1 - y) * width * 4, size_t(width) * 4, topDown.begin() + ptrdiff_t(size_t(y) * width * 4));
+    const char* error = nullptr;
+    if (SaveEXR(topDown.data(), int(width), int(height), 4, 0, file.c_str(), &error) != TINYEXR_SUCCESS) {
+        const std::string message = error ? error : "tinyexr could not write it";
+        if (error) FreeEXRErrorMessage(error);
+        throw std::runtime_error(file.string() + ": cannot write the EXR image: " + message);
+    }
+}
+
 namespace {
 
 // Linear RGBA floats to 8-bit: colour sRGB-encoded and clamped to [0, 1], alpha kept linear; NaN gives 0.

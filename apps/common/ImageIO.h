@@ -1,4 +1,4 @@
-// The project's one image reader and writer: PNG (and JPEG) for 8-bit and PFM for float pixels, both taking rows as
+// The project's one image reader and writer: PNG (and JPEG) for 8-bit and PFM or EXR for float pixels, both taking rows as
 // ANARI frames map them (row 0 at the bottom of the image); PNG, PFM and EXR read into linear RGB.
 #pragma once
 
@@ -16,6 +16,10 @@ void writePngBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
 // Writes width x height float RGBA pixels, bottom row first, as a little-endian colour PFM. PFM has no
 // alpha and stores its rows bottom to top, so alpha is dropped and the rows keep their order.
 void writePfmBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba);
+
+// Writes width x height float RGBA pixels, bottom row first, as an OpenEXR file (tinyexr) of 32-bit float
+// channels R, G, B, A, rows top to bottom as EXR stores them: linear HDR, bit-exact.
+void writeExrBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba);
 
 // Writes width x height LINEAR float RGBA pixels, bottom row first, as an 8-bit sRGB-encoded PNG (colour
 // clamped to [0, 1], alpha kept linear), as a device's UFIXED8_RGBA_SRGB channel would be.

@@ -24,8 +24,9 @@ OutputFormat outputFormatOf(const std::filesystem::path& file) {
     if (extension == ".png") return OutputFormat::Png;
     if (extension == ".jpg" || extension == ".jpeg") return OutputFormat::Jpeg;
     if (extension == ".pfm") return OutputFormat::Pfm;
+    if (extension == ".exr") return OutputFormat::Exr;
     throw std::runtime_error("-o " + file.string() + ": unsupported image format '" + file.extension().string() +
-                             "' (supported: .png, .jpg, .jpeg, .pfm)");
+                             "' (supported: .png, .jpg, .jpeg, .pfm, .exr)");
 }
 
 void checkOutputWritable(const std::filesystem::path& file) {
@@ -44,6 +45,7 @@ void checkOutputWritable(const std::filesystem::path& file) {
 void writeOutputImage(const std::filesystem::path& file, OutputFormat format, uint32_t width, uint32_t height,
                       const float* rgba) {
     if (format == OutputFormat::Pfm) return writePfmBottomUp(file, width, height, rgba);
+    if (format == OutputFormat::Exr) return writeExrBottomUp(file, width, height, rgba);
     if (format == OutputFormat::Png) return writePngFromLinearBottomUp(file, width, height, rgba);
     writeJpegFromLinearBottomUp(file, width, height, rgba);
 }

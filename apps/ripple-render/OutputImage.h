@@ -1,4 +1,4 @@
-// ripple-render's output file: its format from the extension (PNG, JPEG or PFM; any other is refused
+// ripple-render's output file: its format from the extension (PNG, JPEG, PFM or EXR; any other is refused
 // with the list), a check that it can be written before anything renders, and the writer.
 #pragma once
 
@@ -7,7 +7,7 @@
 
 namespace ripple::apps {
 
-enum class OutputFormat { Png, Jpeg, Pfm };
+enum class OutputFormat { Png, Jpeg, Pfm, Exr };
 
 // Throws std::runtime_error naming the file and the supported extensions when there is none of them.
 OutputFormat outputFormatOf(const std::filesystem::path& file);
@@ -17,7 +17,8 @@ OutputFormat outputFormatOf(const std::filesystem::path& file);
 // not there before.
 void checkOutputWritable(const std::filesystem::path& file);
 
-// Linear RGBA pixels, bottom row first: PNG and JPEG as 8-bit sRGB (JPEG without alpha), PFM as floats.
+// Linear RGBA pixels, bottom row first: PNG and JPEG as 8-bit sRGB (JPEG without alpha), PFM (RGB) and EXR
+// (RGBA) as 32-bit floats.
 void writeOutputImage(const std::filesystem::path& file, OutputFormat format, uint32_t width, uint32_t height,
                       const float* rgba);
 

@@ -533,7 +533,7 @@ int main(int argc, char** argv) {
     std::string demoNames;
     for (const std::string& n : ripple::apps::demoSceneNames()) demoNames += (demoNames.empty() ? "" : ", ") + n;
     app.add_option("--demo", options.demo, "built-in scene: " + demoNames + " (default: default)");
-    app.add_option("-o,--output", options.output, "output image: .png or .jpg/.jpeg (8-bit sRGB) or .pfm (linear float)")->capture_default_str();
+    app.add_option("-o,--output", options.output, "output image: .png or .jpg/.jpeg (8-bit sRGB), .pfm (linear float RGB) or .exr (linear float RGBA)")->capture_default_str();
     app.add_option("--size", options.size, "image size WIDTHxHEIGHT")->capture_default_str();
     app.add_option("--spp", options.spp, "samples per pixel (with --time or --target-error: a cap, when given)")
         ->check(CLI::Range(1u, ripple::apps::kMaxSpp))->capture_default_str();

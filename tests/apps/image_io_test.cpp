@@ -174,6 +174,24 @@ TEST_CASE("EXR: 32-bit float written by tinyexr read back exact") {
     CHECK(image.rgb == rgb);
 }
 
+TEST_CASE("EXR: written bottom-up as 32-bit float RGBA, read back exact with the top row first") {
+    TempFolder dir;
+    constexpr uint32_t w = 5, h = 3;
+    std::vector<float> rgba(size_t(w) * h * 4);
+    for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = 0.37f * float(i) + 1000.0f * float(i % 4 == 0);  // HDR values
+    const auto file = dir / "written.exr";
+    ripple::apps::writeExrBottomUp(file, w, h, rgba.data());
+    const ripple::apps::LinearImage image = ripple::apps::readLinearImage(file);
+    REQUIRE(image.width == w);
+    REQUIRE(image.height == h);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+            for (uint32_t c = 0; c < 3; ++c)  // image row y is the written row h - 1 - y
+                CHECK(image.rgb[(size_t(y) * w + x) * 3 + c] == rgba[(size_t(h - 1 - y) * w + x) * 4 + c]);
+    CHECK_THROWS_WITH_AS(ripple::apps::writeExrBottomUp(dir / "no-such-folder" / "x.exr", w, h, rgba.data()),
+                         doctest::Contains("x.exr"), std::runtime_error);
+}
+
 TEST_CASE("image reader: missing and malformed files are named with their fault") {
     TempFolder dir;
     CHECK_THROWS_WITH(ripple::apps::readLinearImage(dir / "absent.png"), doctest::Contains("no such file"));

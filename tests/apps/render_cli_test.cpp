@@ -103,7 +103,7 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
     }
     SUBCASE("output of an unknown format") {
         arguments = "--size 8x8 -o '" + (dir / "x.bmp").string() + "'";
-        expected = "unsupported image format '.bmp' (supported: .png, .jpg, .jpeg, .pfm)";
+        expected = "unsupported image format '.bmp' (supported: .png, .jpg, .jpeg, .pfm, .exr)";
     }
     SUBCASE("library that is not a shared object") {
         writeText(dir / "libanari_library_text.so", "not a library\n");
