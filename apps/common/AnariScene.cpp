@@ -29,8 +29,8 @@ const char* wrapName(GltfWrap wrap) {
 
 class WorldBuilder {
 public:
-    WorldBuilder(ANARIDevice d, const GltfScene& scene, bool withLights)
-        : d_(d), scene_(scene), withLights_(withLights), handles_(d) {}
+    WorldBuilder(ANARIDevice d, const GltfScene& scene, bool withLights, const std::vector<ANARILight>& extraLights)
+        : d_(d), scene_(scene), withLights_(withLights), extraLights_(extraLights), handles_(d) {}
 
     AnariWorld build() {
         std::vector<ANARIGroup> groups(scene_.meshes.size(), nullptr);
@@ -45,7 +45,7 @@ public:
             anariCommitParameters(d_, instance);
             instances.push_back(instance);
         }
-        std::vector<ANARILight> lights;
+        std::vector<ANARILight> lights = extraLights_;
         for (const GltfLight& l : scene_.lights) lights.push_back(light(l));
 
         AnariWorld out;
@@ -245,6 +245,7 @@ private:
     ANARIDevice d_;
     const GltfScene& scene_;
     bool withLights_ = true;
+    std::vector<ANARILight> extraLights_;
     anari::HandleList handles_;
     std::map<uint32_t, ANARIGeometry> geometries_;
     std::map<std::pair<uint32_t, bool>, ANARIArray2D> images_;
@@ -254,8 +255,9 @@ private:
 
 }  // namespace
 
-AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene, bool withLights) {
-    return WorldBuilder(device, scene, withLights).build();
+AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene, bool withLights,
+                           const std::vector<ANARILight>& extraLights) {
+    return WorldBuilder(device, scene, withLights, extraLights).build();
 }
 
 CameraView cameraView(const GltfCamera& camera) {

@@ -42,8 +42,10 @@ struct AnariWorld {
 // as W/m^2, candela as W/sr). A scene with neither lights nor untextured emissive materials gets a key
 // directional light and an ambient fill, so that it is not black. Throws std::runtime_error when the
 // device returns no object. withLights false: the world gets no lights, while the ambient fill and the
-// background are chosen as with them (a data-parallel rank whose lights another rank holds).
-AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene, bool withLights = true);
+// background are chosen as with them (a data-parallel rank whose lights another rank holds). extraLights
+// (an environment, say; the caller keeps them) count as the scene's lights.
+AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene, bool withLights = true,
+                           const std::vector<ANARILight>& extraLights = {});
 
 // The glTF camera as a CameraView (node transform applied; orthographic height is twice ymag).
 CameraView cameraView(const GltfCamera& camera);

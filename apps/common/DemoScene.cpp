@@ -91,7 +91,8 @@ MeshData torus(float R, float r, int segments, int sides, const glm::mat4& trans
 
 class DemoBuilder {
 public:
-    explicit DemoBuilder(ANARIDevice d) : d_(d), handles_(d) {}
+    // extraLights (owned by the caller) join the scene's own lights in the world.
+    DemoBuilder(ANARIDevice d, const std::vector<ANARILight>& extraLights) : d_(d), handles_(d), lights_(extraLights) {}
 
     ANARIMaterial matte(const glm::vec3& color) {
         ANARIMaterial m = handles_.keep(anariNewMaterial(d_, "matte"), "matte material");
@@ -261,8 +262,8 @@ CameraView lookAt(const glm::vec3& from, const glm::vec3& at, float fovyDegrees)
     return view;
 }
 
-AnariWorld defaultScene(ANARIDevice d) {
-    DemoBuilder b(d);
+AnariWorld defaultScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
+    DemoBuilder b(d, extraLights);
     b.mesh(tiledFloor(6.0f, 12, glm::vec3(0.75f, 0.74f, 0.70f), glm::vec3(0.50f, 0.52f, 0.55f)), b.matteFromColors());
     b.spheres({{-1.6f, 0.6f, 0.3f}}, 0.6f, b.matte(glm::vec3(0.75f, 0.14f, 0.11f)));                    // matte
     b.spheres({{0.0f, 0.75f, -0.5f}}, 0.75f, b.pbr(glm::vec3(1.0f, 0.78f, 0.34f), 1.0f, 0.12f));       // polished gold
@@ -284,8 +285,8 @@ AnariWorld defaultScene(ANARIDevice d) {
 }
 
 // The room spans x, z in [-1, 1] and y in [0, 2]; its open side faces the camera at +Z.
-AnariWorld cornellScene(ANARIDevice d) {
-    DemoBuilder b(d);
+AnariWorld cornellScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
+    DemoBuilder b(d, extraLights);
     const glm::vec3 white(0.725f, 0.71f, 0.68f), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
     MeshData room;
     room.quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0});   // floor, facing up
@@ -332,8 +333,8 @@ std::vector<float> marschnerLobbSamples(glm::uvec3 dims) {
 
 // The floor, sun and sky the field demos stand in; `addField` puts the field on it.
 template <class AddField>
-AnariWorld fieldScene(ANARIDevice d, AddField addField) {
-    DemoBuilder b(d);
+AnariWorld fieldScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, AddField addField) {
+    DemoBuilder b(d, extraLights);
     b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
     const glm::uvec3 dims(64);
     addField(b, b.field(dims, marschnerLobbSamples(dims), {-1.0f, 0.05f, -1.0f}, {1.0f, 2.05f, 1.0f}));
@@ -346,8 +347,8 @@ AnariWorld fieldScene(ANARIDevice d, AddField addField) {
 
 // A Marschner-Lobb volume (64^3 samples) standing on a floor, under a sun and a sky: the medium scatters
 // (albedo from a warm colour map) and casts its shadow.
-AnariWorld volumeScene(ANARIDevice d) {
-    return fieldScene(d, [](DemoBuilder& b, ANARISpatialField field) {
+AnariWorld volumeScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
+    return fieldScene(d, extraLights, [](DemoBuilder& b, ANARISpatialField field) {
         b.volume(field, {{0.15f, 0.2f, 0.6f}, {0.2f, 0.7f, 0.8f}, {0.95f, 0.85f, 0.4f}, {0.95f, 0.35f, 0.15f}},
                  // A thin shell around the value 0.5, where the signal's rings are.
                  {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.8f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
@@ -358,8 +359,8 @@ AnariWorld volumeScene(ANARIDevice d) {
 
 // The same field's iso-surface at 0.5 as polished gold: the rings, traced exactly through the trilinear
 // interpolant of the 64^3 samples.
-AnariWorld isosurfaceScene(ANARIDevice d) {
-    return fieldScene(d, [](DemoBuilder& b, ANARISpatialField field) {
+AnariWorld isosurfaceScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
+    return fieldScene(d, extraLights, [](DemoBuilder& b, ANARISpatialField field) {
         b.isosurface(field, 0.5f, b.pbr({1.0f, 0.78f, 0.34f}, 1.0f, 0.3f));
     });
 }
@@ -376,12 +377,12 @@ void checkDemoSceneName(const std::string& name) {
     throw std::invalid_argument("unknown demo scene '" + name + "' (known: " + known + ")");
 }
 
-AnariWorld buildDemoScene(ANARIDevice device, const std::string& name) {
+AnariWorld buildDemoScene(ANARIDevice device, const std::string& name, const std::vector<ANARILight>& extraLights) {
     checkDemoSceneName(name);
-    if (name == "cornell") return cornellScene(device);
-    if (name == "volume") return volumeScene(device);
-    if (name == "isosurface") return isosurfaceScene(device);
-    return defaultScene(device);
+    if (name == "cornell") return cornellScene(device, extraLights);
+    if (name == "volume") return volumeScene(device, extraLights);
+    if (name == "isosurface") return isosurfaceScene(device, extraLights);
+    return defaultScene(device, extraLights);
 }
 
 }  // namespace ripple::apps

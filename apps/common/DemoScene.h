@@ -17,8 +17,9 @@ std::vector<std::string> demoSceneNames();
 // Throws std::invalid_argument listing the known names when `name` is not one of them.
 void checkDemoSceneName(const std::string& name);
 
-// Builds the named demo scene on `device`; the world's cameras hold its one good view. Throws as
-// checkDemoSceneName does for an unknown name.
-AnariWorld buildDemoScene(ANARIDevice device, const std::string& name);
+// Builds the named demo scene on `device`; the world's cameras hold its one good view. extraLights (an
+// environment, say; the caller keeps them) join the scene's own. Throws as checkDemoSceneName does for an
+// unknown name.
+AnariWorld buildDemoScene(ANARIDevice device, const std::string& name, const std::vector<ANARILight>& extraLights = {});
 
 }  // namespace ripple::apps

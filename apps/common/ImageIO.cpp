@@ -59,6 +59,21 @@ LinearImage readPng(const std::filesystem::path& file, const std::string& bytes)
     return image;
 }
 
+// Radiance RGBE (.hdr), linear floats as stored.
+LinearImage readHdr(const std::filesystem::path& file, const std::string& bytes) {
+    if (bytes.size() > size_t(std::numeric_limits<int>::max())) throw malformed(file, "HDR too large");
+    int width = 0, height = 0, channels = 0;
+    float* pixels = stbi_loadf_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &width,
+                                           &height, &channels, 3);
+    if (!pixels) throw malformed(file, std::string("Radiance HDR: ") + stbi_failure_reason());
+    LinearImage image;
+    image.width = uint32_t(width);
+    image.height = uint32_t(height);
+    image.rgb.assign(pixels, pixels + size_t(width) * size_t(height) * 3);
+    stbi_image_free(pixels);
+    return image;
+}
+
 LinearImage readExr(const std::filesystem::path& file, const std::string& bytes) {
     float* rgba = nullptr;
     int width = 0, height = 0;
@@ -219,9 +234,10 @@ LinearImage readLinearImage(const std::filesystem::path& file) {
     static const std::string pngMagic = "\x89PNG\r\n\x1a\n", exrMagic = "\x76\x2f\x31\x01";
     if (bytes.compare(0, pngMagic.size(), pngMagic) == 0) return readPng(file, bytes);
     if (bytes.compare(0, exrMagic.size(), exrMagic) == 0) return readExr(file, bytes);
+    if (bytes.compare(0, 10, "#?RADIANCE") == 0 || bytes.compare(0, 6, "#?RGBE") == 0) return readHdr(file, bytes);
     if (bytes.size() >= 3 && bytes[0] == 'P' && (bytes[1] == 'F' || bytes[1] == 'f') && std::isspace(uint8_t(bytes[2])))
         return readPfm(file, bytes);
-    throw std::runtime_error(file.string() + ": not a PNG, PFM or EXR image (unrecognised first bytes)");
+    throw std::runtime_error(file.string() + ": not a PNG, PFM, EXR or Radiance HDR image (unrecognised first bytes)");
 }
 
 }  // namespace ripple::apps

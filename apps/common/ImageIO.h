@@ -29,7 +29,7 @@ void writePngFromLinearBottomUp(const std::filesystem::path& file, uint32_t widt
 void writeJpegFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height,
                                  const float* rgba);
 
-// Reads a PNG (sRGB-decoded to linear), PFM or EXR (linear) file into linear RGB, row 0 at the top.
+// Reads a PNG (sRGB-decoded to linear), PFM, EXR or Radiance HDR (linear) file into linear RGB, row 0 at the top.
 // Throws std::runtime_error naming the file and what is wrong with it.
 LinearImage readLinearImage(const std::filesystem::path& file);
 

@@ -48,6 +48,9 @@ struct Options {
     uint32_t seed = 0;                  // the renderer's "seed": a reference must not share the image's samples
     std::optional<int> camera;
     std::optional<float> ambient;
+    std::string environment;            // equirectangular .hdr/.exr/.pfm/.png image: an hdri light
+    float environmentIntensity = 1.0f;  // its "scale"
+    float environmentRotation = 0.0f;   // degrees about the up axis (+Y)
     bool quiet = false;
     std::string partition = "round-robin";  // under mpirun: which share of the file each rank imports
     std::filesystem::path resourceRoot;     // empty: the scene file's folder confines its URIs
@@ -156,6 +159,9 @@ struct RenderPlan {
     std::optional<LinearImage> reference;
     std::string demo;                   // the demo scene, or empty for a file
     std::optional<GltfScene> gltf;
+    std::optional<LinearImage> environment;  // --environment, read on rank 0 (which holds the lights)
+    float environmentIntensity = 1.0f;
+    float environmentRotation = 0.0f;   // degrees
 };
 
 // The host memory ripple-render's own buffers for a w x h image take on rank 0: the estimator's sums (RGBA doubles:
@@ -222,6 +228,20 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     if (ranks.distributed() && !plan.demo.empty())
         throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
 
+    if (!options.environment.empty() && plan.root) {
+        plan.environment = readLinearImage(options.environment);
+        for (float value : plan.environment->rgb)
+            if (!std::isfinite(value) || value < 0.0f)
+                throw std::runtime_error("--environment " + options.environment +
+                                         ": holds a negative, NaN or Inf radiance; give a linear image of radiances");
+        if (plan.environment->width < 2 || plan.environment->height < 1)
+            throw std::runtime_error("--environment " + options.environment + ": the image is too small to be an environment");
+    }
+    if (!std::isfinite(options.environmentRotation))
+        throw std::runtime_error("--environment-rotation must be finite");
+    plan.environmentIntensity = options.environmentIntensity;
+    plan.environmentRotation = options.environmentRotation;
+
     // The file is read before any library is loaded, so a bad file fails fast.
     if (!options.scene.empty()) {
         plan.gltf = loadGltf(options.scene, {.resourceRoot = options.resourceRoot});
@@ -244,6 +264,29 @@ void openDevice(const Options& options, StatusLog& log, Session& s) {
     }
 }
 
+// An "hdri" light of an equirectangular image (row 0 at the top, towards +Y): its centre column is seen
+// along -Z turned by `rotationDegrees` about +Y, so the default faces a camera looking down -Z.
+ANARILight environmentLight(Session& s, const LinearImage& image, float intensity, float rotationDegrees) {
+    ANARILight light = anariNewLight(s.device, "hdri");
+    if (!light) throw std::runtime_error("the device has no 'hdri' light: --environment needs one");
+    s.objects.push_back(light);
+    ANARIArray2D radiance = anariNewArray2D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32_VEC3, image.width, image.height);
+    if (!radiance) throw std::runtime_error("the device could not make a " + std::to_string(image.width) + "x" +
+                                            std::to_string(image.height) + " array for --environment");
+    s.objects.push_back(radiance);
+    void* texels = anariMapArray(s.device, radiance);
+    if (!texels) throw std::runtime_error("the device could not map the --environment array");
+    std::memcpy(texels, image.rgb.data(), image.rgb.size() * sizeof(float));
+    anariUnmapArray(s.device, radiance);
+    const float turn = glm::radians(rotationDegrees);
+    anari::setObject(s.device, light, "radiance", ANARI_ARRAY2D, radiance);
+    anari::set(s.device, light, "direction", glm::vec3(-std::sin(turn), 0.0f, -std::cos(turn)));
+    anari::set(s.device, light, "up", glm::vec3(0.0f, 1.0f, 0.0f));
+    anari::set(s.device, light, "scale", intensity);
+    anariCommitParameters(s.device, light);
+    return light;
+}
+
 // The scene on the device: under mpirun each rank imports only its share of the file, so that no rank holds
 // the whole scene; the lights become ANARI lights on rank 0 alone (the device gathers every rank's lights).
 AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session& s,
@@ -255,7 +298,13 @@ AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session&
                      "holds whole meshes; --partition spatial splits meshes\n", gltf->instances.size(), ranks.size());
     if (gltf) gltf = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()), plan.partition);
     stats.triangles = gltf ? gltf->trianglesDrawn() : 0;
-    AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf, plan.root) : buildDemoScene(s.device, plan.demo);
+    // The environment is a light like the scene's: on rank 0 alone.
+    std::vector<ANARILight> extraLights;
+    if (plan.environment && plan.root) extraLights.push_back(environmentLight(s, *plan.environment, plan.environmentIntensity,
+                                                                             plan.environmentRotation));
+    AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf, plan.root, extraLights)
+                            : buildDemoScene(s.device, plan.demo, extraLights);
+    if (plan.environment) scene.ambientRadiance = 0.0f;  // the environment replaces the scene's ambient fill
     s.objects.push_back(scene.world);
     return scene;
 }
@@ -509,6 +558,9 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
             {"--seed", options.seed, true},
             {"--camera", options.camera ? uint64_t(int64_t(*options.camera) + 2) : 0, false},
             {"--ambient", options.ambient ? number(*options.ambient) : 0, false},
+            {"--environment", optionHash(options.environment), false},
+            {"--environment-intensity", number(options.environmentIntensity), false},
+            {"--environment-rotation", number(options.environmentRotation), false},
             {"--partition", optionHash(options.partition), false},
             {"--traversal", optionHash(options.traversal), false},
             {"--library", optionHash(options.library), false},
@@ -560,8 +612,15 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--camera", options.camera, "scene camera index; -1 frames the scene bounds (default: camera 0 if any)")
         ->check(CLI::Range(-1, 1 << 20));
-    app.add_option("--ambient", options.ambient, "ambient radiance (default: what the scene suggests)")
+    app.add_option("--ambient", options.ambient, "ambient radiance (default: what the scene suggests; 0 with --environment)")
         ->check(CLI::NonNegativeNumber);
+    app.add_option("--environment", options.environment,
+                   "equirectangular environment image lighting the scene (.hdr, .exr, .pfm, .png; linear radiance, the "
+                   "image's top row up, +Y)");
+    app.add_option("--environment-intensity", options.environmentIntensity, "scale of the environment's radiance")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+    app.add_option("--environment-rotation", options.environmentRotation,
+                   "turn of the environment about the up axis, degrees")->capture_default_str();
     app.add_flag("-q,--quiet", options.quiet, "no progress line and no warnings");
     app.add_option("--partition", options.partition,
                    "under mpirun, each rank imports: round-robin (whole mesh instances dealt in turn) or spatial "

@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 #include <stb_image.h>
+#include <stb_image_write.h>
 #include <tinyexr.h>
 
 #include <algorithm>
@@ -174,6 +175,24 @@ TEST_CASE("EXR: 32-bit float written by tinyexr read back exact") {
     CHECK(image.rgb == rgb);
 }
 
+TEST_CASE("Radiance HDR: read as linear RGB, top row first, within RGBE's precision") {
+    TempFolder dir;
+    constexpr int w = 4, h = 2;
+    std::vector<float> rgb(size_t(w * h * 3));
+    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = 0.01f + 3.7f * float(i);  // 0.01 .. 85: high dynamic range
+    const auto file = dir / "sky.hdr";
+    REQUIRE(stbi_write_hdr(file.string().c_str(), w, h, 3, rgb.data()) != 0);
+    const ripple::apps::LinearImage image = ripple::apps::readLinearImage(file);
+    REQUIRE(image.width == uint32_t(w));
+    REQUIRE(image.height == uint32_t(h));
+    for (size_t i = 0; i < rgb.size(); ++i) {
+        // RGBE shares one exponent per pixel: each channel within 1/128 of the pixel's largest.
+        const size_t pixel = i / 3 * 3;
+        const float largest = std::max({rgb[pixel], rgb[pixel + 1], rgb[pixel + 2]});
+        CHECK(std::abs(image.rgb[i] - rgb[i]) <= largest / 128.0f);
+    }
+}
+
 TEST_CASE("EXR: written bottom-up as 32-bit float RGBA, read back exact with the top row first") {
     TempFolder dir;
     constexpr uint32_t w = 5, h = 3;
@@ -196,8 +215,8 @@ TEST_CASE("image reader: missing and malformed files are named with their fault"
     TempFolder dir;
     CHECK_THROWS_WITH(ripple::apps::readLinearImage(dir / "absent.png"), doctest::Contains("no such file"));
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"GIF89a", "not a PNG, PFM or EXR"},
-        {"", "not a PNG, PFM or EXR"},
+        {"GIF89a", "not a PNG, PFM, EXR or Radiance HDR"},
+        {"", "not a PNG, PFM, EXR or Radiance HDR"},
         {"\x89PNG\r\n\x1a\nnot really", "malformed image: PNG"},
         {std::string("\x76\x2f\x31\x01", 4) + "junk", "malformed image: EXR"},
         {"PF\n", "header ends early"},

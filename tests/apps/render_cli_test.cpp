@@ -320,3 +320,61 @@ TEST_CASE("ripple-render --report writes the series as CSV and a plot") {
     CHECK(h == 560);
     stbi_image_free(plot);
 }
+
+// --environment lights the scene with an hdri light and replaces the key light and ambient fill a glTF
+// without lights gets: rendered twice with the same seed, at intensity 1 and 2, every pixel of the triangle
+// doubles (to float rounding) while the background stays as it was, which holds only when the environment
+// is the sole source of light. A Radiance .hdr and a PFM read the same.
+TEST_CASE("ripple-render --environment: an hdri light scaled by --environment-intensity, nothing else lights the scene") {
+    TempFolder dir;
+    const auto scene = writeBytes(dir / "triangle.glb", glbBytes(triangleSource()));
+    std::vector<float> sky(8 * 4 * 4);
+    for (size_t i = 0; i < sky.size(); ++i) sky[i] = i % 4 == 3 ? 1.0f : 0.25f + 0.05f * float((i / 4) % 8);
+    const auto environment = dir / "sky.pfm";
+    ripple::apps::writePfmBottomUp(environment, 8, 4, sky.data());
+    auto render = [&](const char* intensity, const char* name) {
+        const auto image = dir / name;
+        const ProgramRun run = runRender("'" + scene.string() + "' --size 24x24 --spp 4 --max-path-length 2 --quiet --environment '" +
+                                         environment.string() + "' --environment-intensity " + intensity + " -o '" +
+                                         image.string() + "'");
+        REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+        return ripple::apps::readLinearImage(image);
+    };
+    const ripple::apps::LinearImage once = render("1", "once.pfm"), twice = render("2", "twice.pfm");
+    REQUIRE(once.rgb.size() == twice.rgb.size());
+    // Pixels on the triangle's edge mix background (unchanged) and triangle (doubled) samples: brighter,
+    // but less than twice as bright.
+    uint32_t doubled = 0, unchanged = 0, edge = 0, other = 0;
+    for (size_t p = 0; p < once.rgb.size(); p += 3) {
+        bool same = true, two = once.rgb[p] > 1e-3f, between = true;
+        for (size_t c = 0; c < 3; ++c) {
+            same = same && twice.rgb[p + c] == once.rgb[p + c];
+            two = two && std::abs(twice.rgb[p + c] - 2.0f * once.rgb[p + c]) <= 1e-5f * twice.rgb[p + c];
+            between = between && twice.rgb[p + c] > once.rgb[p + c] && twice.rgb[p + c] < 2.0f * once.rgb[p + c];
+        }
+        doubled += two;
+        unchanged += same && !two;
+        edge += !same && !two && between;
+        other += !same && !two && !between;
+    }
+    MESSAGE(doubled << " pixels doubled, " << unchanged << " background, " << edge << " on the edge, " << other << " else");
+    CHECK(doubled >= 20);
+    CHECK(unchanged >= 20);
+    CHECK(edge <= 48);  // about the triangle's perimeter in pixels
+    CHECK(other == 0);
+
+    {  // bad environment files are named
+        std::vector<float> bad = sky;
+        bad[5] = -1.0f;
+        const auto negative = dir / "negative.pfm";
+        ripple::apps::writePfmBottomUp(negative, 8, 4, bad.data());
+        const ProgramRun run = runRender("--demo cornell --size 8x8 --environment '" + negative.string() + "' -o '" +
+                                         (dir / "x.png").string() + "'");
+        CHECK(run.exitCode == 1);
+        CHECK_MESSAGE(contains(run.output, "negative.pfm: holds a negative, NaN or Inf radiance"), run.output);
+        const ProgramRun missing = runRender("--demo cornell --size 8x8 --environment '" + (dir / "absent.hdr").string() +
+                                             "' -o '" + (dir / "x.png").string() + "'");
+        CHECK(missing.exitCode == 1);
+        CHECK_MESSAGE(contains(missing.output, "absent.hdr: cannot open the image (no such file)"), missing.output);
+    }
+}
