@@ -207,7 +207,8 @@ public:
     // Everything in one group under one identity instance, as a glTF scene's meshes are.
     AnariWorld finish(const CameraView& camera, const glm::vec3& lo, const glm::vec3& hi) {
         ANARIGroup group = handles_.keep(anariNewGroup(d_), "group");
-        setObject(d_, group, "surface", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, surfaces_, ANARI_SURFACE), "array"));
+        if (!surfaces_.empty())  // a data-parallel rank's volume slab may stand alone
+            setObject(d_, group, "surface", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, surfaces_, ANARI_SURFACE), "array"));
         if (!volumes_.empty())
             setObject(d_, group, "volume", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, volumes_, ANARI_VOLUME), "array"));
         anariCommitParameters(d_, group);
@@ -330,19 +331,26 @@ std::vector<float> marschnerLobbSamples(glm::uvec3 dims) {
     return samples;
 }
 
-// The floor, sun and sky the field demos and field files stand in: the samples (x fastest) span [lo, hi], a
-// box of at most 2 across standing on the floor; `addField` draws the field. The camera looks at the box
-// from the front and above.
+// Where a field stands: its samples span [lo, hi], a part (a data-parallel rank's slab) of the whole
+// field's box [boxLo, boxHi] of at most 2 across standing on the floor. stage: this world holds the floor
+// and the sun (under mpirun rank 0 alone does).
+struct FieldPlacement {
+    glm::vec3 lo, hi, boxLo, boxHi;
+    bool stage = true;
+};
+
+// The floor, sun and sky the field demos and field files stand in; `addField` draws the field. The camera
+// looks at the whole box from the front and above.
 template <class AddField>
-AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& samples, const glm::vec3& lo,
-                      const glm::vec3& hi, AddField addField) {
+AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& samples, const FieldPlacement& at,
+                      AddField addField) {
     DemoBuilder b(d);
-    b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
-    addField(b, b.field(dims, samples, lo, hi));
-    b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);
-    const glm::vec3 centre = 0.5f * (lo + hi), at(centre.x, centre.y - 0.15f, centre.z);
-    AnariWorld out = b.finish(lookAt(at + glm::vec3(0.0f, 1.5f, 4.6f), at, 40.0f), {-4.0f, 0.0f, -4.0f},
-                              {4.0f, std::max(hi.y, 2.05f), 4.0f});
+    if (at.stage) b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
+    addField(b, b.field(dims, samples, at.lo, at.hi));
+    if (at.stage) b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);
+    const glm::vec3 centre = 0.5f * (at.boxLo + at.boxHi), target(centre.x, centre.y - 0.15f, centre.z);
+    AnariWorld out = b.finish(lookAt(target + glm::vec3(0.0f, 1.5f, 4.6f), target, 40.0f), {-4.0f, 0.0f, -4.0f},
+                              {4.0f, std::max(at.boxHi.y, 2.05f), 4.0f});
     out.ambientRadiance = 0.3f;
     out.background = glm::vec4(0.55f, 0.65f, 0.80f, 1.0f);
     return out;
@@ -352,7 +360,8 @@ AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& 
 template <class AddField>
 AnariWorld marschnerLobbScene(ANARIDevice d, AddField addField) {
     const glm::uvec3 dims(64);
-    return fieldScene(d, dims, marschnerLobbSamples(dims), {-1.0f, 0.05f, -1.0f}, {1.0f, 2.05f, 1.0f}, addField);
+    const glm::vec3 lo(-1.0f, 0.05f, -1.0f), hi(1.0f, 2.05f, 1.0f);
+    return fieldScene(d, dims, marschnerLobbSamples(dims), {lo, hi, lo, hi}, addField);
 }
 
 // A Marschner-Lobb volume (64^3 samples) standing on a floor, under a sun and a sky: the medium scatters
@@ -412,17 +421,22 @@ void checkTransferFunctionName(const std::string& name) {
 
 AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const FieldSceneOptions& options) {
     if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
-    const glm::vec3 extent = glm::vec3(data.dims - 1u) * data.spacing;
-    const glm::vec3 size = extent * (2.0f / std::max({extent.x, extent.y, extent.z}));
-    const glm::vec3 lo(-0.5f * size.x, 0.05f, -0.5f * size.z);
+    const glm::uvec3 whole = data.wholeDims == glm::uvec3(0) ? data.dims : data.wholeDims;
+    const glm::vec3 extent = glm::vec3(whole - 1u) * data.spacing;
+    const float scale = 2.0f / std::max({extent.x, extent.y, extent.z});
+    const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z), step = scale * data.spacing;
+    FieldPlacement at{boxLo, boxLo, boxLo, boxLo + scale * extent, options.stage};
+    at.lo.z += step.z * float(data.zFirst);
+    at.hi = at.lo + step * glm::vec3(data.dims - 1u);
     const std::vector<glm::vec3> colors = colorMap(options.transferFunction.empty() ? "viridis" : options.transferFunction);
-    const float range = data.maxValue - data.minValue;
-    return fieldScene(device, data.dims, data.values, lo, lo + size, [&](DemoBuilder& b, ANARISpatialField field) {
+    const glm::vec2 values = options.valueRange.value_or(glm::vec2(data.minValue, data.maxValue));
+    const float range = values.y - values.x;
+    return fieldScene(device, data.dims, data.values, at, [&](DemoBuilder& b, ANARISpatialField field) {
         if (!options.transferFunction.empty())
             b.volume(field, colors, {0.0f, options.opacity}, options.unitDistance.value_or(kDefaultUnitDistance),
-                     data.minValue, data.maxValue);
+                     values.x, values.y);
         for (float isovalue : options.isovalues) {
-            const float t = range > 0.0f ? (isovalue - data.minValue) / range : 0.5f;
+            const float t = range > 0.0f ? (isovalue - values.x) / range : 0.5f;
             b.isosurface(field, isovalue, b.matte(colorAt(colors, t)));
         }
     });

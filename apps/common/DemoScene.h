@@ -41,13 +41,19 @@ struct FieldSceneOptions {
     // One isosurface geometry per value, coloured by the colour map at the value (viridis when there is
     // no volume).
     std::vector<float> isovalues;
+    // The values the colour map spans; default: the data's min..max (under mpirun: every rank's).
+    std::optional<glm::vec2> valueRange;
+    // The floor and the sun (under mpirun only rank 0's world holds them; every rank's field is placed
+    // in the whole field's box, and every camera frames it).
+    bool stage = true;
 };
 
 constexpr float kDefaultUnitDistance = 0.2f;
 
 // The field of `data` on the demos' floor under their sun and sky, scaled so that its longest side is 2
 // and centred over the origin, standing just above the floor (the file's y axis points up); a camera
-// frames it. Throws as checkTransferFunctionName does.
+// frames it. A slab (data.zFirst, data.wholeDims) takes its place in the whole field's box. Throws as
+// checkTransferFunctionName does.
 AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const FieldSceneOptions& options);
 
 }  // namespace ripple::apps

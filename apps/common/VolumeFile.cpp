@@ -132,9 +132,10 @@ std::optional<VoxelType> voxelTypeNamed(const std::string& name) {
     return std::nullopt;
 }
 
-// Converts the samples at `offset` in `dataFile` (whose size was checked) to floats.
+// Converts the samples of `slab` at `offset` in `dataFile` (whose size is checked for the whole field) to
+// floats.
 VolumeData readSamples(const std::filesystem::path& label, const std::filesystem::path& dataFile, uint64_t offset,
-                       glm::uvec3 dims, VoxelType type, bool bigEndian) {
+                       glm::uvec3 dims, VoxelType type, bool bigEndian, VolumeSlab slab) {
     std::error_code ec;
     if (!std::filesystem::exists(dataFile, ec))
         fail(label, (dataFile == label ? std::string("no such file") : "its data file " + quoted(dataFile) + " does not exist"));
@@ -151,18 +152,28 @@ VolumeData readSamples(const std::filesystem::path& label, const std::filesystem
         fail(label, (dataFile == label ? std::string("holds ") : "its data file " + quoted(dataFile) + " holds ") +
                         std::to_string(available) + " bytes of data but " + dimsText + " " + typeName(type) +
                         " voxels need " + std::to_string(needed) + " bytes");
+    const uint64_t cells = dims.z - 1;
+    if (slab.count == 0 || slab.index >= slab.count || cells < slab.count)
+        fail(label, "its " + std::to_string(dims.z) + " sample planes along z cannot be split into " +
+                        std::to_string(slab.count) + " slabs (each needs one cell)");
+    const uint32_t zFirst = uint32_t(cells * slab.index / slab.count);
+    const uint32_t zLast = uint32_t(cells * (slab.index + 1) / slab.count);  // shared with the next slab
+    const uint64_t plane = uint64_t(dims.x) * dims.y;
     std::ifstream in(dataFile, std::ios::binary);
     if (!in) fail(label, "cannot open " + quoted(dataFile));
-    in.seekg(std::streamoff(offset));
+    in.seekg(std::streamoff(offset + plane * zFirst * size));
 
     VolumeData out;
-    out.dims = dims;
-    out.values.resize(voxels);
+    out.wholeDims = dims;
+    out.zFirst = zFirst;
+    out.dims = glm::uvec3(dims.x, dims.y, zLast - zFirst + 1);
+    const uint64_t slabVoxels = plane * out.dims.z;
+    out.values.resize(slabVoxels);
     const bool swap = bigEndian != (std::endian::native == std::endian::big);
     std::vector<unsigned char> chunk;
     uint64_t nonFinite = 0;
-    for (uint64_t done = 0; done < voxels;) {
-        const uint64_t count = std::min<uint64_t>(voxels - done, uint64_t(1) << 20);
+    for (uint64_t done = 0; done < slabVoxels;) {
+        const uint64_t count = std::min<uint64_t>(slabVoxels - done, uint64_t(1) << 20);
         chunk.resize(count * size);
         if (!in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size())))
             fail(label, "reading " + quoted(dataFile) + " stopped early");
@@ -185,7 +196,7 @@ VolumeData readSamples(const std::filesystem::path& label, const std::filesystem
         done += count;
     }
     if (nonFinite > 0)
-        fail(label, std::to_string(nonFinite) + " of " + std::to_string(voxels) +
+        fail(label, std::to_string(nonFinite) + " of " + std::to_string(slabVoxels) +
                         " voxels are NaN or infinite (or beyond float range); refusing the field");
     const auto [lo, hi] = std::minmax_element(out.values.begin(), out.values.end());
     out.minValue = *lo;
@@ -228,7 +239,7 @@ VoxelType parseVoxelType(const std::string& name) {
     throw VolumeError("unknown voxel type '" + name + "' (known: uint8, int8, uint16, int16, float32, float64)");
 }
 
-VolumeData readRawVolume(const std::filesystem::path& file, const RawLayout& layout) {
+VolumeData readRawVolume(const std::filesystem::path& file, const RawLayout& layout, VolumeSlab slab) {
     const std::vector<std::string> parts = split(layout.dims, ",xX");
     std::array<uint64_t, 3> d{};
     bool good = parts.size() == 3;
@@ -258,12 +269,12 @@ VolumeData readRawVolume(const std::filesystem::path& file, const RawLayout& lay
         if (!ok) fail(file, "--spacing '" + layout.spacing + "' is not three numbers SX,SY,SZ");
         spacing = checkedSpacing(file, v, "--spacing");
     }
-    VolumeData out = readSamples(file, file, 0, dims, type, false);
+    VolumeData out = readSamples(file, file, 0, dims, type, false, slab);
     out.spacing = spacing;
     return out;
 }
 
-VolumeData readNrrdVolume(const std::filesystem::path& file) {
+VolumeData readNrrdVolume(const std::filesystem::path& file, VolumeSlab slab) {
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) fail(file, "no such file");
     if (!std::filesystem::is_regular_file(file, ec)) fail(file, "is not a regular file");
@@ -411,7 +422,7 @@ VolumeData readNrrdVolume(const std::filesystem::path& file) {
     }
     if (__builtin_add_overflow(offset, byteSkip, &offset)) fail(file, "byte skip is too large");
 
-    VolumeData out = readSamples(file, dataFile, offset, dims, *type, bigEndian);
+    VolumeData out = readSamples(file, dataFile, offset, dims, *type, bigEndian, slab);
     out.origin = origin;
     out.spacing = glm::vec3(float(spacing[0]), float(spacing[1]), float(spacing[2]));
     return out;

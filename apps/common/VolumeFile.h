@@ -23,14 +23,24 @@ enum class VoxelType { UInt8, Int8, UInt16, Int16, Float32, Float64 };
 // The largest field read: 2^31 voxels (8 GiB of float values).
 constexpr uint64_t kMaxVoxels = uint64_t(1) << 31;
 
-// A field of dims.x * dims.y * dims.z samples, x fastest. The values are the file's numbers converted to
+// A field of dims.x * dims.y * dims.z samples, x fastest: the whole file's, or one z-slab of it (then
+// wholeDims is the file's and zFirst the slab's first sample plane). The values are the file's numbers converted to
 // float as they are (a uint8 255 is 255.0, not 1.0): the transfer function's range comes from min..max.
 struct VolumeData {
     glm::uvec3 dims{0};
+    glm::uvec3 wholeDims{0};
+    uint32_t zFirst = 0;
     std::vector<float> values;
     glm::vec3 origin{0.0f};             // NRRD "space origin"; 0 for raw files
     glm::vec3 spacing{1.0f};            // between neighbouring samples, each positive
-    float minValue = 0.0f, maxValue = 0.0f;
+    float minValue = 0.0f, maxValue = 0.0f;  // of the samples read
+};
+
+// Which part of the z axis to read: slab `index` of `count` (data-parallel ranks). The cells between
+// sample planes are dealt evenly; each slab holds its cells' planes, so neighbours share one plane.
+// Every slab checks the whole file (its size, its header) so that all ranks agree on errors.
+struct VolumeSlab {
+    uint32_t index = 0, count = 1;
 };
 
 // How to read a raw file (for NRRD the header says all of it).
@@ -48,10 +58,10 @@ VoxelType parseVoxelType(const std::string& name);
 
 // Reads a little-endian raw file (x fastest) of the given layout. The file may be longer than the field
 // (trailing bytes are ignored) but not shorter. Throws VolumeError.
-VolumeData readRawVolume(const std::filesystem::path& file, const RawLayout& layout);
+VolumeData readRawVolume(const std::filesystem::path& file, const RawLayout& layout, VolumeSlab slab = {});
 
 // Reads an NRRD file: attached data (.nrrd) or `data file:` (relative to the header's folder, confined to
 // it). Encoding raw only. Throws VolumeError.
-VolumeData readNrrdVolume(const std::filesystem::path& file);
+VolumeData readNrrdVolume(const std::filesystem::path& file, VolumeSlab slab = {});
 
 }  // namespace ripple::apps

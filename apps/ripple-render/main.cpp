@@ -32,6 +32,7 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -180,8 +181,6 @@ void planVolume(const Options& options, const mpi::Communicator& ranks, RenderPl
     }
     if (!options.scene.empty() || !options.demo.empty())
         throw std::runtime_error("give one of a scene file, --demo or --volume");
-    if (ranks.distributed())
-        throw std::runtime_error("--volume is single-rank for now: run it without mpirun");
     FieldSceneOptions& field = plan.fieldOptions;
     field.isovalues = options.isovalues;
     // With isovalues the volume is drawn only when --tf asks for it; without, the default map draws it.
@@ -193,16 +192,28 @@ void planVolume(const Options& options, const mpi::Communicator& ranks, RenderPl
     field.unitDistance = options.unitDistance;
     for (float v : options.isovalues)
         if (!std::isfinite(v)) throw std::runtime_error("--isovalue " + std::to_string(v) + " is not a finite number");
+    // Under mpirun each rank reads only its z-slab (data-parallel ANARI: every rank's world holds its own
+    // brick, sharing a sample plane with its neighbour); rank 0's world holds the floor and the sun.
+    const VolumeSlab slab{uint32_t(ranks.rank()), uint32_t(ranks.size())};
+    field.stage = plan.root;
     if (isNrrdFile(options.volume)) {
         if (rawOptions)
             throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
                                      "the NRRD header gives them");
-        plan.field = readNrrdVolume(options.volume);
+        plan.field = readNrrdVolume(options.volume, slab);
     } else {
         if (options.dims.empty() || options.type.empty())
             throw std::runtime_error("--volume " + options.volume + ": a raw file needs --dims X,Y,Z and --type "
                                      "(or give an NRRD file, .nrrd or .nhdr)");
-        plan.field = readRawVolume(options.volume, {options.dims, options.type, options.spacing});
+        plan.field = readRawVolume(options.volume, {options.dims, options.type, options.spacing}, slab);
+    }
+    if (ranks.distributed()) {  // the colour map spans every rank's values
+        float lowest = plan.field->minValue, highest = plan.field->maxValue;
+        ranks.min(std::span<float>(&lowest, 1));
+        ranks.max(std::span<float>(&highest, 1));
+        plan.field->minValue = lowest;
+        plan.field->maxValue = highest;
+        field.valueRange = glm::vec2(lowest, highest);
     }
     if (!options.quiet && plan.root) {
         for (float v : options.isovalues)
@@ -278,7 +289,7 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     plan.demo = options.scene.empty() && options.demo.empty() && options.volume.empty() ? "default" : options.demo;
     if (!plan.demo.empty()) checkDemoSceneName(plan.demo);
     if (ranks.distributed() && !plan.demo.empty())
-        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
+        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file or --volume under mpirun");
 
     // The file is read before any library is loaded, so a bad file fails fast.
     if (!options.scene.empty()) {
@@ -522,11 +533,17 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
         std::memcpy(&bits, &value, sizeof bits);
         return bits;
     };
+    std::string volumeOptions = options.dims + ";" + options.type + ";" + options.spacing + ";" + options.transferFunction +
+                                ";" + std::to_string(options.opacity.value_or(-1.0f)) + ";" +
+                                std::to_string(options.unitDistance.value_or(-1.0f));
+    for (float v : options.isovalues) volumeOptions += ";" + std::to_string(number(double(v)));
     const std::string scene = !options.volume.empty() ? "--volume " + options.volume
                               : options.scene.empty() ? "--demo " + options.demo
                                                       : "file " + options.scene;
     return {{"command lines (some ranks could not parse theirs)", uint64_t(parseOutcome), false},
             {"scenes (a file, or --demo)", optionHash(scene), false},
+            {"--volume options (--dims, --type, --spacing, --tf, --opacity, --unit-distance, --isovalue)",
+             optionHash(volumeOptions), false},
             {"--spp", options.spp, true},
             {"--size", optionHash(options.size), false},
             {"--time", options.seconds ? number(*options.seconds) : 0, false},
