@@ -129,6 +129,35 @@ TEST_CASE("NRRD volumes: attached and detached data, spacings, directions, origi
     }
 }
 
+// Data-parallel reads: 5 sample planes (4 cells) in 2 slabs are planes 0-2 and 2-4, sharing plane 2; 3 slabs
+// deal the cells 1, 1, 2; more slabs than cells is refused.
+TEST_CASE("z-slabs of a volume file hold their planes and share one with the next") {
+    TempFolder dir;
+    std::vector<uint8_t> v(3 * 2 * 5);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = uint8_t(i);
+    const auto file = writeBytes(dir / "slabs.raw", v);
+    const RawLayout layout{"3,2,5", "uint8", ""};
+    const auto check = [&](uint32_t index, uint32_t count, uint32_t zFirst, uint32_t planes) {
+        CAPTURE(index);
+        CAPTURE(count);
+        const VolumeData d = ripple::apps::readRawVolume(file, layout, {index, count});
+        CHECK(d.wholeDims == glm::uvec3(3, 2, 5));
+        CHECK(d.zFirst == zFirst);
+        CHECK(d.dims == glm::uvec3(3, 2, planes));
+        REQUIRE(d.values.size() == size_t(6 * planes));
+        for (size_t i = 0; i < d.values.size(); ++i) CHECK(d.values[i] == float(6 * zFirst + i));
+        CHECK(d.minValue == float(6 * zFirst));
+    };
+    check(0, 1, 0, 5);
+    check(0, 2, 0, 3);
+    check(1, 2, 2, 3);
+    check(0, 3, 0, 2);
+    check(1, 3, 1, 2);
+    check(2, 3, 2, 3);
+    CHECK(has(errorOf([&] { ripple::apps::readRawVolume(file, layout, {0, 5}); }),
+              "its 5 sample planes along z cannot be split into 5 slabs"));
+}
+
 TEST_CASE("malformed volume files are refused with the file and the problem named") {
     TempFolder dir;
     const std::vector<uint8_t> eight(8, 7);
