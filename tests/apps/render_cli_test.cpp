@@ -354,8 +354,8 @@ TEST_CASE("ripple-render --report writes the series as CSV and a plot") {
 
 namespace {
 
-// A 16^3 uint8 distance field: 255 at the centre falling by 32 per sample of distance, 0 beyond 8 samples
-// (the 128 surface is a sphere of radius 4 samples); or 0 everywhere.
+// A 16^3 uint8 distance field: 255 - 32 r clamped to 0..255, r the distance in samples from the centre
+// (7.5, 7.5, 7.5), so 0..227 (the 128 surface is a sphere of radius 4 samples); or 0 everywhere.
 std::vector<uint8_t> sphereField(bool empty) {
     std::vector<uint8_t> v;
     for (int z = 0; z < 16; ++z)
@@ -400,7 +400,7 @@ Rgba8 renderVolume(const std::string& arguments, const std::filesystem::path& im
 // samples through a detached NRRD header), against the same scene with a field of zeros (where neither
 // draws anything). The field stands in the middle of the view, so the centre 8x8 pixels change (mean
 // absolute difference over RGB, 8-bit sRGB, measured 49 for the isosurface and 113 for the volume); the
-// isosurface at 128 of 0..255 takes viridis' middle, teal, so green outweighs red there (measured 1.52x).
+// isosurface at 128 of 0..227 takes viridis' middle, teal, so green outweighs red there (measured 1.52x).
 TEST_CASE("ripple-render --volume draws a raw or NRRD field as an isosurface or a volume") {
     TempFolder dir;
     const std::string layout = " --dims 16,16,16 --type uint8";
