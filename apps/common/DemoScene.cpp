@@ -182,15 +182,15 @@ public:
         return field;
     }
 
-    // The field as a transferFunction1D volume over the value range [0, 1] with the given colours and
+    // The field as a transferFunction1D volume over the value range [lo, hi] with the given colours and
     // opacities.
     void volume(ANARISpatialField field, const std::vector<glm::vec3>& colors, const std::vector<float>& opacities,
-                float unitDistance) {
+                float unitDistance, float lo = 0.0f, float hi = 1.0f) {
         ANARIVolume v = handles_.keep(anariNewVolume(d_, "transferFunction1D"), "volume");
         setObject(d_, v, "value", ANARI_SPATIAL_FIELD, field);
         setObject(d_, v, "color", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, colors), "array"));
         setObject(d_, v, "opacity", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, opacities), "array"));
-        const float range[2] = {0.0f, 1.0f};
+        const float range[2] = {lo, hi};
         anariSetParameter(d_, v, "valueRange", ANARI_FLOAT32_BOX1, range);
         set(d_, v, "unitDistance", unitDistance);
         anariCommitParameters(d_, v);
@@ -208,7 +208,8 @@ public:
     // Everything in one group under one identity instance, as a glTF scene's meshes are.
     AnariWorld finish(const CameraView& camera, const glm::vec3& lo, const glm::vec3& hi) {
         ANARIGroup group = handles_.keep(anariNewGroup(d_), "group");
-        setObject(d_, group, "surface", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, surfaces_, ANARI_SURFACE), "array"));
+        if (!surfaces_.empty())  // a data-parallel rank's volume slab may stand alone
+            setObject(d_, group, "surface", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, surfaces_, ANARI_SURFACE), "array"));
         if (!volumes_.empty())
             setObject(d_, group, "volume", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, volumes_, ANARI_VOLUME), "array"));
         anariCommitParameters(d_, group);
@@ -331,24 +332,43 @@ std::vector<float> marschnerLobbSamples(glm::uvec3 dims) {
     return samples;
 }
 
-// The floor, sun and sky the field demos stand in; `addField` puts the field on it.
+// Where a field stands: its samples span [lo, hi], a part (a data-parallel rank's slab) of the whole
+// field's box [boxLo, boxHi] of at most 2 across standing on the floor. stage: this world holds the floor
+// and the sun (under mpirun rank 0 alone does).
+struct FieldPlacement {
+    glm::vec3 lo, hi, boxLo, boxHi;
+    bool stage = true;
+};
+
+// The floor, sun and sky the field demos and field files stand in; `addField` draws the field. The camera
+// looks at the whole box from the front and above.
 template <class AddField>
-AnariWorld fieldScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, AddField addField) {
+AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& samples, const FieldPlacement& at,
+                      const std::vector<ANARILight>& extraLights, AddField addField) {
     DemoBuilder b(d, extraLights);
-    b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
-    const glm::uvec3 dims(64);
-    addField(b, b.field(dims, marschnerLobbSamples(dims), {-1.0f, 0.05f, -1.0f}, {1.0f, 2.05f, 1.0f}));
-    b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);
-    AnariWorld out = b.finish(lookAt({0.0f, 2.4f, 4.6f}, {0.0f, 0.9f, 0.0f}, 40.0f), {-4.0f, 0.0f, -4.0f}, {4.0f, 2.05f, 4.0f});
+    if (at.stage) b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
+    addField(b, b.field(dims, samples, at.lo, at.hi));
+    if (at.stage) b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);
+    const glm::vec3 centre = 0.5f * (at.boxLo + at.boxHi), target(centre.x, centre.y - 0.15f, centre.z);
+    AnariWorld out = b.finish(lookAt(target + glm::vec3(0.0f, 1.5f, 4.6f), target, 40.0f), {-4.0f, 0.0f, -4.0f},
+                              {4.0f, std::max(at.boxHi.y, 2.05f), 4.0f});
     out.ambientRadiance = 0.3f;
     out.background = glm::vec4(0.55f, 0.65f, 0.80f, 1.0f);
     return out;
 }
 
+// The Marschner-Lobb field (64^3 samples) over [-1, 1]^2 horizontally, standing just above the floor.
+template <class AddField>
+AnariWorld marschnerLobbScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, AddField addField) {
+    const glm::uvec3 dims(64);
+    const glm::vec3 lo(-1.0f, 0.05f, -1.0f), hi(1.0f, 2.05f, 1.0f);
+    return fieldScene(d, dims, marschnerLobbSamples(dims), {lo, hi, lo, hi}, extraLights, addField);
+}
+
 // A Marschner-Lobb volume (64^3 samples) standing on a floor, under a sun and a sky: the medium scatters
 // (albedo from a warm colour map) and casts its shadow.
 AnariWorld volumeScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
-    return fieldScene(d, extraLights, [](DemoBuilder& b, ANARISpatialField field) {
+    return marschnerLobbScene(d, extraLights, [](DemoBuilder& b, ANARISpatialField field) {
         b.volume(field, {{0.15f, 0.2f, 0.6f}, {0.2f, 0.7f, 0.8f}, {0.95f, 0.85f, 0.4f}, {0.95f, 0.35f, 0.15f}},
                  // A thin shell around the value 0.5, where the signal's rings are.
                  {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.8f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
@@ -360,12 +380,69 @@ AnariWorld volumeScene(ANARIDevice d, const std::vector<ANARILight>& extraLights
 // The same field's iso-surface at 0.5 as polished gold: the rings, traced exactly through the trilinear
 // interpolant of the 64^3 samples.
 AnariWorld isosurfaceScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
-    return fieldScene(d, extraLights, [](DemoBuilder& b, ANARISpatialField field) {
+    return marschnerLobbScene(d, extraLights, [](DemoBuilder& b, ANARISpatialField field) {
         b.isosurface(field, 0.5f, b.pbr({1.0f, 0.78f, 0.34f}, 1.0f, 0.3f));
     });
 }
 
+// Colour maps as a few evenly spaced control points (the device interpolates linearly between them),
+// used directly as albedo. viridis: matplotlib's viridis (van der Walt and Smith, 2015), entries 0, 64,
+// 128, 192 and 255 of the 256 in matplotlib's _cm_listed.py; coolwarm: Moreland's diverging map ("Diverging Color
+// Maps for Scientific Visualization", 2009), its published end points RGB (59, 76, 192) and (180, 4, 38)
+// and midpoint (221, 221, 221); grayscale: black to white.
+std::vector<glm::vec3> colorMap(const std::string& name) {
+    if (name == "coolwarm")
+        return {glm::vec3(59, 76, 192) / 255.0f, glm::vec3(221, 221, 221) / 255.0f, glm::vec3(180, 4, 38) / 255.0f};
+    if (name == "grayscale") return {glm::vec3(0.0f), glm::vec3(1.0f)};
+    return {{0.267004f, 0.004874f, 0.329415f},
+            {0.229739f, 0.322361f, 0.545706f},
+            {0.127568f, 0.566949f, 0.550556f},
+            {0.369214f, 0.788888f, 0.382914f},
+            {0.993248f, 0.906157f, 0.143936f}};
+}
+
+// The piecewise-linear colour map at t in [0, 1].
+glm::vec3 colorAt(const std::vector<glm::vec3>& map, float t) {
+    const float x = std::clamp(t, 0.0f, 1.0f) * float(map.size() - 1);
+    const size_t i = std::min(size_t(x), map.size() - 2);
+    return glm::mix(map[i], map[i + 1], x - float(i));
+}
+
 }  // namespace
+
+std::vector<std::string> transferFunctionNames() { return {"viridis", "coolwarm", "grayscale"}; }
+
+void checkTransferFunctionName(const std::string& name) {
+    const std::vector<std::string> names = transferFunctionNames();
+    if (std::find(names.begin(), names.end(), name) != names.end()) return;
+    std::string known;
+    for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown transfer function '" + name + "' (known: " + known + ")");
+}
+
+AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const FieldSceneOptions& options,
+                           const std::vector<ANARILight>& extraLights) {
+    if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
+    const glm::uvec3 whole = data.wholeDims == glm::uvec3(0) ? data.dims : data.wholeDims;
+    const glm::vec3 extent = glm::vec3(whole - 1u) * data.spacing;
+    const float scale = 2.0f / std::max({extent.x, extent.y, extent.z});
+    const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z), step = scale * data.spacing;
+    FieldPlacement at{boxLo, boxLo, boxLo, boxLo + scale * extent, options.stage};
+    at.lo.z += step.z * float(data.zFirst);
+    at.hi = at.lo + step * glm::vec3(data.dims - 1u);
+    const std::vector<glm::vec3> colors = colorMap(options.transferFunction.empty() ? "viridis" : options.transferFunction);
+    const glm::vec2 values = options.valueRange.value_or(glm::vec2(data.minValue, data.maxValue));
+    const float range = values.y - values.x;
+    return fieldScene(device, data.dims, data.values, at, extraLights, [&](DemoBuilder& b, ANARISpatialField field) {
+        if (!options.transferFunction.empty())
+            b.volume(field, colors, {0.0f, options.opacity}, options.unitDistance.value_or(kDefaultUnitDistance),
+                     values.x, values.y);
+        for (float isovalue : options.isovalues) {
+            const float t = range > 0.0f ? (isovalue - values.x) / range : 0.5f;
+            b.isosurface(field, isovalue, b.matte(colorAt(colors, t)));
+        }
+    });
+}
 
 std::vector<std::string> demoSceneNames() { return {"default", "cornell", "volume", "isosurface"}; }
 

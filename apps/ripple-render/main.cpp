@@ -1,6 +1,7 @@
-// ripple-render: renders a glTF file or a built-in demo scene to a PNG (or JPEG, PFM) through any ANARI library,
-// using only standard ANARI objects and parameters. Frames accumulate samples batch by batch; after each the
-// float color channel feeds a no-reference error estimate (Convergence.h), reported as it falls.
+// ripple-render: renders a glTF file, a volume file (raw or NRRD) or a built-in demo scene to a PNG (or JPEG,
+// PFM) through any ANARI library, using only standard ANARI objects and parameters. Frames accumulate samples
+// batch by batch; after each the float color channel feeds a no-reference error estimate (Convergence.h),
+// reported as it falls.
 #include "apps/common/AnariParams.h"
 #include "apps/common/AnariScene.h"
 #include "apps/common/DemoScene.h"
@@ -8,6 +9,7 @@
 #include "apps/common/ImageIO.h"
 #include "apps/common/ImageSize.h"
 #include "apps/common/ScenePartition.h"
+#include "apps/common/VolumeFile.h"
 #include "apps/ripple-render/Convergence.h"
 #include "apps/ripple-render/ErrorPlot.h"
 #include "apps/ripple-render/OutputImage.h"
@@ -30,6 +32,7 @@
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -60,6 +63,12 @@ struct Options {
     std::optional<double> seconds;      // --time: the whole run, start-up included, ends within this
     std::optional<double> targetError;  // stop when the estimated relMSE reaches this
     bool sppGiven = false;              // --spp on the command line: it caps --time and --target-error too
+    // --volume: a scalar field from a raw or NRRD file, drawn as a volume and/or isosurfaces.
+    std::string volume;
+    std::string dims, type, spacing;    // raw files only
+    std::string transferFunction;       // --tf; empty: viridis, unless --isovalue is given (then no volume)
+    std::optional<float> opacity, unitDistance;
+    std::vector<float> isovalues;
 
     // Reporting mode: one sample per frame, so that the series has points, and a line per report point.
     bool reporting() const { return !reference.empty() || !report.empty() || seconds || targetError; }
@@ -162,7 +171,66 @@ struct RenderPlan {
     std::optional<LinearImage> environment;  // --environment, read on rank 0 (which holds the lights)
     float environmentIntensity = 1.0f;
     float environmentRotation = 0.0f;   // degrees
+    std::optional<VolumeData> field;    // --volume
+    FieldSceneOptions fieldOptions;
 };
+
+// --volume's file read and checked, with what to draw of it; throws naming the option or the file.
+void planVolume(const Options& options, const mpi::Communicator& ranks, RenderPlan& plan) {
+    const bool rawOptions = !options.dims.empty() || !options.type.empty() || !options.spacing.empty();
+    if (options.volume.empty()) {
+        if (rawOptions || !options.transferFunction.empty() || options.opacity || options.unitDistance ||
+            !options.isovalues.empty())
+            throw std::runtime_error("--dims, --type, --spacing, --tf, --opacity, --unit-distance and --isovalue "
+                                     "need --volume FILE");
+        return;
+    }
+    if (!options.scene.empty() || !options.demo.empty())
+        throw std::runtime_error("give one of a scene file, --demo or --volume");
+    FieldSceneOptions& field = plan.fieldOptions;
+    field.isovalues = options.isovalues;
+    // With isovalues the volume is drawn only when --tf asks for it; without, the default map draws it.
+    field.transferFunction = !options.transferFunction.empty() ? options.transferFunction
+                             : options.isovalues.empty()       ? "viridis"
+                                                               : "";
+    if (!field.transferFunction.empty()) checkTransferFunctionName(field.transferFunction);
+    field.opacity = options.opacity.value_or(field.opacity);
+    field.unitDistance = options.unitDistance;
+    for (float v : options.isovalues)
+        if (!std::isfinite(v)) throw std::runtime_error("--isovalue " + std::to_string(v) + " is not a finite number");
+    // Under mpirun each rank reads only its z-slab (data-parallel ANARI: every rank's world holds its own
+    // brick, sharing a sample plane with its neighbour); rank 0's world holds the floor and the sun.
+    const VolumeSlab slab{uint32_t(ranks.rank()), uint32_t(ranks.size())};
+    field.stage = plan.root;
+    if (isNrrdFile(options.volume)) {
+        if (rawOptions)
+            throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
+                                     "the NRRD header gives them");
+        plan.field = readNrrdVolume(options.volume, slab);
+    } else {
+        if (options.dims.empty() || options.type.empty())
+            throw std::runtime_error("--volume " + options.volume + ": a raw file needs --dims X,Y,Z and --type "
+                                     "(or give an NRRD file, .nrrd or .nhdr)");
+        plan.field = readRawVolume(options.volume, {options.dims, options.type, options.spacing}, slab);
+    }
+    if (ranks.distributed()) {  // the colour map spans every rank's values
+        float lowest = plan.field->minValue, highest = plan.field->maxValue;
+        ranks.min(std::span<float>(&lowest, 1));
+        ranks.max(std::span<float>(&highest, 1));
+        plan.field->minValue = lowest;
+        plan.field->maxValue = highest;
+        field.valueRange = glm::vec2(lowest, highest);
+    }
+    if (!options.quiet && plan.root) {
+        for (float v : options.isovalues)
+            if (v < plan.field->minValue || v > plan.field->maxValue)
+                std::fprintf(stderr, "[ripple-render] WARNING: --isovalue %g is outside the field's values [%g, %g]: "
+                             "it draws nothing\n", double(v), double(plan.field->minValue), double(plan.field->maxValue));
+        if (!field.transferFunction.empty() && plan.field->minValue == plan.field->maxValue)
+            std::fprintf(stderr, "[ripple-render] WARNING: every voxel is %g: the transfer function shows nothing\n",
+                         double(plan.field->minValue));
+    }
+}
 
 // The host memory ripple-render's own buffers for a w x h image take on rank 0: the estimator's sums (RGBA doubles:
 // the previous total and the two halves), one batch's sum while a frame is added, the mean image written
@@ -223,10 +291,11 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     }
     if (!options.scene.empty() && !options.demo.empty())
         throw std::runtime_error("give either a scene file or --demo, not both");
-    plan.demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
+    planVolume(options, ranks, plan);
+    plan.demo = options.scene.empty() && options.demo.empty() && options.volume.empty() ? "default" : options.demo;
     if (!plan.demo.empty()) checkDemoSceneName(plan.demo);
     if (ranks.distributed() && !plan.demo.empty())
-        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
+        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file or --volume under mpirun");
 
     if (!options.environment.empty() && plan.root) {
         plan.environment = readLinearImage(options.environment);
@@ -302,8 +371,9 @@ AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session&
     std::vector<ANARILight> extraLights;
     if (plan.environment && plan.root) extraLights.push_back(environmentLight(s, *plan.environment, plan.environmentIntensity,
                                                                              plan.environmentRotation));
-    AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf, plan.root, extraLights)
-                            : buildDemoScene(s.device, plan.demo, extraLights);
+    AnariWorld scene = plan.field ? buildFieldScene(s.device, *plan.field, plan.fieldOptions, extraLights)
+                       : gltf     ? buildAnariWorld(s.device, *gltf, plan.root, extraLights)
+                                  : buildDemoScene(s.device, plan.demo, extraLights);
     if (plan.environment) scene.ambientRadiance = 0.0f;  // the environment replaces the scene's ambient fill
     s.objects.push_back(scene.world);
     return scene;
@@ -481,8 +551,9 @@ void writeResults(const Options& options, const RenderPlan& plan, const RenderOu
     writeOutputImage(options.output, plan.format, plan.size.x, plan.size.y, image.data());
     if (!options.report.empty()) {
         writeConvergenceCsv(plan.reportFile, out.series);
-        const std::string sceneName =
-            options.scene.empty() ? "demo " + plan.demo : std::filesystem::path(options.scene).filename().string();
+        const std::string sceneName = !options.volume.empty() ? std::filesystem::path(options.volume).filename().string()
+                                      : options.scene.empty() ? "demo " + plan.demo
+                                                              : std::filesystem::path(options.scene).filename().string();
         writeErrorPlot(plan.plotFile, out.series, sceneName + ", " + options.size + ": relMSE against render time");
     }
     const double finalEstimate = out.estimator.estimatedRelMse();
@@ -547,9 +618,17 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
         std::memcpy(&bits, &value, sizeof bits);
         return bits;
     };
-    const std::string scene = options.scene.empty() ? "--demo " + options.demo : "file " + options.scene;
+    std::string volumeOptions = options.dims + ";" + options.type + ";" + options.spacing + ";" + options.transferFunction +
+                                ";" + std::to_string(options.opacity.value_or(-1.0f)) + ";" +
+                                std::to_string(options.unitDistance.value_or(-1.0f));
+    for (float v : options.isovalues) volumeOptions += ";" + std::to_string(number(double(v)));
+    const std::string scene = !options.volume.empty() ? "--volume " + options.volume
+                              : options.scene.empty() ? "--demo " + options.demo
+                                                      : "file " + options.scene;
     return {{"command lines (some ranks could not parse theirs)", uint64_t(parseOutcome), false},
             {"scenes (a file, or --demo)", optionHash(scene), false},
+            {"--volume options (--dims, --type, --spacing, --tf, --opacity, --unit-distance, --isovalue)",
+             optionHash(volumeOptions), false},
             {"--spp", options.spp, true},
             {"--size", optionHash(options.size), false},
             {"--time", options.seconds ? number(*options.seconds) : 0, false},
@@ -580,7 +659,7 @@ int main(int argc, char** argv) {
     const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();
     using ripple::apps::Options;
     Options options;
-    CLI::App app{"ripple-render: render a glTF 2.0 file or a built-in demo scene through an ANARI library"};
+    CLI::App app{"ripple-render: render a glTF 2.0 file, a volume file or a built-in demo scene through an ANARI library"};
     app.add_option("scene", options.scene, "glTF 2.0 file (.gltf or .glb); without one a demo scene is rendered");
     std::string demoNames;
     for (const std::string& n : ripple::apps::demoSceneNames()) demoNames += (demoNames.empty() ? "" : ", ") + n;
@@ -630,6 +709,27 @@ int main(int argc, char** argv) {
                    "folder the scene's buffer and image URIs may reach (default: the scene file's folder); "
                    "for trusted input only")
         ->check(CLI::ExistingDirectory);
+    app.add_option("--volume", options.volume,
+                   "scalar field file: NRRD (.nrrd, or .nhdr with a raw data file; encoding raw) or raw (needs --dims "
+                   "and --type); drawn as a volume, or as isosurfaces with --isovalue, on a floor");
+    app.add_option("--dims", options.dims, "raw --volume: samples along x, y, z as X,Y,Z or XxYxZ (x fastest)");
+    app.add_option("--type", options.type, "raw --volume: uint8, int8, uint16, int16, float32 or float64 (little-endian)");
+    app.add_option("--spacing", options.spacing, "raw --volume: distance between samples along x, y, z as SX,SY,SZ "
+                                                 "(default 1,1,1)");
+    std::string tfNames;
+    for (const std::string& n : ripple::apps::transferFunctionNames()) tfNames += (tfNames.empty() ? "" : ", ") + n;
+    app.add_option("--tf", options.transferFunction,
+                   "--volume's colour map, over the voxels' min..max with opacity rising from 0 to --opacity: " +
+                       tfNames + " (default viridis; with --isovalue the volume is drawn only when --tf is given)");
+    app.add_option("--opacity", options.opacity, "--volume: opacity at the largest value, per --unit-distance (default 0.5)")
+        ->check(CLI::Range(0.0f, 1.0f));
+    app.add_option("--unit-distance", options.unitDistance,
+                   "--volume: the distance the opacity holds for, in scene units where the field's longest side is 2 "
+                   "(default 0.2)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--isovalue", options.isovalues,
+                   "--volume: draw the field's surface at this value (repeatable), coloured by the colour map")
+        ->allow_extra_args(false);
     app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame");
     int parseOutcome = 0;  // 0: parsed; else the parser's exit code + 1
     std::optional<CLI::ParseError> parseError;

@@ -312,6 +312,55 @@ TEST_CASE("demo scenes are spec-conforming and complete") {
     }
 }
 
+// A field from a file: its box scaled so that the longest side is 2 (5x3x2 samples of spacing 1,2,1: extents
+// 4, 4, 1 -> 2, 2, 0.5), centred over the origin just above the floor; the transfer function over the
+// data's min..max; one isosurface per isovalue; with isovalues the volume only when a map is named.
+TEST_CASE("buildFieldScene places a file's field and draws what the options ask") {
+    VolumeData data;
+    data.dims = glm::uvec3(5, 3, 2);
+    data.spacing = glm::vec3(1.0f, 2.0f, 1.0f);
+    data.values.resize(30);
+    for (size_t i = 0; i < 30; ++i) data.values[i] = 10.0f + float(i);
+    data.minValue = 10.0f;
+    data.maxValue = 39.0f;
+    FieldSceneOptions options;
+    options.opacity = 0.75f;
+    SUBCASE("volume") {
+        ANARIDevice d = newFakeDevice();
+        const AnariWorld world = buildFieldScene(d, data, options);
+        CHECK(violations(fakeDevice(), world.world) == "");
+        const auto fields = fakeDevice().ofType(ANARI_SPATIAL_FIELD, "structuredRegular");
+        REQUIRE(fields.size() == 1);
+        CHECK(fields[0]->parameters.at("origin").as<glm::vec3>() == glm::vec3(-1.0f, 0.05f, -0.25f));
+        CHECK(fields[0]->parameters.at("spacing").as<glm::vec3>() == glm::vec3(0.5f, 1.0f, 0.5f));
+        const auto volumes = fakeDevice().ofType(ANARI_VOLUME, "transferFunction1D");
+        REQUIRE(volumes.size() == 1);
+        const auto range = volumes[0]->parameters.at("valueRange").as<glm::vec2>();
+        CHECK(range == glm::vec2(10.0f, 39.0f));
+        CHECK(volumes[0]->parameters.at("unitDistance").as<float>() == kDefaultUnitDistance);
+        const FakeObject* opacity = volumes[0]->parameters.at("opacity").object;
+        REQUIRE(opacity->count1 == 2);
+        CHECK(opacity->elements<float>()[1] == 0.75f);
+        CHECK(count(ANARI_GEOMETRY, "isosurface") == 0);
+        CHECK(world.cameras.size() == 1);
+    }
+    SUBCASE("isosurfaces alone") {
+        options.transferFunction = "";
+        options.isovalues = {12.0f, 20.0f, 30.0f};
+        ANARIDevice d = newFakeDevice();
+        const AnariWorld world = buildFieldScene(d, data, options);
+        CHECK(violations(fakeDevice(), world.world) == "");
+        CHECK(count(ANARI_GEOMETRY, "isosurface") == 3);
+        CHECK(count(ANARI_VOLUME, "transferFunction1D") == 0);
+    }
+    SUBCASE("unknown colour map") {
+        options.transferFunction = "jet";
+        CHECK_THROWS_WITH_AS(buildFieldScene(newFakeDevice(), data, options),
+                             "unknown transfer function 'jet' (known: viridis, coolwarm, grayscale)",
+                             std::invalid_argument);
+    }
+}
+
 TEST_CASE("camera helpers") {
     SUBCASE("framing fits the bounding sphere inside the narrower field of view") {
         for (float aspect : {0.5f, 1.0f, 2.0f}) {
