@@ -30,7 +30,8 @@ void OrbitCamera::orbit(float dx, float dy) {
     const float limit = 1.5607963f;  // pi/2 - 0.01
     const float pitch = std::clamp(elevation + dy, -limit, limit) - elevation;
     const glm::vec3 right = glm::normalize(glm::cross(view_.direction, up));
-    if (std::isfinite(right.x)) offset = glm::vec3(glm::rotate(glm::mat4(1.0f), pitch, right) * glm::vec4(offset, 0.0f));
+    // Turning the offset by -pitch about right (= direction x up) raises it towards up.
+    if (std::isfinite(right.x)) offset = glm::vec3(glm::rotate(glm::mat4(1.0f), -pitch, right) * glm::vec4(offset, 0.0f));
     offset = glm::vec3(glm::rotate(glm::mat4(1.0f), -dx, up) * glm::vec4(offset, 0.0f));
     view_.position = pivot_ + offset;
     view_.direction = glm::normalize(-offset);
