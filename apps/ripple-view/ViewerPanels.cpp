@@ -74,7 +74,8 @@ void statsOverlay(const PassResult& pass, uint32_t fullSamples, bool moving, boo
     ImGui::SetNextWindowBgAlpha(0.5f);
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove;
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove |
+                                   ImGuiWindowFlags_NoInputs;  // mouse drags pass through to the camera
     if (ImGui::Begin("stats", nullptr, flags)) {
         ImGui::Text("%u spp%s", moving ? pass.samples : fullSamples, busy ? "" : " (idle)");
         ImGui::Text("%.1f ms per pass, %ux%u%s", pass.milliseconds, pass.size.x, pass.size.y,
