@@ -11,6 +11,8 @@ packages=(
   nlohmann-json3-dev                                                           # glTF importer: JSON checks
   libopenmpi-dev openmpi-bin                                                   # data-parallel rendering
   clang-14 libclang-rt-14-dev                                                  # libFuzzer (scripts/fuzz.sh)
+  libglfw3-dev libimgui-dev libgl1-mesa-dri                                    # ripple-view: window, panels, GL (llvmpipe)
+  xvfb xauth                                                                   # ripple-view's test: a virtual X server (xvfb-run)
 )
 
 sudo=""

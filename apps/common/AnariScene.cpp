@@ -290,9 +290,7 @@ CameraView frameBounds(const glm::vec3& lo, const glm::vec3& hi, float aspect) {
     return view;
 }
 
-ANARICamera newAnariCamera(ANARIDevice device, const CameraView& view, float aspect) {
-    ANARICamera camera = anariNewCamera(device, view.orthographic ? "orthographic" : "perspective");
-    if (!camera) throw std::runtime_error("the ANARI device returned no camera");
+void setAnariCamera(ANARIDevice device, ANARICamera camera, const CameraView& view, float aspect) {
     set(device, camera, "position", view.position);
     set(device, camera, "direction", view.direction);
     set(device, camera, "up", view.up);
@@ -300,6 +298,12 @@ ANARICamera newAnariCamera(ANARIDevice device, const CameraView& view, float asp
     if (view.orthographic) set(device, camera, "height", view.height);
     else set(device, camera, "fovy", view.fovy);
     anariCommitParameters(device, camera);
+}
+
+ANARICamera newAnariCamera(ANARIDevice device, const CameraView& view, float aspect) {
+    ANARICamera camera = anariNewCamera(device, view.orthographic ? "orthographic" : "perspective");
+    if (!camera) throw std::runtime_error("the ANARI device returned no camera");
+    setAnariCamera(device, camera, view, aspect);
     return camera;
 }
 

@@ -57,4 +57,7 @@ CameraView frameBounds(const glm::vec3& lo, const glm::vec3& hi, float aspect);
 // A committed "perspective" or "orthographic" camera showing `view` at the given image aspect.
 ANARICamera newAnariCamera(ANARIDevice device, const CameraView& view, float aspect);
 
+// Sets and commits `view` on a camera of its kind (perspective or orthographic) made by newAnariCamera.
+void setAnariCamera(ANARIDevice device, ANARICamera camera, const CameraView& view, float aspect);
+
 }  // namespace ripple::apps

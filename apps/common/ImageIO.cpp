@@ -192,9 +192,6 @@ void writeExrBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
     }
 }
 
-namespace {
-
-// Linear RGBA floats to 8-bit: colour sRGB-encoded and clamped to [0, 1], alpha kept linear; NaN gives 0.
 std::vector<uint8_t> encodeSrgb8(uint32_t width, uint32_t height, const float* rgba) {
     std::vector<uint8_t> bytes(size_t(width) * height * 4);
     for (size_t i = 0; i < bytes.size(); ++i) {
@@ -204,8 +201,6 @@ std::vector<uint8_t> encodeSrgb8(uint32_t width, uint32_t height, const float* r
     }
     return bytes;
 }
-
-}  // namespace
 
 void writePngFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba) {
     checkSize(file, width, height, rgba);

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <vector>
 
 namespace ripple::apps {
 
@@ -24,6 +25,10 @@ void writeExrBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
 // Writes width x height LINEAR float RGBA pixels, bottom row first, as an 8-bit sRGB-encoded PNG (colour
 // clamped to [0, 1], alpha kept linear), as a device's UFIXED8_RGBA_SRGB channel would be.
 void writePngFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba);
+
+// Linear float RGBA pixels to 8-bit RGBA as the PNG writer stores them: colour sRGB-encoded and clamped to
+// [0, 1], alpha kept linear; NaN gives 0. Rows keep their order.
+std::vector<uint8_t> encodeSrgb8(uint32_t width, uint32_t height, const float* rgba);
 
 // The same as an 8-bit sRGB JPEG (quality 95; alpha dropped).
 void writeJpegFromLinearBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height,

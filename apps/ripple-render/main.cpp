@@ -4,6 +4,7 @@
 // reported as it falls.
 #include "apps/common/AnariParams.h"
 #include "apps/common/AnariScene.h"
+#include "apps/common/AnariSession.h"
 #include "apps/common/DemoScene.h"
 #include "apps/common/GltfScene.h"
 #include "apps/common/ImageIO.h"
@@ -12,7 +13,7 @@
 #include "apps/common/VolumeFile.h"
 #include "apps/ripple-render/Convergence.h"
 #include "apps/ripple-render/ErrorPlot.h"
-#include "apps/ripple-render/OutputImage.h"
+#include "apps/common/OutputImage.h"
 #include "apps/ripple-render/Progress.h"
 #include "apps/ripple-render/RankAgreement.h"
 #include "apps/ripple-render/RankStats.h"
@@ -78,23 +79,6 @@ struct Options {
 constexpr uint32_t kMinSamplesForTarget = 8;
 constexpr uint32_t kMaxSpp = 1000000;
 
-// The device's messages: errors always, warnings unless --quiet, chatter never.
-struct StatusLog {
-    bool quiet = false;
-    int errors = 0;
-};
-
-void onStatus(const void* user, ANARIDevice, ANARIObject, ANARIDataType, ANARIStatusSeverity severity,
-              ANARIStatusCode, const char* message) {
-    auto* log = static_cast<StatusLog*>(const_cast<void*>(user));
-    if (severity <= ANARI_SEVERITY_ERROR) {
-        ++log->errors;
-        std::fprintf(stderr, "[ripple-render] ERROR: %s\n", message ? message : "(no message)");
-    } else if (severity <= ANARI_SEVERITY_PERFORMANCE_WARNING && !log->quiet) {
-        std::fprintf(stderr, "[ripple-render] WARNING: %s\n", message ? message : "(no message)");
-    }
-}
-
 // Samples per frame: the smallest divisor of spp that needs at most 16 frames, so the progress line moves
 // and every frame carries the same count (changing pixelSamples may restart a device's accumulation).
 uint32_t samplesPerFrame(uint32_t spp) {
@@ -143,20 +127,6 @@ void addFrameToEstimator(ANARIDevice device, ANARIFrame frame, glm::uvec2 size, 
     }
     anariUnmapFrame(device, frame, "channel.color");
 }
-
-// The library, its device and the objects of one render, released in reverse order. It lives in main(),
-// outside the error handler: under mpirun a failing rank must end every rank before its device is
-// released, since that release is collective and the other ranks would never join it.
-struct Session {
-    ANARILibrary library = nullptr;
-    ANARIDevice device = nullptr;
-    std::vector<ANARIObject> objects;
-    ~Session() {
-        for (auto it = objects.rbegin(); it != objects.rend(); ++it) anariRelease(device, *it);
-        if (device) anariRelease(device, device);
-        if (library) anariUnloadLibrary(library);
-    }
-};
 
 // What the options ask for, checked before any library is loaded so that bad input fails fast.
 struct RenderPlan {
@@ -322,11 +292,7 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
 }
 
 void openDevice(const Options& options, StatusLog& log, Session& s) {
-    s.library = anariLoadLibrary(options.library.c_str(), onStatus, &log);
-    if (!s.library)
-        throw std::runtime_error("cannot load the ANARI library '" + options.library + "' (the loader's reason is above)");
-    s.device = anariNewDevice(s.library, "default");
-    if (!s.device) throw std::runtime_error("the ANARI library '" + options.library + "' created no device");
+    openAnariDevice(options.library, log, s);
     if (!options.traversal.empty()) {
         anariSetParameter(s.device, s.device, "traversal", ANARI_STRING, options.traversal.c_str());
         anariCommitParameters(s.device, s.device);
@@ -382,12 +348,7 @@ AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session&
 // The camera: the scene's (--camera), or one framing the bounds as the device computed them (the scene's
 // own where the device does not answer).
 ANARICamera makeCamera(const Options& options, const AnariWorld& scene, glm::uvec2 size, Session& s) {
-    float box[6];
-    glm::vec3 lo = scene.boundsMin, hi = scene.boundsMax;
-    if (anariGetProperty(s.device, scene.world, "bounds", ANARI_FLOAT32_BOX3, box, sizeof box, ANARI_WAIT)) {
-        lo = glm::vec3(box[0], box[1], box[2]);
-        hi = glm::vec3(box[3], box[4], box[5]);
-    }
+    const auto [lo, hi] = worldBounds(s.device, scene);
     const float aspect = float(size.x) / float(size.y);
     CameraView view;
     const int cameraIndex = options.camera.value_or(scene.cameras.empty() ? -1 : 0);
@@ -588,7 +549,7 @@ void writeResults(const Options& options, const RenderPlan& plan, const RenderOu
 
 int render(const Options& options, const mpi::Communicator& ranks, Session& s, TimeBudget& budget) {
     RenderPlan plan = checkOptions(options, ranks);
-    StatusLog log{options.quiet, 0};
+    StatusLog log{"ripple-render", options.quiet, 0};
     openDevice(options, log, s);
     RankStats stats;
     const AnariWorld scene = buildScene(plan, ranks, s, stats);
@@ -752,6 +713,8 @@ int main(int argc, char** argv) {
         return ranks.rank() == 0 ? app.exit(*parseError) : (parseError->get_exit_code() == 0 ? 0 : 1);
     }
 
+    // It lives here, outside the error handler: under mpirun a failing rank must end every rank before its
+    // device is released, since that release is collective and the other ranks would never join it.
     ripple::apps::Session session;
     try {
         ripple::apps::TimeBudget budget(options.seconds, processStart);

@@ -1,6 +1,6 @@
-// Output format, writability check and writer of ripple-render (see OutputImage.h); the pixels go through
+// Output format, writability check and writer of the apps' image files (see OutputImage.h); the pixels go through
 // the project's one image writer (apps/common/ImageIO).
-#include "apps/ripple-render/OutputImage.h"
+#include "apps/common/OutputImage.h"
 
 #include "apps/common/ImageIO.h"
 
@@ -18,25 +18,25 @@
 
 namespace ripple::apps {
 
-OutputFormat outputFormatOf(const std::filesystem::path& file) {
+OutputFormat outputFormatOf(const std::filesystem::path& file, const std::string& option) {
     std::string extension = file.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (extension == ".png") return OutputFormat::Png;
     if (extension == ".jpg" || extension == ".jpeg") return OutputFormat::Jpeg;
     if (extension == ".pfm") return OutputFormat::Pfm;
     if (extension == ".exr") return OutputFormat::Exr;
-    throw std::runtime_error("-o " + file.string() + ": unsupported image format '" + file.extension().string() +
+    throw std::runtime_error(option + " " + file.string() + ": unsupported image format '" + file.extension().string() +
                              "' (supported: .png, .jpg, .jpeg, .pfm, .exr)");
 }
 
-void checkOutputWritable(const std::filesystem::path& file) {
+void checkOutputWritable(const std::filesystem::path& file, const std::string& option) {
     // Opening is the only test that sees what writing will see (permissions, read-only mounts, a folder
     // in the way); access() answers for the real user and ignores read-only file systems' subtleties.
     const bool existed = std::filesystem::exists(file);
     const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) {
         const int error = errno;
-        throw std::runtime_error("-o " + file.string() + ": cannot write the image there: " + std::strerror(error));
+        throw std::runtime_error(option + " " + file.string() + ": cannot write the image there: " + std::strerror(error));
     }
     ::close(fd);
     if (!existed) ::unlink(file.c_str());

@@ -1,0 +1,179 @@
+// Progressive passes of the viewer through ANARI (see ProgressiveFrames.h).
+#include "apps/ripple-view/ProgressiveFrames.h"
+
+#include "apps/common/AnariParams.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace ripple::apps {
+namespace {
+
+glm::uvec2 reducedSize(glm::uvec2 size, uint32_t scale) { return glm::max(size / scale, glm::uvec2(1)); }
+
+bool deviceHasExtension(ANARIDevice device, const char* name) {
+    const char** extensions = nullptr;
+    if (!anariGetProperty(device, device, "extension", ANARI_STRING_LIST, &extensions, sizeof extensions, ANARI_WAIT))
+        return false;
+    for (const char** e = extensions; e && *e; ++e)
+        if (std::strcmp(*e, name) == 0) return true;
+    return false;
+}
+
+void setRenderer(ANARIDevice device, ANARIRenderer renderer, const ViewerSettings& settings) {
+    anari::set(device, renderer, "pixelSamples", settings.pixelSamples);
+    anari::set(device, renderer, "maxPathLength", settings.maxPathLength);
+    anari::set(device, renderer, "background", settings.background);
+    anari::set(device, renderer, "ambientRadiance", settings.ambientRadiance);
+    anariCommitParameters(device, renderer);
+}
+
+}  // namespace
+
+ProgressiveFrames::ProgressiveFrames(Session& s, const AnariWorld& scene, const CameraView& view, glm::uvec2 size,
+                                     const ViewerSettings& settings, uint32_t scale)
+    : device_(s.device), orthographic_(view.orthographic), size_(size), scale_(std::max(scale, 1u)), view_(view),
+      settings_(settings) {
+    const float aspect = float(size.x) / float(size.y);
+    camera_ = newAnariCamera(device_, view, aspect);
+    renderer_ = anariNewRenderer(device_, "default");
+    if (!renderer_) throw std::runtime_error("the device has no 'default' renderer");
+    setRenderer(device_, renderer_, settings);
+    const bool accumulation = deviceHasExtension(device_, "ANARI_KHR_FRAME_ACCUMULATION");
+    for (ANARIFrame* frame : {&full_, &reduced_}) {
+        *frame = anariNewFrame(device_);
+        if (!*frame) throw std::runtime_error("the device created no frame");
+        const ANARIDataType colorType = ANARI_FLOAT32_VEC4;  // linear: screenshots keep the full range
+        anari::set(device_, *frame, "size", frame == &full_ ? size : reducedSize(size, scale_));
+        anariSetParameter(device_, *frame, "channel.color", ANARI_DATA_TYPE, &colorType);
+        if (accumulation) anari::set(device_, *frame, "accumulation", true);
+        anari::setObject(device_, *frame, "world", ANARI_WORLD, scene.world);
+        anari::setObject(device_, *frame, "renderer", ANARI_RENDERER, renderer_);
+        anari::setObject(device_, *frame, "camera", ANARI_CAMERA, camera_);
+        anariCommitParameters(device_, *frame);
+    }
+}
+
+ProgressiveFrames::~ProgressiveFrames() {
+    if (inFlight_) anariFrameReady(device_, inFlight_, ANARI_WAIT);
+    for (ANARIObject o : {ANARIObject(reduced_), ANARIObject(full_), ANARIObject(renderer_), ANARIObject(camera_)})
+        if (o) anariRelease(device_, o);
+}
+
+void ProgressiveFrames::setView(const CameraView& view) { pendingView_ = view; }
+void ProgressiveFrames::setSettings(const ViewerSettings& settings) {
+    if (!(settings == settings_) || pendingSettings_) pendingSettings_ = settings;
+}
+void ProgressiveFrames::setSize(glm::uvec2 size) {
+    if (size != size_ && size.x > 0 && size.y > 0) pendingSize_ = size;
+}
+
+void ProgressiveFrames::setReducedScale(uint32_t scale) {
+    if (std::max(scale, 1u) != scale_) pendingScale_ = std::max(scale, 1u);
+}
+
+// Called with no pass in flight: the device's objects are only changed between passes.
+void ProgressiveFrames::applyPending() {
+    if (pendingScale_) {
+        scale_ = *pendingScale_;
+        pendingScale_.reset();
+        if (!pendingSize_) {
+            anari::set(device_, reduced_, "size", reducedSize(size_, scale_));
+            anariCommitParameters(device_, reduced_);
+        }
+    }
+    if (pendingSize_) {
+        size_ = *pendingSize_;
+        anari::set(device_, full_, "size", size_);
+        anariCommitParameters(device_, full_);
+        anari::set(device_, reduced_, "size", reducedSize(size_, scale_));
+        anariCommitParameters(device_, reduced_);
+        if (!pendingView_) pendingView_ = view_;  // the aspect changed
+        pendingSize_.reset();
+        fullStale_ = true;
+    }
+    if (pendingView_) {
+        view_ = *pendingView_;
+        const float aspect = float(size_.x) / float(size_.y);
+        if (view_.orthographic != orthographic_) {  // another kind of camera: a new object
+            ANARICamera camera = newAnariCamera(device_, view_, aspect);
+            for (ANARIFrame frame : {full_, reduced_}) {
+                anari::setObject(device_, frame, "camera", ANARI_CAMERA, camera);
+                anariCommitParameters(device_, frame);
+            }
+            anariRelease(device_, camera_);
+            camera_ = camera;
+            orthographic_ = view_.orthographic;
+        } else {
+            setAnariCamera(device_, camera_, view_, aspect);
+        }
+        pendingView_.reset();
+        fullStale_ = true;
+    }
+    if (pendingSettings_) {
+        settings_ = *pendingSettings_;
+        setRenderer(device_, renderer_, settings_);
+        pendingSettings_.reset();
+        fullStale_ = true;
+    }
+}
+
+bool ProgressiveFrames::startPass(bool moving, uint32_t maxSamples) {
+    if (inFlight_) return false;
+    applyPending();
+    if (!moving && !fullStale_ && maxSamples > 0 && fullSamples_ >= maxSamples) return false;
+    inFlight_ = moving ? reduced_ : full_;
+    if (!moving && fullStale_) {
+        fullSamples_ = 0;
+        fullStale_ = false;
+    }
+    passBegin_ = std::chrono::steady_clock::now();
+    anariRenderFrame(device_, inFlight_);
+    return true;
+}
+
+bool ProgressiveFrames::poll(bool wait) {
+    if (!inFlight_ || !anariFrameReady(device_, inFlight_, wait ? ANARI_WAIT : ANARI_NO_WAIT)) return false;
+    const ANARIFrame frame = inFlight_;
+    inFlight_ = nullptr;
+    readPass(frame, frame == reduced_);
+    return true;
+}
+
+void ProgressiveFrames::readPass(ANARIFrame frame, bool reduced) {
+    const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - passBegin_).count();
+    PassResult& r = latest_;
+    r.reduced = reduced;
+    float seconds = 0.0f;
+    r.milliseconds = anariGetProperty(device_, frame, "duration", ANARI_FLOAT32, &seconds, sizeof seconds, ANARI_WAIT)
+                         ? double(seconds) * 1e3 : wall;
+    float rays = 0.0f;
+    if (hasRays_)
+        hasRays_ = anariGetProperty(device_, frame, "ripple.raysPerSecond", ANARI_FLOAT32, &rays, sizeof rays, ANARI_WAIT);
+    r.raysPerSecond = hasRays_ ? std::optional<float>(rays) : std::nullopt;
+    // The samples this pass holds: the device's count, else one more pass of pixelSamples on the full
+    // frame (a reduced pass restarts: its view changed).
+    uint32_t samples = 0;
+    if (countsSamples_)
+        countsSamples_ = anariGetProperty(device_, frame, "numSamples", ANARI_UINT32, &samples, sizeof samples, ANARI_WAIT);
+    if (!countsSamples_)
+        samples = (reduced ? 0 : fullSamples_) + uint32_t(settings_.pixelSamples);
+    r.samples = samples;
+    if (!reduced) fullSamples_ = samples;
+
+    uint32_t width = 0, height = 0;
+    ANARIDataType type = ANARI_UNKNOWN;
+    const void* pixels = anariMapFrame(device_, frame, "channel.color", &width, &height, &type);
+    if (!pixels || type != ANARI_FLOAT32_VEC4 || width == 0 || height == 0) {
+        if (pixels) anariUnmapFrame(device_, frame, "channel.color");
+        throw std::runtime_error("the device returned no FLOAT32_VEC4 color channel");
+    }
+    r.size = {width, height};
+    const size_t floats = size_t(width) * height * 4;
+    r.rgba.assign(static_cast<const float*>(pixels), static_cast<const float*>(pixels) + floats);
+    anariUnmapFrame(device_, frame, "channel.color");
+}
+
+}  // namespace ripple::apps

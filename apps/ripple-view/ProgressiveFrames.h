@@ -1,0 +1,96 @@
+// The viewer's ANARI side: one world rendered progressively into two frames sharing a camera and a renderer,
+// the full-size one while the view is still and a reduced one while it moves, one pass in flight at a time
+// (anariRenderFrame, then anariFrameReady polled with ANARI_NO_WAIT), so the window never waits for the device.
+// Changes wait until no pass is in flight and restart the accumulation (the device sees a new commit).
+#pragma once
+
+#include "apps/common/AnariScene.h"
+#include "apps/common/AnariSession.h"
+
+#include <anari/anari.h>
+
+#include <glm/glm.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace ripple::apps {
+
+// The renderer's parameters the viewer edits.
+struct ViewerSettings {
+    int32_t pixelSamples = 1;           // samples per pixel in one pass
+    int32_t maxPathLength = 5;
+    glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};
+    float ambientRadiance = 0.0f;
+    bool operator==(const ViewerSettings&) const = default;
+};
+
+// The image and numbers of the last pass that ended.
+struct PassResult {
+    glm::uvec2 size{0, 0};
+    std::vector<float> rgba;            // linear, bottom row first, as the color channel maps
+    bool reduced = false;               // rendered at reduced size while the view moved
+    uint32_t samples = 0;               // per pixel accumulated in it
+    double milliseconds = 0.0;          // the pass on the device ("duration"), else wall time to ready
+    std::optional<float> raysPerSecond; // the device's "ripple.raysPerSecond", when it has it
+};
+
+class ProgressiveFrames {
+public:
+    // Makes the camera, renderer and both frames on the session's device (released here, after waiting for
+    // a pass in flight; the session must outlive this); `scale` divides each side of the reduced frame.
+    ProgressiveFrames(Session& s, const AnariWorld& scene, const CameraView& view, glm::uvec2 size,
+                      const ViewerSettings& settings, uint32_t scale = 2);
+    ~ProgressiveFrames();
+    ProgressiveFrames(const ProgressiveFrames&) = delete;
+    ProgressiveFrames& operator=(const ProgressiveFrames&) = delete;
+
+    // Take effect with the next pass, restarting the accumulation.
+    void setView(const CameraView& view);
+    void setSettings(const ViewerSettings& settings);
+    void setSize(glm::uvec2 size);
+    // Each side of the reduced frame is the full size divided by `scale` (1: moving passes are full size,
+    // but still restart).
+    void setReducedScale(uint32_t scale);
+
+    // Starts a pass when none is in flight: on the reduced frame when `moving`, else on the full-size one
+    // unless it already holds `maxSamples` (0: no limit). Returns whether one started.
+    bool startPass(bool moving, uint32_t maxSamples = 0);
+    // Whether a pass ended since the last call (wait: blocks until it does); its image is then in latest().
+    bool poll(bool wait = false);
+    bool busy() const { return inFlight_ != nullptr; }
+
+    const PassResult& latest() const { return latest_; }
+    // Samples per pixel of the full-size frame since its last restart (0 before its first pass).
+    uint32_t fullSamples() const { return fullSamples_; }
+    glm::uvec2 size() const { return size_; }
+
+private:
+    void applyPending();
+    void readPass(ANARIFrame frame, bool reduced);
+
+    ANARIDevice device_;
+    ANARICamera camera_ = nullptr;
+    ANARIRenderer renderer_ = nullptr;
+    ANARIFrame full_ = nullptr, reduced_ = nullptr;
+    bool orthographic_ = false;
+    glm::uvec2 size_;
+    uint32_t scale_;
+    std::optional<CameraView> pendingView_;
+    std::optional<ViewerSettings> pendingSettings_;
+    std::optional<glm::uvec2> pendingSize_;
+    std::optional<uint32_t> pendingScale_;
+    CameraView view_;
+    ViewerSettings settings_;
+    bool fullStale_ = true;             // the full frame restarts with its next pass
+    uint32_t fullSamples_ = 0;
+    bool countsSamples_ = true;         // the device answers "numSamples"
+    bool hasRays_ = true;               // the device answers "ripple.raysPerSecond"
+    ANARIFrame inFlight_ = nullptr;
+    std::chrono::steady_clock::time_point passBegin_;
+    PassResult latest_;
+};
+
+}  // namespace ripple::apps

@@ -1,0 +1,33 @@
+// The viewer's Dear ImGui panels: renderer settings, camera, and the statistics overlay. They edit plain
+// values; the caller turns changes into ANARI commits.
+#pragma once
+
+#include "apps/common/AnariScene.h"
+#include "apps/ripple-view/ProgressiveFrames.h"
+
+#include <string>
+#include <vector>
+
+namespace ripple::apps {
+
+struct ViewerUiState {
+    ViewerSettings settings;
+    uint32_t maxSamples = 4096;         // the full frame stops accumulating here (0: never)
+    bool reduceWhileMoving = true;      // render at reduced size while the view moves
+    int movingDivisor = 2;              // each side divided by this while it moves
+    int selectedCamera = -1;            // index into the scene's cameras; -1: framed on the bounds
+};
+
+// What the user asked for in the panels this frame.
+struct PanelRequests {
+    bool settingsChanged = false;
+    bool viewChanged = false;           // the field of view, or a camera chosen
+    bool frameScene = false;
+    bool screenshot = false;
+};
+
+// Draws the panels; `view` and `ui` are edited in place.
+PanelRequests drawPanels(ViewerUiState& ui, CameraView& view, const std::vector<CameraView>& cameras,
+                         const PassResult& pass, uint32_t fullSamples, bool moving, bool busy);
+
+}  // namespace ripple::apps

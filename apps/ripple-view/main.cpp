@@ -1,0 +1,244 @@
+// ripple-view: an interactive viewer of a glTF file or a built-in demo scene through any ANARI library. Passes
+// render progressively while the view is still and at half size while it moves; panels set the renderer and
+// camera. --screenshot renders a fixed number of passes, writes the image and exits.
+#include "apps/common/AnariSession.h"
+#include "apps/common/DemoScene.h"
+#include "apps/common/GltfScene.h"
+#include "apps/common/ImageSize.h"
+#include "apps/common/OutputImage.h"
+#include "apps/ripple-view/OrbitCamera.h"
+#include "apps/ripple-view/ProgressiveFrames.h"
+#include "apps/ripple-view/ViewerPanels.h"
+#include "apps/ripple-view/ViewerWindow.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace ripple::apps {
+namespace {
+
+struct Options {
+    std::string scene;
+    std::string demo;
+    std::string library = "ripple";
+    std::string size = "800x600";
+    int32_t samplesPerPass = 1;
+    int32_t maxPathLength = 5;
+    std::string screenshot;             // with --frames: render that many passes, write this, exit
+    uint32_t frames = 16;
+    std::optional<int> camera;
+    bool quiet = false;
+};
+
+// How long the view counts as moving after its last change: passes stay at reduced size until then.
+constexpr double kSettleSeconds = 0.25;
+
+// A file name for the P key that does not overwrite an earlier screenshot.
+std::filesystem::path nextScreenshotName() {
+    for (int i = 0;; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "ripple-view-%03d.png", i);
+        if (!std::filesystem::exists(name)) return name;
+    }
+}
+
+// `milliseconds`: the mean full-size pass after the first (which creates the device's pipelines); NaN: none.
+void writeScreenshot(const std::filesystem::path& file, const PassResult& pass, double milliseconds) {
+    writeOutputImage(file, outputFormatOf(file, "--screenshot"), pass.size.x, pass.size.y, pass.rgba.data());
+    std::printf("wrote %s (%ux%u, %u spp", file.c_str(), pass.size.x, pass.size.y, pass.samples);
+    if (!std::isnan(milliseconds)) std::printf("; %.1f ms per pass after the first", milliseconds);
+    std::printf(")\n");
+    std::fflush(stdout);
+}
+
+int run(const Options& options, Session& s) {
+    // Everything that can fail without a window is checked first.
+    const glm::uvec2 size = parseImageSize(options.size);
+    if (!options.scene.empty() && !options.demo.empty())
+        throw std::runtime_error("give either a scene file or --demo, not both");
+    const std::string demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
+    if (!demo.empty()) checkDemoSceneName(demo);
+    const bool headless = !options.screenshot.empty();
+    if (headless) {
+        outputFormatOf(options.screenshot, "--screenshot");
+        checkOutputWritable(options.screenshot, "--screenshot");
+    }
+    std::optional<GltfScene> gltf;
+    if (!options.scene.empty()) {
+        gltf = loadGltf(options.scene);
+        if (!options.quiet)
+            for (const std::string& warning : gltf->warnings) std::fprintf(stderr, "[ripple-view] WARNING: %s\n", warning.c_str());
+    }
+
+    ViewerWindow window(size, options.scene.empty() ? "ripple-view: demo " + demo : "ripple-view: " + options.scene);
+    StatusLog log{"ripple-view", options.quiet, 0};
+    openAnariDevice(options.library, log, s);
+    const AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf) : buildDemoScene(s.device, demo);
+    s.objects.push_back(scene.world);
+    const auto [lo, hi] = worldBounds(s.device, scene);
+
+    ViewerUiState ui;
+    ui.settings.pixelSamples = options.samplesPerPass;
+    ui.settings.maxPathLength = options.maxPathLength;
+    ui.settings.background = scene.background;
+    ui.settings.ambientRadiance = scene.ambientRadiance;
+    ui.selectedCamera = options.camera.value_or(scene.cameras.empty() ? -1 : 0);
+    if (ui.selectedCamera >= int(scene.cameras.size()))
+        throw std::runtime_error("--camera " + std::to_string(ui.selectedCamera) + ": the scene has " +
+                                 std::to_string(scene.cameras.size()) + " cameras");
+    // The render follows the window's drawable, except for a screenshot, which has exactly --size.
+    glm::uvec2 renderSize = headless ? size : glm::max(window.framebufferSize(), glm::uvec2(1));
+    const auto aspect = [&] { return float(renderSize.x) / float(renderSize.y); };
+    OrbitCamera camera;
+    camera.reset(ui.selectedCamera >= 0 ? scene.cameras[size_t(ui.selectedCamera)] : frameBounds(lo, hi, aspect()), lo, hi);
+    ProgressiveFrames frames(s, scene, camera.view(), renderSize, ui.settings);
+
+    using Clock = std::chrono::steady_clock;
+    Clock::time_point lastChange = Clock::now() - std::chrono::seconds(1);
+    Clock::time_point lastLoop = Clock::now();
+    uint32_t fullPasses = 0;
+    double laterPassMilliseconds = 0.0;  // full-size passes after the first
+    std::optional<std::filesystem::path> screenshotRequest;
+    while (!window.closing()) {
+        window.beginFrame(frames.busy() ? 0.008 : 0.05);
+        const Clock::time_point now = Clock::now();
+        const float dt = std::min(std::chrono::duration<float>(now - lastLoop).count(), 0.1f);
+        lastLoop = now;
+        bool viewChanged = false;
+        if (!headless) {
+            const ImGuiIO& io = ImGui::GetIO();
+            const float height = std::max(io.DisplaySize.y, 1.0f);
+            if (!io.WantCaptureMouse) {
+                const float dx = io.MouseDelta.x / height, dy = io.MouseDelta.y / height;
+                if (ImGui::IsMouseDown(0) && (dx != 0.0f || dy != 0.0f)) {
+                    camera.orbit(dx * 3.14159265f, dy * 3.14159265f);
+                    viewChanged = true;
+                } else if ((ImGui::IsMouseDown(1) || ImGui::IsMouseDown(2)) && (dx != 0.0f || dy != 0.0f)) {
+                    camera.pan(dx, dy);
+                    viewChanged = true;
+                }
+                if (io.MouseWheel != 0.0f) {
+                    camera.zoom(io.MouseWheel);
+                    viewChanged = true;
+                }
+            }
+            bool frameScene = false;
+            if (!io.WantCaptureKeyboard) {
+                const float speed = dt * (ImGui::IsKeyDown(GLFW_KEY_LEFT_SHIFT) ? 1.0f : 0.25f);
+                const auto axis = [](int plus, int minus) {
+                    return (ImGui::IsKeyDown(plus) ? 1.0f : 0.0f) - (ImGui::IsKeyDown(minus) ? 1.0f : 0.0f);
+                };
+                const float forward = axis(GLFW_KEY_W, GLFW_KEY_S), right = axis(GLFW_KEY_D, GLFW_KEY_A),
+                            up = axis(GLFW_KEY_E, GLFW_KEY_Q);
+                if (forward != 0.0f || right != 0.0f || up != 0.0f) {
+                    camera.fly(forward * speed, right * speed, up * speed);
+                    viewChanged = true;
+                }
+                frameScene = ImGui::IsKeyPressed(GLFW_KEY_F, false);
+                if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) screenshotRequest = nextScreenshotName();
+            }
+            CameraView& view = camera.view();
+            const PanelRequests requests = drawPanels(ui, view, scene.cameras, frames.latest(), frames.fullSamples(),
+                                                      now - lastChange < std::chrono::duration<double>(kSettleSeconds),
+                                                      frames.busy());
+            if (requests.viewChanged) {
+                camera.reset(view, lo, hi);
+                viewChanged = true;
+            }
+            if (frameScene || requests.frameScene) {
+                CameraView framed = frameBounds(lo, hi, aspect());
+                if (!view.orthographic) framed.fovy = view.fovy;
+                camera.reset(framed, lo, hi);
+                ui.selectedCamera = -1;
+                viewChanged = true;
+            }
+            if (requests.settingsChanged) frames.setSettings(ui.settings);
+            if (requests.screenshot) screenshotRequest = nextScreenshotName();
+            if (const glm::uvec2 fb = window.framebufferSize(); fb.x > 0 && fb.y > 0 && fb != renderSize) {
+                renderSize = fb;
+                frames.setSize(renderSize);
+                viewChanged = true;
+            }
+        }
+        if (viewChanged) {
+            frames.setView(camera.view());
+            lastChange = now;
+        }
+        if (frames.poll()) {
+            const PassResult& pass = frames.latest();
+            window.showImage(pass);
+            if (!pass.reduced) {
+                if (++fullPasses > 1) laterPassMilliseconds += pass.milliseconds;
+                const double meanMilliseconds =
+                    fullPasses > 1 ? laterPassMilliseconds / double(fullPasses - 1) : std::nan("");
+                if (screenshotRequest) {
+                    writeScreenshot(*screenshotRequest, pass, meanMilliseconds);
+                    screenshotRequest.reset();
+                }
+                if (headless && fullPasses >= options.frames) {
+                    writeScreenshot(options.screenshot, pass, meanMilliseconds);
+                    window.endFrame();
+                    break;
+                }
+            }
+        }
+        frames.setReducedScale(ui.reduceWhileMoving ? uint32_t(ui.movingDivisor) : 1);
+        const bool moving = !headless &&
+                            now - lastChange < std::chrono::duration<double>(kSettleSeconds);
+        frames.startPass(moving, headless ? 0 : ui.maxSamples);
+        window.endFrame();
+    }
+    frames.poll(true);
+    if (log.errors > 0) {
+        std::fprintf(stderr, "[ripple-view] ERROR: the device reported %d error(s)\n", log.errors);
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+}  // namespace ripple::apps
+
+int main(int argc, char** argv) {
+    ripple::apps::Options options;
+    CLI::App app{"ripple-view: view a glTF 2.0 file or a built-in demo scene interactively through an ANARI library.\n"
+                 "Mouse: left drag orbits, right or middle drag pans, the wheel zooms. Keys: W/A/S/D/Q/E fly (shift: "
+                 "faster), F frames the scene, P writes a screenshot (ripple-view-NNN.png)."};
+    app.add_option("scene", options.scene, "glTF 2.0 file (.gltf or .glb); without one a demo scene is shown");
+    std::string demoNames;
+    for (const std::string& n : ripple::apps::demoSceneNames()) demoNames += (demoNames.empty() ? "" : ", ") + n;
+    app.add_option("--demo", options.demo, "built-in scene: " + demoNames + " (default: default)");
+    app.add_option("--library", options.library, "ANARI library name (loads libanari_library_NAME.so)")->capture_default_str();
+    app.add_option("--size", options.size, "window (and image) size WIDTHxHEIGHT")->capture_default_str();
+    app.add_option("--spp", options.samplesPerPass, "samples per pixel in each pass")
+        ->check(CLI::Range(1, 64))->capture_default_str();
+    app.add_option("--max-path-length", options.maxPathLength, "surface interactions per path")
+        ->check(CLI::Range(1, 1024))->capture_default_str();
+    app.add_option("--camera", options.camera, "scene camera index; -1 frames the scene bounds (default: camera 0 if any)")
+        ->check(CLI::Range(-1, 1 << 20));
+    CLI::Option* screenshot = app.add_option("--screenshot", options.screenshot,
+                   "render --frames full-size passes, write the image (.png, .jpg, .pfm, .exr) and exit");
+    app.add_option("--frames", options.frames, "passes before --screenshot is written")
+        ->check(CLI::Range(1u, 1000000u))->needs(screenshot)->capture_default_str();
+    app.add_flag("-q,--quiet", options.quiet, "no warnings");
+    CLI11_PARSE(app, argc, argv);
+
+    ripple::apps::Session session;  // outlives the viewer's objects, which are released first
+    try {
+        return ripple::apps::run(options, session);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "[ripple-view] ERROR: %s\n", e.what());
+        return 1;
+    }
+}

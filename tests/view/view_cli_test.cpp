@@ -1,0 +1,98 @@
+// ripple-view as a user runs it: without a display it says what to do instead and exits with 1; under a
+// virtual X server (xvfb-run) --screenshot renders the Cornell demo and writes the image ripple-render
+// writes for the same scene, size and samples.
+#include "tests/apps/ProgramRun.h"
+#include "tests/apps/TestFiles.h"
+
+#include <doctest/doctest.h>
+#include <stb_image.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+using namespace ripple::test;
+
+namespace {
+
+// Runs ripple-view with the Vulkan validation layers on in the device (a validation message is a device
+// error, which makes it exit with 1), after the shell words in `prefix` (an environment, xvfb-run).
+ProgramRun runView(const std::string& arguments, const std::string& prefix) {
+    return runProgram(RIPPLE_VIEW_PATH, arguments, "RIPPLE_VK_VALIDATION=1 " + prefix);
+}
+
+struct Image {
+    int width = 0, height = 0;
+    unsigned char* pixels = nullptr;  // RGBA8, row 0 at the top
+    explicit Image(const std::filesystem::path& file) {
+        int comp = 0;
+        pixels = stbi_load(file.string().c_str(), &width, &height, &comp, 4);
+    }
+    ~Image() { stbi_image_free(pixels); }
+    Image(const Image&) = delete;
+    Image& operator=(const Image&) = delete;
+    // Mean of channel c over columns [x0, x1) and rows [y0, y1).
+    double mean(int x0, int x1, int y0, int y1, int c) const {
+        double sum = 0.0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) sum += pixels[(y * width + x) * 4 + c];
+        return sum / double((x1 - x0) * (y1 - y0));
+    }
+    double meanLuminance() const {
+        return 0.2126 * mean(0, width, 0, height, 0) + 0.7152 * mean(0, width, 0, height, 1) +
+               0.0722 * mean(0, width, 0, height, 2);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("ripple-view without a display names the alternatives and exits with 1") {
+    TempFolder dir;
+    const auto image = dir / "never.png";
+    const ProgramRun run = runView("--demo cornell --size 64x64 --frames 2 --screenshot '" + image.string() + "'",
+                                   "env -u DISPLAY -u WAYLAND_DISPLAY");
+    CHECK_MESSAGE(run.exitCode == 1, run.output);
+    CHECK_MESSAGE(contains(run.output, "[ripple-view] ERROR: cannot open a window: no display (DISPLAY is not set)"),
+                  run.output);
+    CHECK_MESSAGE(contains(run.output, "ripple-render"), run.output);
+    CHECK_MESSAGE(contains(run.output, "xvfb-run -a ripple-view"), run.output);
+    CHECK_FALSE(std::filesystem::exists(image));
+}
+
+TEST_CASE("ripple-view refuses a screenshot it cannot write before opening a window") {
+    TempFolder dir;
+    const ProgramRun run = runView("--demo cornell --screenshot '" + (dir / "out.txt").string() + "'",
+                                   "env -u DISPLAY -u WAYLAND_DISPLAY");
+    CHECK_MESSAGE(run.exitCode == 1, run.output);
+    CHECK_MESSAGE(contains(run.output, "--screenshot " + (dir / "out.txt").string() + ": unsupported image format '.txt'"),
+                  run.output);
+}
+
+// The viewer's full-size passes of one sample accumulate as ripple-render's frames do (same device, seed,
+// camera and batches), so the two images agree; the check allows any unbiased difference: mean luminance
+// within 5%, and the Cornell box's red wall on the left and green on the right (margins as in
+// render_cli_test's Cornell case, measured ratios 3.7 and 1.5).
+TEST_CASE("xvfb: ripple-view --screenshot renders the Cornell demo as ripple-render does") {
+    TempFolder dir;
+    const auto viewed = dir / "view.png", rendered = dir / "render.png";
+    const ProgramRun view = runView("--demo cornell --size 64x64 --frames 8 --screenshot '" + viewed.string() + "'",
+                                    "xvfb-run -a");
+    REQUIRE_MESSAGE(view.exitCode == 0, view.output);
+    CHECK_MESSAGE(contains(view.output, "wrote " + viewed.string() + " (64x64, 8 spp"), view.output);
+    const ProgramRun render =
+        runProgram(RIPPLE_RENDER_PATH, "--demo cornell --size 64x64 --spp 8 --quiet -o '" + rendered.string() + "'",
+                   "RIPPLE_VK_VALIDATION=1");
+    REQUIRE_MESSAGE(render.exitCode == 0, render.output);
+
+    const Image a(viewed), b(rendered);
+    REQUIRE(a.pixels != nullptr);
+    REQUIRE(b.pixels != nullptr);
+    CHECK(a.width == 64);
+    CHECK(a.height == 64);
+    const double meanA = a.meanLuminance(), meanB = b.meanLuminance();
+    INFO("mean luminance: ripple-view " << meanA << ", ripple-render " << meanB);
+    CHECK(meanB > 10.0);  // not black
+    CHECK(std::abs(meanA - meanB) <= 0.05 * meanB);
+    CHECK(a.mean(0, 8, 21, 43, 0) > 2.0 * a.mean(0, 8, 21, 43, 1));        // left: red
+    CHECK(a.mean(56, 64, 21, 43, 1) > 1.25 * a.mean(56, 64, 21, 43, 0));   // right: green
+}
