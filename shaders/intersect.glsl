@@ -277,8 +277,12 @@ float isoCubic(vec4 k, float s) {
 bool intersectIsoCell(vec3 origin, vec3 direction, IsoCellPrim cell, float tmin, inout float tBest) {
     vec3 lo = cell.lowCorner.xyz;
     vec3 inv = safeReciprocal(direction);
-    vec3 t0 = (lo - origin) * inv;
-    vec3 t1 = (lo + cell.size.xyz - origin) * inv;
+    // The cell's box grown by a few ulps of its coordinates: neighbouring cells compute their shared face
+    // from different corners, which round differently, and a crossing in the sliver between would be lost.
+    // The cubic holds just outside the cell as well.
+    vec3 grow = 4e-7 * (abs(lo) + cell.size.xyz);
+    vec3 t0 = (lo - grow - origin) * inv;
+    vec3 t1 = (lo + cell.size.xyz + grow - origin) * inv;
     vec3 tn = min(t0, t1);
     vec3 tf = max(t0, t1);
     float enter = max(max(tn.x, tn.y), max(tn.z, tmin));
@@ -345,7 +349,8 @@ bool intersectIsoCell(vec3 origin, vec3 direction, IsoCellPrim cell, float tmin,
             tBest = t;
             return true;
         }
-        return false;
+        if (t >= tBest) return false;  // later pieces lie farther still
+        ga = gb;                        // a crossing at the ray's start (its own surface): look on
     }
     return false;
 }

@@ -26,7 +26,7 @@ float phaseHG(float cosTheta, float g) {
 // A direction scattered from `forward` with density phaseHG (inverting its CDF in the cosine).
 vec3 samplePhase(vec3 forward, float g, vec2 u) {
     float cosTheta;
-    if (abs(g) < 1e-3) {
+    if (abs(g) < 1e-3) {  // the host sends 0 for these (PathTracer.cpp)
         cosTheta = 1.0 - 2.0 * u.x;
     } else {
         float s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u.x);

@@ -345,7 +345,7 @@ struct FieldPlacement {
 template <class AddField>
 AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& samples, const FieldPlacement& at,
                       const std::vector<ANARILight>& extraLights, AddField addField) {
-    DemoBuilder b(d, extraLights);
+    DemoBuilder b(d, at.stage ? extraLights : std::vector<ANARILight>{});  // lights live where the stage is
     if (at.stage) b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
     addField(b, b.field(dims, samples, at.lo, at.hi));
     if (at.stage) b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);

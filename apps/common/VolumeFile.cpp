@@ -112,8 +112,8 @@ glm::uvec3 checkedDims(const std::filesystem::path& file, const std::array<uint6
 
 glm::vec3 checkedSpacing(const std::filesystem::path& file, const std::array<double, 3>& s, const std::string& what) {
     for (double v : s)
-        if (!(std::isfinite(v) && v > 0.0 && v < 1e30))
-            fail(file, what + " must be three positive finite numbers");
+        if (!(std::isfinite(v) && v >= 1e-30 && v < 1e30))
+            fail(file, what + " must be three positive finite numbers between 1e-30 and 1e30");
     return glm::vec3(float(s[0]), float(s[1]), float(s[2]));
 }
 

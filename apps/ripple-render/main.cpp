@@ -138,7 +138,7 @@ struct RenderPlan {
     std::optional<LinearImage> reference;
     std::string demo;                   // the demo scene, or empty for a file
     std::optional<GltfScene> gltf;
-    std::optional<LinearImage> environment;  // --environment, read on rank 0 (which holds the lights)
+    std::optional<LinearImage> environment;  // --environment
     float environmentIntensity = 1.0f;
     float environmentRotation = 0.0f;   // degrees
     std::optional<VolumeData> field;    // --volume
@@ -267,7 +267,9 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     if (ranks.distributed() && !plan.demo.empty())
         throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file or --volume under mpirun");
 
-    if (!options.environment.empty() && plan.root) {
+    // Every rank reads it and makes the light, so that all build the same scene settings; only rank 0
+    // places lights in its world (the device gathers them).
+    if (!options.environment.empty()) {
         plan.environment = readLinearImage(options.environment);
         for (float value : plan.environment->rgb)
             if (!std::isfinite(value) || value < 0.0f)
@@ -333,10 +335,10 @@ AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session&
                      "holds whole meshes; --partition spatial splits meshes\n", gltf->instances.size(), ranks.size());
     if (gltf) gltf = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()), plan.partition);
     stats.triangles = gltf ? gltf->trianglesDrawn() : 0;
-    // The environment is a light like the scene's: on rank 0 alone.
+    // The environment is a light like the scene's, placed on rank 0 alone.
     std::vector<ANARILight> extraLights;
-    if (plan.environment && plan.root) extraLights.push_back(environmentLight(s, *plan.environment, plan.environmentIntensity,
-                                                                             plan.environmentRotation));
+    if (plan.environment) extraLights.push_back(environmentLight(s, *plan.environment, plan.environmentIntensity,
+                                                               plan.environmentRotation));
     AnariWorld scene = plan.field ? buildFieldScene(s.device, *plan.field, plan.fieldOptions, extraLights)
                        : gltf     ? buildAnariWorld(s.device, *gltf, plan.root, extraLights)
                                   : buildDemoScene(s.device, plan.demo, extraLights);

@@ -21,7 +21,7 @@ std::string FeatureSet::describe() const {
         {gpu::FEATURE_CHANNEL_DEPTH, "depth"},      {gpu::FEATURE_CHANNEL_ALBEDO, "albedo"},
         {gpu::FEATURE_CHANNEL_NORMAL, "normal"},    {gpu::FEATURE_CHANNEL_PRIMITIVE_ID, "primitiveId"},
         {gpu::FEATURE_CHANNEL_OBJECT_ID, "objectId"}, {gpu::FEATURE_CHANNEL_INSTANCE_ID, "instanceId"},
-        {gpu::FEATURE_MULTI_RANK, "ranks"}};
+        {gpu::FEATURE_MULTI_RANK, "ranks"},        {gpu::FEATURE_ISOSURFACES, "isosurfaces"}};
     std::string text;
     auto add = [&](const std::string& word) { text += (text.empty() ? "" : " ") + word; };
     for (const auto& [bit, name] : names)

@@ -44,7 +44,9 @@ gpu::FrameConstants frameConstants(const Camera& camera, const RenderSettings& s
     f.maxPathLength = std::max(1u, settings.maxPathLength);
     f.seed = settings.seed;
     f.maxRadiance = settings.maxRadiance > 0.0f && std::isfinite(settings.maxRadiance) ? settings.maxRadiance : 0.0f;
-    f.phaseAnisotropy = std::isfinite(settings.phaseAnisotropy) ? std::clamp(settings.phaseAnisotropy, -0.99f, 0.99f) : 0.0f;
+    // |g| below 1e-3 is sampled as isotropic (pt_shade.comp), so it is evaluated as isotropic too.
+    f.phaseAnisotropy = std::isfinite(settings.phaseAnisotropy) && std::abs(settings.phaseAnisotropy) >= 1e-3f
+                            ? std::clamp(settings.phaseAnisotropy, -0.99f, 0.99f) : 0.0f;
     f.lightSampling = static_cast<uint32_t>(settings.lightSampling) <= gpu::LIGHT_SAMPLING_BSDF_ONLY
                           ? static_cast<uint32_t>(settings.lightSampling) : gpu::LIGHT_SAMPLING_MIS;
     return f;

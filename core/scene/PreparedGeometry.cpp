@@ -267,7 +267,9 @@ namespace {
 std::string isosurfaceFieldProblem(const IsosurfaceSet& set) {
     const glm::uvec3 d = set.dims;
     if (d.x < 2 || d.y < 2 || d.z < 2) return "a field needs at least 2 voxels along each axis";
-    if (uint64_t(d.x) * d.y * d.z != set.values.size()) return "the voxel count does not match the dimensions";
+    uint64_t voxels = 0;
+    if (__builtin_mul_overflow(uint64_t(d.x) * d.y, uint64_t(d.z), &voxels) || voxels != set.values.size())
+        return "the voxel count does not match the dimensions";
     if (!finite(set.origin)) return "origin is not finite";
     if (!(finite(set.spacing) && set.spacing.x > 0.0f && set.spacing.y > 0.0f && set.spacing.z > 0.0f))
         return "spacing is not finite and positive";

@@ -682,9 +682,9 @@ TEST_CASE("isosurface hostile input: a missing field or isovalue, a NaN isovalue
         {"no isovalue", "isovalue", [](RenderSession& s, ANARIGeometry g) { anariUnsetParameter(s.device, g, "isovalue"); }},
         {"NaN isovalue", "not finite",
          [](RenderSession& s, ANARIGeometry g) { s.set(g, "isovalue", std::numeric_limits<float>::quiet_NaN()); }},
-        {"INT32 isovalues", "isovalue",
+        {"INT32 isovalues", "must be FLOAT32 or an ARRAY1D of FLOAT32",
          [](RenderSession& s, ANARIGeometry g) { s.setObject(g, "isovalue", ANARI_ARRAY1D, s.array(ANARI_INT32, std::vector<int32_t>{1})); }},
-        {"empty isovalues", "zero elements",
+        {"empty isovalue array (refused when made)", "zero elements",
          [](RenderSession& s, ANARIGeometry g) {
              s.setObject(g, "isovalue", ANARI_ARRAY1D, s.keep(anariNewArray1D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, 0)));
          }},
@@ -717,59 +717,68 @@ TEST_CASE("isosurface hostile input: a missing field or isovalue, a NaN isovalue
 }
 
 TEST_CASE("isosurface: no ray leaks through a closed surface across cell faces, edges and corners") {
-    // f = |p|^2 on a 9^3 grid over [-1, 1]^3, surface f = 0.5: a closed, nearly spherical surface of radius
-    // about 0.707 whose crossings land on every kind of cell boundary. Seen from outside with 64x64 rays on a
-    // grid aligned with the cells (so many rays run exactly along cell faces and edges), every ray that
-    // passes within 0.6 of the centre must hit it, and none beyond 0.75 may.
+    // f = |p - c|^2 on a 9^3 grid centred on c, surface f = 0.5: a closed, nearly spherical surface of radius
+    // about 0.707 whose crossings land on every kind of cell boundary. Seen from outside with 64x64 rays,
+    // every ray that passes within 0.6 of the centre must hit it, and none beyond 0.75 may. Two grids: one
+    // whose cell faces are exact in float (spacing 0.25 from -1), one whose faces round differently when
+    // computed from either neighbouring cell (spacing 0.2431 from an odd origin).
     const uint32_t n = 9;
-    std::vector<float> voxels;
-    for (uint32_t k = 0; k < n; ++k)
-        for (uint32_t j = 0; j < n; ++j)
-            for (uint32_t i = 0; i < n; ++i) {
-                const glm::vec3 p = glm::vec3(i, j, k) / float(n - 1) * 2.0f - 1.0f;
-                voxels.push_back(glm::dot(p, p));
-            }
-    for (const glm::vec3 direction : {glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, 1, -1))}) {
-        CAPTURE(direction);
-        RenderSession s;
-        ANARIArray3D data = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, n, n, n));
-        std::memcpy(anariMapArray(s.device, data), voxels.data(), voxels.size() * sizeof(float));
-        anariUnmapArray(s.device, data);
-        ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
-        s.setObject(field, "data", ANARI_ARRAY3D, data);
-        s.set(field, "origin", glm::vec3(-1.0f));
-        s.set(field, "spacing", glm::vec3(2.0f / (n - 1)));
-        s.commit(field);
-        ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
-        s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
-        s.set(iso, "isovalue", 0.5f);
-        s.commit(iso);
-        ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-        s.set(camera, "position", -3.0f * direction);
-        s.set(camera, "direction", direction);
-        s.set(camera, "height", 2.0f);
-        s.commit(camera);
-        const uint32_t size = 64;
-        const Image image = s.render(s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera,
-                                             s.renderer(4, 1), {size, size}, ANARI_FLOAT32_VEC4, true));
-        CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
-        uint32_t inside = 0, outside = 0;
-        for (uint32_t py = 0; py < size; ++py)
-            for (uint32_t px = 0; px < size; ++px) {
-                // Distance of the pixel's rays from the axis through the centre (within half a pixel).
-                const float r = glm::length(glm::vec2(px + 0.5f, py + 0.5f) / float(size) * 2.0f - 1.0f);
-                const float depth = image.depth[size_t(py) * size + px];
-                INFO("pixel " << px << "," << py << " r " << r);
-                if (r < 0.6f) {
-                    CHECK(std::isfinite(depth));
-                    ++inside;
-                } else if (r > 0.75f) {
-                    CHECK(std::isinf(depth));
-                    ++outside;
+    struct Grid {
+        glm::vec3 origin;
+        float spacing;
+    };
+    for (const Grid grid : {Grid{glm::vec3(-1.0f), 0.25f}, Grid{glm::vec3(-0.9863f, -1.0071f, -0.9937f), 0.2431f}}) {
+        const glm::vec3 centre = grid.origin + glm::vec3(4.0f * grid.spacing);
+        std::vector<float> voxels;
+        for (uint32_t k = 0; k < n; ++k)
+            for (uint32_t j = 0; j < n; ++j)
+                for (uint32_t i = 0; i < n; ++i) {
+                    const glm::vec3 p = grid.origin + glm::vec3(i, j, k) * grid.spacing - centre;
+                    voxels.push_back(glm::dot(p, p));
                 }
-            }
-        CHECK(inside > 1000);
-        CHECK(outside > 1000);
+        for (const glm::vec3 direction : {glm::vec3(0, 0, -1), glm::normalize(glm::vec3(1, 1, -1))}) {
+            CAPTURE(grid.spacing);
+            CAPTURE(direction);
+            RenderSession s;
+            ANARIArray3D data = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, n, n, n));
+            std::memcpy(anariMapArray(s.device, data), voxels.data(), voxels.size() * sizeof(float));
+            anariUnmapArray(s.device, data);
+            ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
+            s.setObject(field, "data", ANARI_ARRAY3D, data);
+            s.set(field, "origin", grid.origin);
+            s.set(field, "spacing", glm::vec3(grid.spacing));
+            s.commit(field);
+            ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
+            s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
+            s.set(iso, "isovalue", 0.5f);
+            s.commit(iso);
+            ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+            s.set(camera, "position", centre - 3.0f * direction);
+            s.set(camera, "direction", direction);
+            s.set(camera, "height", 2.0f);
+            s.commit(camera);
+            const uint32_t size = 64;
+            const Image image = s.render(s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera,
+                                                 s.renderer(4, 1), {size, size}, ANARI_FLOAT32_VEC4, true));
+            CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+            uint32_t inside = 0, outside = 0;
+            for (uint32_t py = 0; py < size; ++py)
+                for (uint32_t px = 0; px < size; ++px) {
+                    // Distance of the pixel's rays from the axis through the centre (within half a pixel).
+                    const float r = glm::length(glm::vec2(px + 0.5f, py + 0.5f) / float(size) * 2.0f - 1.0f);
+                    const float depth = image.depth[size_t(py) * size + px];
+                    INFO("pixel " << px << "," << py << " r " << r);
+                    if (r < 0.6f) {
+                        CHECK(std::isfinite(depth));
+                        ++inside;
+                    } else if (r > 0.75f) {
+                        CHECK(std::isinf(depth));
+                        ++outside;
+                    }
+                }
+            CHECK(inside > 1000);
+            CHECK(outside > 1000);
+        }
     }
 }
 

@@ -144,7 +144,8 @@ TEST_CASE("volumes: single scattering under the Henyey-Greenstein phase function
     // enters at the top, collides at depth z and scatters back up (cos theta = -1 between the directions light
     // travels) is attenuated by e^(-sigma z) on each way, so the radiance is
     //   E p(-1) int_0^2 sigma e^(-2 sigma z) dz = E p(-1) (1 - e^-2) / 2,  p(-1) = (1 - g^2) / (4 pi (1 + g)^3).
-    // The test tells sampling from evaluation: NEE evaluates p(-1), and a wrong g or sign moves it 4-27x.
+    // This checks the phase function's evaluation (next-event estimation at p(-1); a wrong g or sign moves
+    // it 4-27x); the case below checks its sampling against it.
     test::ValidationGuard guard;
     const double irradiance = 10.0;
     for (const float g : {-0.5f, 0.0f, 0.5f}) {
@@ -220,4 +221,49 @@ TEST_CASE("volumes: extinction from 1e-6 to 1e6 in one macrocell completes witho
         }
     MESSAGE("null collisions " << image.stats.nullCollisions << ", far transmittance " << far / count);
     CHECK(far / count == doctest::Approx(1.0).epsilon(1e-3));
+}
+
+TEST_CASE("volumes: Henyey-Greenstein sampling agrees with its evaluation: phase sampling alone equals light sampling alone") {
+    // A white slab of optical depth 1 under a downward-facing quad light, seen from below against black. With
+    // two interactions per path, light reaching the camera after one scattering event is found either by
+    // sampling the phase function until a ray hits the light (LightSampling::BsdfOnly) or by next-event
+    // estimation, which evaluates it (LightsOnly); the second event uses next-event estimation in both. The two
+    // images agree only if samplePhase draws directions with the density phaseHG reports, for forward and
+    // backward scattering alike (the furnace cannot tell: its weight is the albedo whatever the direction).
+    test::ValidationGuard guard;
+    for (const float g : {-0.5f, 0.5f}) {
+        CAPTURE(g);
+        core::SceneDescription scene;
+        core::Light quad;
+        quad.kind = core::Light::Kind::Quad;
+        quad.position = {-1.0f, -1.0f, 2.5f};
+        quad.edge1 = {0.0f, 2.0f, 0.0f};
+        quad.edge2 = {2.0f, 0.0f, 0.0f};  // cross(edge1, edge2) points down, at the slab
+        quad.intensity = 2.0f;
+        scene.lights.push_back(quad);
+        scene.volumes.push_back(boxVolume(2.0f, 1.0f - std::exp(-1.0f), 2.0f, false, glm::vec3(1.0f)));
+        core::Camera camera;
+        camera.kind = core::Camera::Kind::Orthographic;
+        camera.position = {0.0f, 0.0f, -1.0f};
+        camera.direction = {0.0f, 0.0f, 1.0f};
+        camera.height = 1.8f;
+        double means[2], errors[2];
+        for (int mode = 0; mode < 2; ++mode) {
+            core::RenderSettings settings;
+            settings.maxPathLength = 2;
+            settings.pixelSamples = 256;
+            settings.phaseAnisotropy = g;
+            settings.lightSampling = mode == 0 ? core::RenderSettings::LightSampling::BsdfOnly
+                                               : core::RenderSettings::LightSampling::LightsOnly;
+            const test::Rendered image = test::render(scene, camera, settings, {16, 16});
+            const Mean m = meanRed(image);
+            means[mode] = m.mean;
+            errors[mode] = m.standardError;
+            CHECK(image.stats.flaggedRays == 0);
+        }
+        MESSAGE("g " << g << ": phase sampling " << means[0] << " +- " << errors[0] << ", light sampling " << means[1]
+                     << " +- " << errors[1]);
+        CHECK(means[1] > 0.01);
+        CHECK(std::abs(means[0] - means[1]) <= 0.01 * means[1] + 4.0 * std::hypot(errors[0], errors[1]));
+    }
 }
