@@ -4,12 +4,8 @@
 #ifndef RIPPLE_SURFACE_GLSL
 #define RIPPLE_SURFACE_GLSL
 #include "features.glsl"
+#include "primitive_refs.glsl"
 
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TrianglesRef { TrianglePrim triangles[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ConesRef { ConePrim cones[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer IsoCellsRef { IsoCellPrim cells[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceShadingRef { InstanceShading instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GeometriesRef { GeometryRecord geometries[]; };
 

@@ -14,15 +14,11 @@
 #include "shared/scene.h"
 #include "features.glsl"
 #include "intersect.glsl"
+#include "primitive_refs.glsl"
 
 layout(local_size_x_id = 0) in;
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SceneRef { SceneDesc desc; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer TrianglesRef { TrianglePrim triangles[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer SpheresRef { SpherePrim spheres[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CylindersRef { CylinderPrim cylinders[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ConesRef { ConePrim cones[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer IsoCellsRef { IsoCellPrim cells[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstancesRef { InstancePrim instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer RaysRef { Ray rays[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer HitsRef { Hit hits[]; };

@@ -44,6 +44,14 @@ gpu::StageParams VisitorTracer::volumeParams() const {
     return p;
 }
 
+void VisitorTracer::dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p,
+                             uint32_t count) const {
+    p.count = count;
+    stage.bind(cmd);
+    stage.pushConstants(cmd, &p, sizeof(p));
+    vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+}
+
 void VisitorTracer::reserve(size_t count) {
     if (count <= capacity_) return;
     capacity_ = std::max(count, capacity_ * 2);
@@ -67,25 +75,19 @@ void VisitorTracer::traceClosest(std::span<WireRay> rays) {
     context_.submitAndWait([&](VkCommandBuffer cmd) {
         trace_.traceClosest(cmd, *scene_, rays_, hits_, count);
         vk::computeBarrier(cmd);
-        surface_->bind(cmd);
         gpu::StageParams p{};
         p.frame = frame_;
         p.scene = scene_->descAddress();
         p.rays = rays_.address();
         p.hits = hits_.address();
         p.surfaces = surfaces_.address();
-        p.count = count;
-        surface_->pushConstants(cmd, &p, sizeof(p));
-        vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+        dispatch(cmd, *surface_, p, count);
         if (volumes_.freeFlight) {  // a collision in this rank's volumes before its own hit replaces it
             vk::computeBarrier(cmd);
             gpu::StageParams v = volumeParams();
             v.rays = rays_.address();
             v.surfaces = surfaces_.address();
-            v.count = count;
-            volumes_.freeFlight->bind(cmd);
-            volumes_.freeFlight->pushConstants(cmd, &v, sizeof(v));
-            vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+            dispatch(cmd, *volumes_.freeFlight, v, count);
         }
         hostReadBarrier(cmd);
     });
@@ -135,10 +137,7 @@ void VisitorTracer::traceShadow(std::span<WireShadowRay> rays) {
         gpu::StageParams v = volumeParams();
         v.shadowRays = rays_.address();
         v.results = transmittance_.address();
-        v.count = count;
-        volumes_.transmittance->bind(cmd);
-        volumes_.transmittance->pushConstants(cmd, &v, sizeof(v));
-        vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+        dispatch(cmd, *volumes_.transmittance, v, count);
         hostReadBarrier(cmd);
     });
     hostTransmittance_.resize(count);

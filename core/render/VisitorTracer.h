@@ -37,6 +37,8 @@ public:
 private:
     void reserve(size_t count);
     gpu::StageParams volumeParams() const;
+    // Records one path stage over `count` items with these parameters (their count set to it).
+    void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p, uint32_t count) const;
 
     const vk::Context& context_;
     TraceKernels& trace_;

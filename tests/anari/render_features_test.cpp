@@ -54,6 +54,36 @@ ANARIArray2D image2D(RenderSession& s, ANARIDataType type, uint32_t width, uint3
     return image;
 }
 
+// A managed 3D array holding `size` bytes copied from `bytes`.
+ANARIArray3D array3D(RenderSession& s, ANARIDataType type, glm::uvec3 dims, const void* bytes, size_t size) {
+    ANARIArray3D array = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, type, dims.x, dims.y, dims.z));
+    if (size > 0) std::memcpy(anariMapArray(s.device, array), bytes, size);
+    else anariMapArray(s.device, array);
+    anariUnmapArray(s.device, array);
+    return array;
+}
+
+// A committed structuredRegular field of FLOAT32 samples (x fastest); origin and spacing as the spec's defaults.
+ANARISpatialField floatField(RenderSession& s, glm::uvec3 dims, const std::vector<float>& values,
+                             glm::vec3 origin = glm::vec3(0.0f), glm::vec3 spacing = glm::vec3(1.0f)) {
+    ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
+    s.setObject(field, "data", ANARI_ARRAY3D, array3D(s, ANARI_FLOAT32, dims, values.data(), values.size() * sizeof(float)));
+    s.set(field, "origin", origin);
+    s.set(field, "spacing", spacing);
+    s.commit(field);
+    return field;
+}
+
+// A committed orthographic camera (height 1 is the spec's default).
+ANARICamera orthographic(RenderSession& s, glm::vec3 position, glm::vec3 direction, float height = 1.0f) {
+    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+    s.set(camera, "position", position);
+    s.set(camera, "direction", direction);
+    s.set(camera, "height", height);
+    s.commit(camera);
+    return camera;
+}
+
 ANARISampler imageSampler(RenderSession& s, const char* subtype, ANARIObject image, const char* filter,
                           const glm::mat4& outTransform = glm::mat4(1.0f)) {
     ANARISampler sampler = s.keep(anariNewSampler(s.device, subtype));
@@ -72,13 +102,7 @@ ANARIRenderer emissionOnlyRenderer(RenderSession& s) {
 
 // Orthographic, looking down -z at the origin; the frame's aspect sets the width of the view.
 ANARICamera frontCamera(RenderSession& s, float height = 2.0f) {
-    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-    s.set(camera, "position", glm::vec3(0, 0, 3));
-    s.set(camera, "direction", glm::vec3(0, 0, -1));
-    s.set(camera, "up", glm::vec3(0, 1, 0));
-    s.set(camera, "height", height);
-    s.commit(camera);
-    return camera;
+    return orthographic(s, glm::vec3(0, 0, 3), glm::vec3(0, 0, -1), height);  // up: the default (0, 1, 0)
 }
 
 ANARIMaterial physicallyBased(RenderSession& s) {
@@ -454,11 +478,7 @@ TEST_CASE("vertex.cap closes cylinders and cones at the marked vertices only, ov
                         s.array(ANARI_UINT8, std::vector<uint8_t>{uint8_t(caps.x), uint8_t(caps.y)}));
             s.set(tube, "caps", "both");  // vertex.cap wins
             s.commit(tube);
-            ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-            s.set(camera, "position", glm::vec3(0, 0, 3));
-            s.set(camera, "direction", glm::vec3(0, 0, -1));
-            s.set(camera, "height", 0.5f);
-            s.commit(camera);
+            ANARICamera camera = frontCamera(s, 0.5f);
             const Image image = s.render(s.frame(s.world({s.surface(tube, s.matte(glm::vec3(0.5f)))}, {}), camera,
                                                  s.renderer(1, 1), {4, 4}, ANARI_FLOAT32_VEC4, true));
             CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
@@ -497,11 +517,7 @@ TEST_CASE("volume transferFunction1D over a structuredRegular field: transmittan
     REQUIRE(anariGetProperty(s.device, world, "bounds", ANARI_FLOAT32_BOX3, bounds, sizeof(bounds), ANARI_WAIT));
     CHECK(bounds[0] == -1.0f);
     CHECK(bounds[5] == 1.0f);
-    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-    s.set(camera, "position", glm::vec3(0, 0, 3));
-    s.set(camera, "direction", glm::vec3(0, 0, -1));
-    s.set(camera, "height", 1.5f);
-    s.commit(camera);
+    ANARICamera camera = frontCamera(s, 1.5f);
     ANARIRenderer renderer = s.renderer(256, 1, glm::vec4(1.0f));
     const float noAmbient = 0.0f;
     s.setRaw(renderer, "ambientRadiance", ANARI_FLOAT32, &noAmbient);
@@ -523,32 +539,26 @@ TEST_CASE("volume hostile input: each bad field or transfer function is reported
         const char* expected;  // a fragment of the message
         std::function<void(RenderSession&, ANARISpatialField, ANARIVolume)> spoil;
     };
-    auto array3 = [](RenderSession& s, ANARIDataType type, uint64_t nx, uint64_t ny, uint64_t nz, const void* bytes, size_t size) {
-        ANARIArray3D a = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, type, nx, ny, nz));
-        std::memcpy(anariMapArray(s.device, a), bytes, size);
-        anariUnmapArray(s.device, a);
-        return a;
-    };
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
     const std::vector<Case> cases = {
         {"NaN voxel", "not finite",
          [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
              const float v[8] = {1, 1, 1, nan, 1, 1, 1, 1};
-             s.setObject(f, "data", ANARI_ARRAY3D, array3(s, ANARI_FLOAT32, 2, 2, 2, v, sizeof(v)));
+             s.setObject(f, "data", ANARI_ARRAY3D, array3D(s, ANARI_FLOAT32, {2, 2, 2}, v, sizeof(v)));
          }},
         {"Inf voxel", "not finite",
          [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
              const float v[8] = {1, 1, 1, 1, 1, 1, 1, inf};
-             s.setObject(f, "data", ANARI_ARRAY3D, array3(s, ANARI_FLOAT32, 2, 2, 2, v, sizeof(v)));
+             s.setObject(f, "data", ANARI_ARRAY3D, array3D(s, ANARI_FLOAT32, {2, 2, 2}, v, sizeof(v)));
          }},
         {"zero dimension", "zero elements",
          [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
-             s.setObject(f, "data", ANARI_ARRAY3D, array3(s, ANARI_FLOAT32, 2, 0, 2, nullptr, 0));
+             s.setObject(f, "data", ANARI_ARRAY3D, array3D(s, ANARI_FLOAT32, {2, 0, 2}, nullptr, 0));
          }},
         {"unsupported element type", "element type",
          [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
              const int32_t v[8] = {};
-             s.setObject(f, "data", ANARI_ARRAY3D, array3(s, ANARI_INT32, 2, 2, 2, v, sizeof(v)));
+             s.setObject(f, "data", ANARI_ARRAY3D, array3D(s, ANARI_INT32, {2, 2, 2}, v, sizeof(v)));
          }},
         {"data not a 3D array", "ARRAY3D",
          [&](RenderSession& s, ANARISpatialField f, ANARIVolume) {
@@ -574,7 +584,7 @@ TEST_CASE("volume hostile input: each bad field or transfer function is reported
         RenderSession s;
         const float ones[8] = {1, 1, 1, 1, 1, 1, 1, 1};
         ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
-        s.setObject(field, "data", ANARI_ARRAY3D, array3(s, ANARI_FLOAT32, 2, 2, 2, ones, sizeof(ones)));
+        s.setObject(field, "data", ANARI_ARRAY3D, array3D(s, ANARI_FLOAT32, {2, 2, 2}, ones, sizeof(ones)));
         ANARIVolume volume = s.keep(anariNewVolume(s.device, "transferFunction1D"));
         s.setObject(volume, "value", ANARI_SPATIAL_FIELD, field);
         s.set(volume, "color", glm::vec3(0.0f));
@@ -584,10 +594,7 @@ TEST_CASE("volume hostile input: each bad field or transfer function is reported
         ANARIWorld world = s.keep(anariNewWorld(s.device));
         s.setObject(world, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));
         s.commit(world);
-        ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-        s.set(camera, "position", glm::vec3(0.5f, 0.5f, 3.0f));
-        s.set(camera, "direction", glm::vec3(0, 0, -1));
-        s.commit(camera);
+        ANARICamera camera = orthographic(s, glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
         const Image image = s.render(s.frame(world, camera, s.renderer(2, 1, glm::vec4(1.0f)), {4, 4}, ANARI_FLOAT32_VEC4));
         CHECK_MESSAGE(s.log.count({c.expected}) >= 1, s.log.dump());
         for (const glm::vec4& p : image.linear) CHECK(p.r == 1.0f);  // nothing of the spoilt volume rendered
@@ -605,22 +612,12 @@ TEST_CASE("isosurface: exact crossing of the trilinear interpolant, its gradient
         for (uint32_t j = 0; j < n; ++j)
             for (uint32_t i = 0; i < n; ++i) voxels.push_back(float(i) / (n - 1) * float(j) / (n - 1) * float(k) / (n - 1));
     RenderSession s;
-    ANARIArray3D data = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, n, n, n));
-    std::memcpy(anariMapArray(s.device, data), voxels.data(), voxels.size() * sizeof(float));
-    anariUnmapArray(s.device, data);
-    ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
-    s.setObject(field, "data", ANARI_ARRAY3D, data);
-    s.set(field, "spacing", glm::vec3(1.0f / (n - 1)));
-    s.commit(field);
+    ANARISpatialField field = floatField(s, glm::uvec3(n), voxels, glm::vec3(0.0f), glm::vec3(1.0f / (n - 1)));
     ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
     s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
     s.setObject(iso, "isovalue", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, isovalues));
     s.commit(iso);
-    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-    s.set(camera, "position", glm::vec3(0.5f, 0.5f, 3.0f));
-    s.set(camera, "direction", glm::vec3(0, 0, -1));
-    s.set(camera, "height", 1.0f);
-    s.commit(camera);
+    ANARICamera camera = orthographic(s, glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
     const uint32_t size = 16;
     ANARIFrame frame = s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera, s.renderer(1, 1),
                                {size, size}, ANARI_FLOAT32_VEC4, true);
@@ -693,22 +690,13 @@ TEST_CASE("isosurface hostile input: a missing field or isovalue, a NaN isovalue
         const std::string name = c.name;
         CAPTURE(name);
         RenderSession s;
-        const float ramp[8] = {0, 1, 0, 1, 0, 1, 0, 1};
-        ANARIArray3D data = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, 2, 2, 2));
-        std::memcpy(anariMapArray(s.device, data), ramp, sizeof(ramp));
-        anariUnmapArray(s.device, data);
-        ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
-        s.setObject(field, "data", ANARI_ARRAY3D, data);
-        s.commit(field);
+        ANARISpatialField field = floatField(s, glm::uvec3(2), {0, 1, 0, 1, 0, 1, 0, 1});
         ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
         s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
         s.set(iso, "isovalue", 0.5f);
         c.spoil(s, iso);
         s.commit(iso);
-        ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-        s.set(camera, "position", glm::vec3(0.5f, 0.5f, 3.0f));
-        s.set(camera, "direction", glm::vec3(0, 0, -1));
-        s.commit(camera);
+        ANARICamera camera = orthographic(s, glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
         const Image image = s.render(s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera,
                                              s.renderer(1, 1, glm::vec4(1.0f)), {4, 4}, ANARI_FLOAT32_VEC4));
         CHECK_MESSAGE(s.log.count({c.expected}) >= 1, s.log.dump());
@@ -740,23 +728,12 @@ TEST_CASE("isosurface: no ray leaks through a closed surface across cell faces, 
             CAPTURE(grid.spacing);
             CAPTURE(direction);
             RenderSession s;
-            ANARIArray3D data = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, n, n, n));
-            std::memcpy(anariMapArray(s.device, data), voxels.data(), voxels.size() * sizeof(float));
-            anariUnmapArray(s.device, data);
-            ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
-            s.setObject(field, "data", ANARI_ARRAY3D, data);
-            s.set(field, "origin", grid.origin);
-            s.set(field, "spacing", glm::vec3(grid.spacing));
-            s.commit(field);
+            ANARISpatialField field = floatField(s, glm::uvec3(n), voxels, grid.origin, glm::vec3(grid.spacing));
             ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
             s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
             s.set(iso, "isovalue", 0.5f);
             s.commit(iso);
-            ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-            s.set(camera, "position", centre - 3.0f * direction);
-            s.set(camera, "direction", direction);
-            s.set(camera, "height", 2.0f);
-            s.commit(camera);
+            ANARICamera camera = orthographic(s, centre - 3.0f * direction, direction, 2.0f);
             const uint32_t size = 64;
             const Image image = s.render(s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera,
                                                  s.renderer(4, 1), {size, size}, ANARI_FLOAT32_VEC4, true));
@@ -798,14 +775,7 @@ TEST_CASE("isosurface: the Marschner-Lobb surface at 0.5 against its reference i
                 const float rho = std::cos(2.0f * pi * 6.0f * std::cos(pi * r / 2.0f));
                 voxels.push_back((1.0f - std::sin(pi * p.y / 2.0f) + 0.25f * (1.0f + rho)) / 2.5f);
             }
-    ANARIArray3D data = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, n, n, n));
-    std::memcpy(anariMapArray(s.device, data), voxels.data(), voxels.size() * sizeof(float));
-    anariUnmapArray(s.device, data);
-    ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
-    s.setObject(field, "data", ANARI_ARRAY3D, data);
-    s.set(field, "origin", glm::vec3(-0.8f, 0.05f, -0.8f));
-    s.set(field, "spacing", glm::vec3(1.6f / (n - 1)));
-    s.commit(field);
+    ANARISpatialField field = floatField(s, glm::uvec3(n), voxels, glm::vec3(-0.8f, 0.05f, -0.8f), glm::vec3(1.6f / (n - 1)));
     ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
     s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
     s.set(iso, "isovalue", 0.5f);
