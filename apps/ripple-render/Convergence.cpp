@@ -46,21 +46,54 @@ void HalfBufferEstimator::addBatchSums(const std::vector<double>& batchSum, uint
     ++batches_;
 }
 
-double HalfBufferEstimator::estimatedRelMse(double epsilon) const {
+std::vector<double> HalfBufferEstimator::errorMap(double epsilon) const {
     const double nA = halfSamples_[0], nB = halfSamples_[1];
-    if (nA == 0 || nB == 0) return std::numeric_limits<double>::quiet_NaN();
+    if (nA == 0 || nB == 0) return {};
     const double varianceFactor = nA * nB / ((nA + nB) * (nA + nB));  // Var(F) = E[(A - B)^2] * this
-    double total = 0.0;
-    const size_t pixels = size_t(width_) * height_;
-    for (size_t p = 0; p < pixels; ++p)
-        for (size_t c = 0; c < 3; ++c) {
-            const size_t i = p * 4 + c;
-            const double a = halfSum_[0][i] / nA, b = halfSum_[1][i] / nB;
-            // The halves are independent, so E[A B] = mu^2: unlike F^2 (E[F^2] = mu^2 + Var(F)) this denominator
-            // is not inflated where a rare bright sample inflates the numerator.
-            total += (a - b) * (a - b) * varianceFactor / (std::max(a * b, 0.0) + epsilon);
+    const double n = nA + nB;
+    const int w = int(width_), h = int(height_);
+    std::vector<double> map(size_t(width_) * height_, 0.0);
+    double neighbours[8];
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t p = size_t(y) * width_ + size_t(x);
+            double pixel = 0.0;
+            for (size_t c = 0; c < 3; ++c) {
+                int count = 0;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const int nx = x + dx, ny = y + dy;
+                        if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                        const size_t i = (size_t(ny) * width_ + size_t(nx)) * 4 + c;
+                        neighbours[count++] = (halfSum_[0][i] + halfSum_[1][i]) / n;
+                    }
+                // The median (of an even count, the mean of the middle two): a neighbour's firefly never enters.
+                double median = 0.0;
+                if (count > 0) {
+                    double* upper = neighbours + count / 2;
+                    std::nth_element(neighbours, upper, neighbours + count);
+                    median = *upper;
+                    if (count % 2 == 0) median = 0.5 * (median + *std::max_element(neighbours, upper));
+                }
+                const size_t i = p * 4 + c;
+                const double a = halfSum_[0][i] / nA, b = halfSum_[1][i] / nB;
+                const double full = (halfSum_[0][i] + halfSum_[1][i]) / n;  // a 1x1 image has no neighbours
+                const double mean = std::clamp(count > 0 ? median : full, std::min(a, b), std::max(a, b));
+                const double m = std::max(mean, 0.0);
+                pixel += (a - b) * (a - b) * varianceFactor / (m * m + epsilon);
+            }
+            // Bottom row first in the sums, row 0 at the top in the map.
+            map[size_t(h - 1 - y) * width_ + size_t(x)] = pixel / 3.0;
         }
-    return total / double(pixels * 3);
+    return map;
+}
+
+double HalfBufferEstimator::estimatedRelMse(double epsilon) const {
+    const std::vector<double> map = errorMap(epsilon);
+    if (map.empty()) return std::numeric_limits<double>::quiet_NaN();
+    double total = 0.0;
+    for (double e : map) total += e;
+    return total / double(map.size());
 }
 
 std::vector<float> HalfBufferEstimator::meanRgbaBottomUp() const {

@@ -20,12 +20,16 @@ inline constexpr double kRelMseEpsilon = 1e-2;
 // Two half-buffers of batches of samples. With n_A and n_B samples in the halves, A and B their means and
 // F the full mean, Var(A) = s^2/n_A, Var(B) = s^2/n_B and Var(F) = s^2/(n_A + n_B), so
 //   E[(A - B)^2] = s^2 (n_A + n_B) / (n_A n_B)  and  Var(F) = E[(A - B)^2] n_A n_B / (n_A + n_B)^2,
-// which is E[(A - B)^2] / 4 for equal halves. The estimate of the full image's relMSE is
-//   mean over pixels and RGB channels of  ((A - B)^2 n_A n_B / (n_A + n_B)^2) / (max(A B, 0) + epsilon),
-// the variance part of relMSE (an unbiased renderer has no other). The halves are independent, so
-// E[A B] = mu^2, the true mean's square; F^2 instead (E[F^2] = mu^2 + Var(F)) sits high exactly where a
-// bright sample makes the numerator large, and measured 0.52-0.75 of the true relMSE over the first 8 spp
-// of the Cornell test and 0.05-0.3 on the default demo's fireflies (A B: 1.38, then 0.97-1.08; 0.1-0.4).
+// which is E[(A - B)^2] / 4 for equal halves. Summed over pixels this numerator tracks the image's own
+// squared error (F - mu)^2, fireflies included: both hold (A - mu)^2 + (B - mu)^2, and the cross terms,
+// which differ in sign, cancel over many pixels. Everything then hangs on the denominator, the square of
+// the true mean mu (relMSE divides each pixel's squared error by mu^2 + epsilon):
+//   estimate = mean over pixels and RGB of ((A - B)^2 n_A n_B / (n_A + n_B)^2) / (m^2 + epsilon),
+//   m = the median of F over the pixel's (up to 8) neighbours, clamped to [min(A, B), max(A, B)].
+// A firefly in one half inflates F^2 and A B exactly where it inflates the numerator, which made the
+// earlier denominators optimistic by 2-20x on the shared scenes; the neighbours' median does not see the
+// pixel's own samples, and the clamp keeps it to what the pixel's own halves allow where the image has
+// detail at the scale of a pixel. docs/error-estimate.md has the measured calibration.
 class HalfBufferEstimator {
 public:
     HalfBufferEstimator(uint32_t width, uint32_t height);
@@ -42,6 +46,9 @@ public:
     uint32_t batches() const { return batches_; }
     // The estimate above; NaN until each half holds a batch.
     double estimatedRelMse(double epsilon = kRelMseEpsilon) const;
+    // Each pixel's share of it (its estimated relMSE, the mean over RGB), row 0 at the top; empty until each
+    // half holds a batch.
+    std::vector<double> errorMap(double epsilon = kRelMseEpsilon) const;
     // The full mean as RGBA floats, bottom row first (as a device maps it); alpha is averaged like colour.
     std::vector<float> meanRgbaBottomUp() const;
     // The full mean's RGB, row 0 at the top (for the image metrics).

@@ -24,11 +24,17 @@ namespace {
 
 constexpr uint32_t kWidth = 64, kHeight = 64;
 
-// Per-pixel true values between 0.5 and 2.5 (alpha 1), bottom row first like a mapped frame.
-std::vector<double> trueImage() {
+// Per-pixel true values between 0.5 and 2.5 (alpha 1), bottom row first like a mapped frame: a smooth ramp,
+// or detail at the scale of a pixel (neighbours along a row differ by 0.22).
+std::vector<double> trueImage(bool pixelScaleDetail) {
     std::vector<double> mu(size_t(kWidth) * kHeight * 4);
     for (size_t p = 0; p < size_t(kWidth) * kHeight; ++p)
-        for (size_t c = 0; c < 4; ++c) mu[p * 4 + c] = c == 3 ? 1.0 : 0.5 + 2.0 * double((p * 7 + c * 13) % 64) / 64.0;
+        for (size_t c = 0; c < 4; ++c) {
+            const size_t x = p % kWidth, y = p / kWidth;
+            const double ramp = double(x + y + 8 * c) / double(kWidth + kHeight + 22);
+            mu[p * 4 + c] = c == 3 ? 1.0 : pixelScaleDetail ? 0.5 + 2.0 * double((p * 7 + c * 13) % 64) / 64.0
+                                                           : 0.5 + 2.0 * ramp;
+        }
     return mu;
 }
 
@@ -62,23 +68,28 @@ void feed(HalfBufferEstimator& estimator, const std::vector<double>& mu, double 
 }  // namespace
 
 // 12,288 pixel channels each give a one-degree-of-freedom estimate of their variance (relative spread
-// sqrt(2)), so the mean is within about 1.3% of the expectation; 8% still fails a wrong variance factor
-// such as a missing /4 (unequal halves are checked exactly below).
+// sqrt(2)), so the mean is within about 1.3% of the expectation; on a smooth image 5% still fails a wrong
+// variance factor such as a missing /4 (unequal halves are checked exactly below). Where the image has
+// detail at the scale of a pixel the neighbours' median stands in for mu only as far as the clamp to the
+// pixel's own [min(A, B), max(A, B)] lets it, and that clamp ties the denominator to the numerator: the
+// estimate is low there, measured by 7.5% (64 and 63 samples) and 10% (16 samples); 15% bounds it.
 TEST_CASE("half-buffer estimate matches the analytic relMSE of synthetic samples") {
-    const std::vector<double> mu = trueImage();
     constexpr double sigma = 0.3;
-    for (const uint32_t batches : {64u, 63u, 16u}) {  // equal halves, unequal halves, fewer samples
-        for (const bool accumulated : {true, false}) {
-            CAPTURE(batches);
-            CAPTURE(accumulated);
-            HalfBufferEstimator estimator(kWidth, kHeight);
-            feed(estimator, mu, sigma, batches, accumulated);
-            CHECK(estimator.samples() == batches);
-            CHECK(estimator.batches() == batches);
-            const double expected = expectedRelMse(mu, sigma, batches);
-            // With 16 samples 1/(A B) varies enough on the darkest pixels that its convexity raises the
-            // estimate by 5.5% (0.2% and 0.1% with 64 and 63).
-            CHECK(std::abs(estimator.estimatedRelMse() / expected - 1.0) < 0.08);
+    for (const bool detail : {false, true}) {
+        const std::vector<double> mu = trueImage(detail);
+        for (const uint32_t batches : {64u, 63u, 16u}) {  // equal halves, unequal halves, fewer samples
+            for (const bool accumulated : {true, false}) {
+                CAPTURE(detail);
+                CAPTURE(batches);
+                CAPTURE(accumulated);
+                HalfBufferEstimator estimator(kWidth, kHeight);
+                feed(estimator, mu, sigma, batches, accumulated);
+                CHECK(estimator.samples() == batches);
+                CHECK(estimator.batches() == batches);
+                const double ratio = estimator.estimatedRelMse() / expectedRelMse(mu, sigma, batches);
+                CAPTURE(ratio);
+                CHECK(std::abs(ratio - 1.0) < (detail ? 0.15 : 0.05));
+            }
         }
     }
 }
@@ -92,8 +103,13 @@ TEST_CASE("half-buffer estimator: recovered mean, too few batches, restarted acc
     const float second[8] = {2, 2, 3, 1, 1, 0, 0, 1};  // averages of 4 samples
     estimator.addAccumulatedFrame(second, 4);
     // Pixel 0: half A sums 2, 4, 6 (mean 1, 2, 3), half B 8 - 2 = 6, 4, 6 (mean 3, 2, 3): red gives
-    // (A - B)^2 / 4 = 1 over A B + 0.01 = 3.01. Pixel 1: red A 0, B 2: 1 over 0 + 0.01. The rest differ by 0.
-    CHECK(std::abs(estimator.estimatedRelMse() / ((1.0 / 3.01 + 1.0 / 0.01) / 6.0) - 1.0) < 1e-6);
+    // (A - B)^2 / 4 = 1 over m^2 + 0.01, m = its one neighbour's red mean 1 (clamped to [A, B] = [1, 3]): 1.01.
+    // Pixel 1: red A 0, B 2: 1 over 2^2 + 0.01 (pixel 0's red mean 2, inside [0, 2]). The rest differ by 0.
+    CHECK(std::abs(estimator.estimatedRelMse() / ((1.0 / 1.01 + 1.0 / 4.01) / 6.0) - 1.0) < 1e-6);
+    const std::vector<double> map = estimator.errorMap();
+    REQUIRE(map.size() == 2);
+    CHECK(map[0] == doctest::Approx(1.0 / 1.01 / 3.0));
+    CHECK(map[1] == doctest::Approx(1.0 / 4.01 / 3.0));
     const std::vector<float> mean = estimator.meanRgbaBottomUp();
     for (size_t i = 0; i < 8; ++i) CHECK(mean[i] == doctest::Approx(second[i]).epsilon(1e-6));
     CHECK(estimator.meanImage().at(1, 0, 0) == doctest::Approx(1.0));
@@ -101,8 +117,46 @@ TEST_CASE("half-buffer estimator: recovered mean, too few batches, restarted acc
                          "the device's sample count went from 4 to 4: it restarted its accumulation", std::runtime_error);
 }
 
+// A firefly: one sample 1000 times the pixel's mean (0.5) in a smooth, noisy image, as a rare light path
+// gives. The estimate must follow the image's own squared error against the known mean, which the firefly
+// dominates (about 94% of it): within 15%. The earlier denominator A B took the firefly into mu^2 and came
+// out 16 times too low here; F^2 is worse.
+TEST_CASE("half-buffer estimate follows a firefly") {
+    const std::vector<double> mu(size_t(kWidth) * kHeight * 4, 0.5);
+    constexpr uint32_t batches = 32;
+    constexpr size_t fireflyPixel = 1000;
+    std::mt19937 rng(11);
+    std::normal_distribution<double> noise(0.0, 0.1);
+    HalfBufferEstimator estimator(kWidth, kHeight);
+    std::vector<double> sum(mu.size(), 0.0);
+    std::vector<float> frame(mu.size());
+    for (uint32_t k = 1; k <= batches; ++k) {
+        for (size_t i = 0; i < mu.size(); ++i) {
+            double sample = i % 4 == 3 ? 1.0 : mu[i] + noise(rng);
+            if (k == 5 && i / 4 == fireflyPixel && i % 4 != 3) sample += 500.0;
+            sum[i] += sample;
+            frame[i] = float(sum[i] / k);
+        }
+        estimator.addAccumulatedFrame(frame.data(), k);
+    }
+    double realised = 0.0;  // the image's relMSE against the true mean
+    for (size_t p = 0; p < size_t(kWidth) * kHeight; ++p)
+        for (size_t c = 0; c < 3; ++c) {
+            const double error = sum[p * 4 + c] / batches - mu[p * 4 + c];
+            realised += error * error / (mu[p * 4 + c] * mu[p * 4 + c] + ripple::apps::kRelMseEpsilon);
+        }
+    realised /= double(kWidth * kHeight * 3);
+    CAPTURE(realised);
+    CHECK(std::abs(estimator.estimatedRelMse() / realised - 1.0) < 0.15);
+    // The map puts it where it is (row 0 at the top; the sums are bottom row first).
+    const std::vector<double> map = estimator.errorMap();
+    const size_t x = fireflyPixel % kWidth, y = kHeight - 1 - fireflyPixel / kWidth;
+    CHECK(map[y * kWidth + x] > 0.9 * realised * double(kWidth * kHeight));
+}
+
 // Three one-sample batches of red 1, 4, 1 (green, blue, alpha 1): half A holds two (mean 1), half B one
-// (mean 4), so Var(F) = (A - B)^2 * 2 / 9 = 2 over A B + 0.01 = 4.01, averaged over 3 channels.
+// (mean 4), so Var(F) = (A - B)^2 * 2 / 9 = 2 over F^2 + 0.01 = 4.01 (no neighbours: the full mean 2 stands
+// for mu), averaged over 3 channels.
 TEST_CASE("half-buffer estimate with unequal halves") {
     HalfBufferEstimator estimator(1, 1);
     const float means[3][4] = {{1, 1, 1, 1}, {2.5f, 1, 1, 1}, {2, 1, 1, 1}};
