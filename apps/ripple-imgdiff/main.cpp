@@ -2,7 +2,7 @@
 // relMSE, LDR-FLIP and HDR-FLIP; optionally writes them as JSON and a heat map of where they differ.
 #include "apps/common/ImageIO.h"
 #include "apps/common/ImageMetrics.h"
-#include "apps/ripple-imgdiff/HeatMap.h"
+#include "apps/common/HeatMap.h"
 
 #include <CLI/CLI.hpp>
 
@@ -99,7 +99,7 @@ int run(const Options& options) {
         const std::vector<float> map = options.heatmapSource == "ldr-flip"   ? results.ldrMap
                                        : options.heatmapSource == "hdr-flip" ? results.hdrMap
                                                                              : differenceMap(test, reference);
-        ripple::imgdiff::writeHeatMap(options.heatmap, test.width, test.height, map);
+        ripple::apps::writeHeatMap(options.heatmap, test.width, test.height, map);
     }
     return 0;
 }

@@ -7,13 +7,14 @@
 #include "apps/common/AnariSession.h"
 #include "apps/common/DemoScene.h"
 #include "apps/common/GltfScene.h"
+#include "apps/common/HeatMap.h"
 #include "apps/common/ImageIO.h"
 #include "apps/common/ImageSize.h"
+#include "apps/common/OutputImage.h"
 #include "apps/common/ScenePartition.h"
 #include "apps/common/VolumeFile.h"
 #include "apps/ripple-render/Convergence.h"
 #include "apps/ripple-render/ErrorPlot.h"
-#include "apps/common/OutputImage.h"
 #include "apps/ripple-render/Progress.h"
 #include "apps/ripple-render/RankAgreement.h"
 #include "apps/ripple-render/RankStats.h"
@@ -61,6 +62,7 @@ struct Options {
     bool stats = false;
     std::string reference;              // converged image of the same view: the true error is reported too
     std::string report;                 // CSV of the convergence series; its plot goes beside it as .png
+    std::string errorMap;               // each pixel's estimated relMSE: PFM/EXR values or a PNG heat map
     std::optional<double> seconds;      // --time: the whole run, start-up included, ends within this
     std::optional<double> targetError;  // stop when the estimated relMSE reaches this
     bool sppGiven = false;              // --spp on the command line: it caps --time and --target-error too
@@ -135,6 +137,7 @@ struct RenderPlan {
     glm::uvec2 size{0, 0};
     OutputFormat format = OutputFormat::Png;
     std::filesystem::path reportFile, plotFile;
+    OutputFormat errorMapFormat = OutputFormat::Pfm;
     std::optional<LinearImage> reference;
     std::string demo;                   // the demo scene, or empty for a file
     std::optional<GltfScene> gltf;
@@ -246,8 +249,18 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
         if (options.sppGiven && options.spp < 2)
             throw std::runtime_error("--report with --spp 1: the error estimate needs 2 samples or more");
     }
+    if (!options.errorMap.empty()) {
+        plan.errorMapFormat = outputFormatOf(options.errorMap, "--error-map");
+        if (plan.errorMapFormat == OutputFormat::Jpeg)
+            throw std::runtime_error("--error-map " + options.errorMap + ": give a .png (heat map), .pfm or .exr file");
+        if (std::filesystem::weakly_canonical(options.errorMap) == std::filesystem::weakly_canonical(options.output))
+            throw std::runtime_error("--error-map " + options.errorMap + " would overwrite the output image");
+        if (options.spp < 2)
+            throw std::runtime_error("--error-map with --spp 1: the error estimate needs 2 samples or more");
+    }
     // Only rank 0 writes: it finds out now, not after the render, that it cannot.
     if (plan.root) checkOutputWritable(options.output);
+    if (plan.root && !options.errorMap.empty()) checkOutputWritable(options.errorMap, "--error-map");
     if (const uint64_t needed = appBytes(plan.size, !options.reference.empty()), available = availableHostBytes();
         plan.root && needed > available)
         throw std::runtime_error("--size " + std::to_string(plan.size.x) + "x" + std::to_string(plan.size.y) +
@@ -508,6 +521,30 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
     return out;
 }
 
+// Each pixel's estimated relMSE: the values themselves in PFM/EXR (grey), or a PNG heat map of log10 of them
+// from 1e-4 (black) to 1 (yellow). A render of one frame has no estimate: it says so instead.
+void writeErrorMap(const std::string& file, OutputFormat format, glm::uvec2 size, const HalfBufferEstimator& estimator) {
+    const std::vector<double> map = estimator.errorMap();
+    if (map.empty()) {
+        std::fprintf(stderr, "[ripple-render] warning: --error-map %s not written: one frame gives no estimate\n",
+                     file.c_str());
+        return;
+    }
+    if (format == OutputFormat::Png) {
+        std::vector<float> heat(map.size());
+        for (size_t i = 0; i < map.size(); ++i)
+            heat[i] = map[i] > 0.0 ? float((std::log10(map[i]) + 4.0) / 4.0) : 0.0f;
+        writeHeatMap(file, size.x, size.y, heat);
+        return;
+    }
+    std::vector<float> rgba(map.size() * 4, 1.0f);  // bottom row first, as a frame maps
+    for (uint32_t y = 0; y < size.y; ++y)
+        for (uint32_t x = 0; x < size.x; ++x)
+            for (size_t c = 0; c < 3; ++c)
+                rgba[(size_t(size.y - 1 - y) * size.x + x) * 4 + c] = float(map[size_t(y) * size.x + x]);
+    writeOutputImage(file, format, size.x, size.y, rgba.data());
+}
+
 void writeResults(const Options& options, const RenderPlan& plan, const RenderOutcome& out, uint32_t batch,
                   const TimeBudget& budget) {
     const std::vector<float> image = out.estimator.meanRgbaBottomUp();
@@ -519,6 +556,7 @@ void writeResults(const Options& options, const RenderPlan& plan, const RenderOu
                                                               : std::filesystem::path(options.scene).filename().string();
         writeErrorPlot(plan.plotFile, out.series, sceneName + ", " + options.size + ": relMSE against render time");
     }
+    if (!options.errorMap.empty()) writeErrorMap(options.errorMap, plan.errorMapFormat, plan.size, out.estimator);
     const double finalEstimate = out.estimator.estimatedRelMse();
     char estimateText[48] = "n/a (one frame)";
     if (!std::isnan(finalEstimate)) std::snprintf(estimateText, sizeof estimateText, "%.3e", finalEstimate);
@@ -641,6 +679,9 @@ int main(int argc, char** argv) {
                    "converged image (PNG, PFM, EXR) of the same view: also report the true relMSE, PSNR, SSIM, FLIP");
     app.add_option("--report", options.report,
                    "write the convergence series to this CSV and its log-log plot beside it (.png)");
+    app.add_option("--error-map", options.errorMap,
+                   "write each pixel's estimated relMSE: .pfm or .exr (the values) or .png (a heat map of log10 from "
+                   "-4, black, to 0, yellow)");
     app.add_option("--library", options.library, "ANARI library name (loads libanari_library_NAME.so)")->capture_default_str();
     app.add_option("--traversal", options.traversal,
                    "ray traversal back-end, the device parameter 'traversal': auto (ray queries where the device "

@@ -3,7 +3,7 @@
 // by hand (in double precision) from the published formulas and constants; the magma heat-map colours.
 #include "apps/common/ImageMetrics.h"
 #include "apps/common/ImageMetricsDetail.h"
-#include "apps/ripple-imgdiff/HeatMap.h"
+#include "apps/common/HeatMap.h"
 
 #include <doctest/doctest.h>
 
@@ -205,7 +205,7 @@ TEST_CASE("HDR-FLIP's ACES curve and exposure range, by hand") {
 }
 
 TEST_CASE("heat maps use magma's 256 published colours, the nearest entry to value * 255") {
-    using ripple::imgdiff::magma;
+    using ripple::apps::magma;
     using Rgb = std::array<uint8_t, 3>;
     CHECK(magma(0.0f) == Rgb{0, 0, 4});          // entry 0: (0.001462, 0.000466, 0.013866)
     CHECK(magma(0.25f) == Rgb{81, 18, 124});     // entry 64: (0.316654, 0.071690, 0.485380)

@@ -352,6 +352,37 @@ TEST_CASE("ripple-render --report writes the series as CSV and a plot") {
     stbi_image_free(plot);
 }
 
+// --error-map: the per-pixel estimate, whose mean is the estimate printed (both from the same half-buffers;
+// the printed one has 4 significant digits), in PFM; a magma heat map in PNG; a JPEG is refused.
+TEST_CASE("ripple-render --error-map writes each pixel's estimated relMSE") {
+    TempFolder dir;
+    const std::string common = "--demo cornell --size 24x16 --spp 8 --quiet -o '" + (dir / "t.png").string() + "'";
+    const ProgramRun run = runRender(common + " --error-map '" + (dir / "map.pfm").string() + "'");
+    REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+    const ripple::apps::LinearImage map = ripple::apps::readLinearImage(dir / "map.pfm");
+    REQUIRE(map.width == 24);
+    REQUIRE(map.height == 16);
+    double sum = 0.0;
+    for (uint32_t y = 0; y < map.height; ++y)
+        for (uint32_t x = 0; x < map.width; ++x) {
+            CHECK(map.at(x, y, 0) == map.at(x, y, 2));  // grey
+            CHECK(map.at(x, y, 0) >= 0.0f);
+            sum += map.at(x, y, 0);
+        }
+    CHECK(sum / (24.0 * 16.0) == doctest::Approx(numberAfter(run.output, "estimated relMSE ")).epsilon(1e-3));
+    const ProgramRun png = runRender(common + " --error-map '" + (dir / "map.png").string() + "'");
+    REQUIRE_MESSAGE(png.exitCode == 0, png.output);
+    int w = 0, h = 0, comp = 0;
+    unsigned char* heat = stbi_load((dir / "map.png").string().c_str(), &w, &h, &comp, 3);
+    REQUIRE(heat != nullptr);
+    CHECK(w == 24);
+    CHECK(h == 16);
+    stbi_image_free(heat);
+    const ProgramRun jpeg = runRender(common + " --error-map '" + (dir / "map.jpg").string() + "'");
+    CHECK(jpeg.exitCode == 1);
+    CHECK(contains(jpeg.output, "give a .png (heat map), .pfm or .exr file"));
+}
+
 // --environment lights the scene with an hdri light and replaces the key light and ambient fill a glTF
 // without lights gets: rendered twice with the same seed, at intensity 1 and 2, every pixel of the triangle
 // doubles (to float rounding) while the background stays as it was, which holds only when the environment

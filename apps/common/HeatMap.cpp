@@ -1,6 +1,6 @@
 // The magma colour map (matplotlib's 256 published entries, as FLIP's reference implementation shows its
 // error maps) and the heat-map writer on top of the project's PNG writer.
-#include "apps/ripple-imgdiff/HeatMap.h"
+#include "apps/common/HeatMap.h"
 
 #include "apps/common/ImageIO.h"
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace ripple::imgdiff {
+namespace ripple::apps {
 
 namespace {
 
@@ -68,4 +68,4 @@ void writeHeatMap(const std::filesystem::path& file, uint32_t width, uint32_t he
     apps::writePngBottomUp(file, width, height, rgba.data());
 }
 
-}  // namespace ripple::imgdiff
+}  // namespace ripple::apps
