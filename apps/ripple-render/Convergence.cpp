@@ -46,13 +46,14 @@ void HalfBufferEstimator::addBatchSums(const std::vector<double>& batchSum, uint
     ++batches_;
 }
 
-std::vector<double> HalfBufferEstimator::errorMap(double epsilon) const {
+HalfBufferEstimator::PixelErrors HalfBufferEstimator::pixelErrors(double epsilon) const {
     const double nA = halfSamples_[0], nB = halfSamples_[1];
     if (nA == 0 || nB == 0) return {};
     const double varianceFactor = nA * nB / ((nA + nB) * (nA + nB));  // Var(F) = E[(A - B)^2] * this
     const double n = nA + nB;
     const int w = int(width_), h = int(height_);
-    std::vector<double> map(size_t(width_) * height_, 0.0);
+    PixelErrors errors;
+    errors.map.assign(size_t(width_) * height_, 0.0);
     double neighbours[8];
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -80,20 +81,29 @@ std::vector<double> HalfBufferEstimator::errorMap(double epsilon) const {
                 const double full = (halfSum_[0][i] + halfSum_[1][i]) / n;  // a 1x1 image has no neighbours
                 const double mean = std::clamp(count > 0 ? median : full, std::min(a, b), std::max(a, b));
                 const double m = std::max(mean, 0.0);
-                pixel += (a - b) * (a - b) * varianceFactor / (m * m + epsilon);
+                const double variance = (a - b) * (a - b) * varianceFactor;
+                pixel += variance / (m * m + epsilon);
+                errors.optimisticTotal += variance / (full * full + epsilon);
             }
             // Bottom row first in the sums, row 0 at the top in the map.
-            map[size_t(h - 1 - y) * width_ + size_t(x)] = pixel / 3.0;
+            errors.map[size_t(h - 1 - y) * width_ + size_t(x)] = pixel / 3.0;
         }
-    return map;
+    return errors;
 }
 
-double HalfBufferEstimator::estimatedRelMse(double epsilon) const {
-    const std::vector<double> map = errorMap(epsilon);
-    if (map.empty()) return std::numeric_limits<double>::quiet_NaN();
+std::vector<double> HalfBufferEstimator::errorMap(double epsilon) const { return pixelErrors(epsilon).map; }
+
+ErrorEstimate HalfBufferEstimator::estimate(double epsilon) const {
+    const PixelErrors errors = pixelErrors(epsilon);
+    if (errors.map.empty()) {
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        return {nan, nan, nan};
+    }
     double total = 0.0;
-    for (double e : map) total += e;
-    return total / double(map.size());
+    for (double e : errors.map) total += e;
+    const double relMse = total / double(errors.map.size());
+    const double optimistic = errors.optimisticTotal / double(errors.map.size() * 3);
+    return {relMse, std::min(optimistic, relMse) / kBandBelow, std::max(optimistic, relMse) * kBandAbove};
 }
 
 std::vector<float> HalfBufferEstimator::meanRgbaBottomUp() const {
@@ -128,13 +138,16 @@ ReferenceMetrics compareToReference(const LinearImage& image, const LinearImage&
 }
 
 uint32_t nextReportSpp(uint32_t spp) {
-    return std::max(spp + 1, uint32_t(std::lround(double(spp) * 1.2)));
+    const uint32_t next = std::max(spp + 1, uint32_t(std::lround(double(spp) * 1.2)));
+    uint32_t powerOfTwo = 1;
+    while (powerOfTwo <= spp) powerOfTwo *= 2;
+    return std::min(next, powerOfTwo);
 }
 
 std::string formatConvergencePoint(const ConvergencePoint& point) {
     char line[256];
-    int n = std::snprintf(line, sizeof line, "%8.2f s %7u spp  estimated relMSE %.3e", point.seconds, point.spp,
-                          point.estimatedRelMse);
+    int n = std::snprintf(line, sizeof line, "%8.2f s %7u spp  estimated relMSE %.3e (%.1e .. %.1e)", point.seconds,
+                          point.spp, point.estimate.relMse, point.estimate.low, point.estimate.high);
     if (point.reference && n > 0 && size_t(n) < sizeof line) {
         const ReferenceMetrics& r = *point.reference;
         std::snprintf(line + n, sizeof line - size_t(n), "  relMSE %.3e  PSNR %.2f dB  SSIM %.4f  FLIP %.4f (HDR %.4f)",
@@ -147,10 +160,11 @@ void writeConvergenceCsv(const std::filesystem::path& file, const std::vector<Co
     std::ofstream out(file);
     if (!out) throw std::runtime_error(file.string() + ": cannot write the report");
     const bool withReference = !points.empty() && points.front().reference.has_value();
-    out << "time_s,spp,estimated_relmse" << (withReference ? ",relmse,psnr_db,ssim,flip_ldr,flip_hdr" : "") << "\n";
+    out << "time_s,spp,estimated_relmse,band_low,band_high" << (withReference ? ",relmse,psnr_db,ssim,flip_ldr,flip_hdr" : "") << "\n";
     char line[256];
     for (const ConvergencePoint& p : points) {
-        std::snprintf(line, sizeof line, "%.4f,%u,%.6e", p.seconds, p.spp, p.estimatedRelMse);
+        std::snprintf(line, sizeof line, "%.4f,%u,%.6e,%.6e,%.6e", p.seconds, p.spp, p.estimate.relMse, p.estimate.low,
+                      p.estimate.high);
         out << line;
         if (withReference && p.reference) {
             const ReferenceMetrics& r = *p.reference;

@@ -30,6 +30,21 @@ inline constexpr double kRelMseEpsilon = 1e-2;
 // earlier denominators optimistic by 2-20x on the shared scenes; the neighbours' median does not see the
 // pixel's own samples, and the clamp keeps it to what the pixel's own halves allow where the image has
 // detail at the scale of a pixel. docs/error-estimate.md has the measured calibration.
+//
+// No estimate from the image's own samples can tell a firefly (a rare sample far above a small mean) from a
+// highlight smaller than a pixel (rare samples that make up a large mean): the first wants the neighbours'
+// mean in the denominator, the second F. So the estimate comes with a band: from the lower of it and the
+// optimistic value with F^2 as the denominator, divided by kBandBelow, to the higher times kBandAbove. Where
+// the two agree (no heavy tails) the band is narrow; a wide band says the image holds pixels whose mean it
+// cannot pin down. The margins cover the estimate's measured spread where the two agree (0.54 to 1.30 times
+// the true relMSE on the shared and demo scenes, docs/error-estimate.md).
+inline constexpr double kBandBelow = 1.3, kBandAbove = 2.0;
+
+struct ErrorEstimate {
+    double relMse = 0.0;           // the estimate
+    double low = 0.0, high = 0.0;  // the band the true relMSE is expected in
+};
+
 class HalfBufferEstimator {
 public:
     HalfBufferEstimator(uint32_t width, uint32_t height);
@@ -45,7 +60,9 @@ public:
     uint32_t samples() const { return halfSamples_[0] + halfSamples_[1]; }
     uint32_t batches() const { return batches_; }
     // The estimate above; NaN until each half holds a batch.
-    double estimatedRelMse(double epsilon = kRelMseEpsilon) const;
+    double estimatedRelMse(double epsilon = kRelMseEpsilon) const { return estimate(epsilon).relMse; }
+    // The estimate and its band; all NaN until each half holds a batch.
+    ErrorEstimate estimate(double epsilon = kRelMseEpsilon) const;
     // Each pixel's share of it (its estimated relMSE, the mean over RGB), row 0 at the top; empty until each
     // half holds a batch.
     std::vector<double> errorMap(double epsilon = kRelMseEpsilon) const;
@@ -55,6 +72,11 @@ public:
     LinearImage meanImage() const;
 
 private:
+    struct PixelErrors {
+        std::vector<double> map;  // each pixel's estimate, row 0 at the top
+        double optimisticTotal = 0.0;  // the sum over pixels and RGB with F^2 as the denominator
+    };
+    PixelErrors pixelErrors(double epsilon) const;
     void addBatchSums(const std::vector<double>& batchSum, uint32_t batchSamples);
 
     uint32_t width_, height_;
@@ -74,18 +96,18 @@ ReferenceMetrics compareToReference(const LinearImage& image, const LinearImage&
 struct ConvergencePoint {
     double seconds = 0.0;  // render time so far, time spent on reference metrics excluded
     uint32_t spp = 0;
-    double estimatedRelMse = 0.0;
+    ErrorEstimate estimate;
     std::optional<ReferenceMetrics> reference;
 };
 
 // The spp of the report point after `spp`: about 1.2 times further (at least one more sample), so that the
-// points lie evenly on a log axis.
+// points lie evenly on a log axis, and every power of two (the spp that renders and tests compare at).
 uint32_t nextReportSpp(uint32_t spp);
 
-// One line for the terminal: time, spp, the estimate and the reference metrics when there are any.
+// One line for the terminal: time, spp, the estimate with its band and the reference metrics when there are any.
 std::string formatConvergencePoint(const ConvergencePoint& point);
 
-// CSV with the header time_s,spp,estimated_relmse and, when the points carry reference metrics,
+// CSV with the header time_s,spp,estimated_relmse,band_low,band_high and, when the points carry reference metrics,
 // relmse,psnr_db,ssim,flip_ldr,flip_hdr. Throws std::runtime_error naming the file when it cannot be written.
 void writeConvergenceCsv(const std::filesystem::path& file, const std::vector<ConvergencePoint>& points);
 

@@ -18,7 +18,7 @@ namespace {
 
 using Color = std::array<uint8_t, 3>;
 constexpr Color kBlack{0, 0, 0}, kGrid{225, 225, 225}, kGuide{140, 140, 140}, kEstimate{31, 119, 180},
-    kTrue{214, 39, 40};
+    kBand{198, 219, 239}, kTrue{214, 39, 40};
 
 // RGBA8 pixels, row 0 at the top (as text is laid out); flipped when written.
 class Canvas {
@@ -107,10 +107,11 @@ void writeErrorPlot(const std::filesystem::path& file, const std::vector<Converg
     std::vector<double> times, errors;
     for (const ConvergencePoint& p : points) {
         if (!(p.seconds > 0.0)) continue;
-        if (p.estimatedRelMse > 0.0 && std::isfinite(p.estimatedRelMse)) {
+        const ErrorEstimate& e = p.estimate;
+        if (e.relMse > 0.0 && e.low > 0.0 && std::isfinite(e.high)) {
             estimate.push_back(&p);
             times.push_back(p.seconds);
-            errors.push_back(p.estimatedRelMse);
+            errors.insert(errors.end(), {e.low, e.high});
         }
         if (p.reference && p.reference->relMse > 0.0 && std::isfinite(p.reference->relMse)) {
             truth.push_back(&p);
@@ -162,9 +163,19 @@ void writeErrorPlot(const std::filesystem::path& file, const std::vector<Converg
     // Series, clipped to the plot area.
     canvas.setClip(left + 1, top + 1, right, bottom);
     if (!estimate.empty()) {  // error ~ 1/time through the last estimate, where start-up costs weigh least
-        const double t0 = estimate.back()->seconds, e0 = estimate.back()->estimatedRelMse;
+        const double t0 = estimate.back()->seconds, e0 = estimate.back()->estimate.relMse;
         const double tLo = std::pow(10.0, xLo), tHi = std::pow(10.0, xHi);
         canvas.line(px(tLo), py(e0 * t0 / tLo), px(tHi), py(e0 * t0 / tHi), kGuide, 2, true);
+    }
+    // The estimate's band, filled column by column between the points (straight on the log axes).
+    for (size_t i = 1; i < estimate.size(); ++i) {
+        const ErrorEstimate &a = estimate[i - 1]->estimate, &b = estimate[i]->estimate;
+        const double xa = px(estimate[i - 1]->seconds), xb = px(estimate[i]->seconds);
+        for (int x = int(std::lround(xa)); x <= int(std::lround(xb)); ++x) {
+            const double t = xb > xa ? std::clamp((x - xa) / (xb - xa), 0.0, 1.0) : 0.0;
+            const double yLow = py(a.low) + (py(b.low) - py(a.low)) * t, yHigh = py(a.high) + (py(b.high) - py(a.high)) * t;
+            canvas.fill(x, int(std::lround(yHigh)), x + 1, int(std::lround(yLow)) + 1, kBand);
+        }
     }
     const auto drawSeries = [&](const std::vector<const ConvergencePoint*>& series, auto error, Color c) {
         for (size_t i = 0; i < series.size(); ++i) {
@@ -173,13 +184,13 @@ void writeErrorPlot(const std::filesystem::path& file, const std::vector<Converg
             canvas.fill(int(x) - 3, int(y) - 3, int(x) + 4, int(y) + 4, c);
         }
     };
-    drawSeries(estimate, [](const ConvergencePoint& p) { return p.estimatedRelMse; }, kEstimate);
+    drawSeries(estimate, [](const ConvergencePoint& p) { return p.estimate.relMse; }, kEstimate);
     drawSeries(truth, [](const ConvergencePoint& p) { return p.reference->relMse; }, kTrue);
     canvas.resetClip();
 
     // Legend, top right inside the plot.
     struct Entry { std::string text; Color color; bool dashed; };
-    std::vector<Entry> legend{{"estimated (half buffers)", kEstimate, false}};
+    std::vector<Entry> legend{{"estimated (half buffers)", kEstimate, false}, {"its band", kBand, false}};
     if (!truth.empty()) legend.push_back({"true (against reference)", kTrue, false});
     legend.push_back({"slope -1 (error ~ 1/time)", kGuide, true});
     int legendWidth = 0;

@@ -506,7 +506,7 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
                    (options.targetError && spp >= kMinSamplesForTarget && estimate <= *options.targetError);
             if (options.reporting() && (spp >= nextReport || stop)) {
                 clock.pause();  // metrics and printing are not render time
-                ConvergencePoint point{clock.seconds(), spp, out.estimator.estimatedRelMse(), std::nullopt};
+                ConvergencePoint point{clock.seconds(), spp, out.estimator.estimate(), std::nullopt};
                 if (plan.reference) point.reference = compareToReference(out.estimator.meanImage(), *plan.reference);
                 if (printPoints) std::printf("%s\n", formatConvergencePoint(point).c_str());
                 std::fflush(stdout);
@@ -557,9 +557,11 @@ void writeResults(const Options& options, const RenderPlan& plan, const RenderOu
         writeErrorPlot(plan.plotFile, out.series, sceneName + ", " + options.size + ": relMSE against render time");
     }
     if (!options.errorMap.empty()) writeErrorMap(options.errorMap, plan.errorMapFormat, plan.size, out.estimator);
-    const double finalEstimate = out.estimator.estimatedRelMse();
-    char estimateText[48] = "n/a (one frame)";
-    if (!std::isnan(finalEstimate)) std::snprintf(estimateText, sizeof estimateText, "%.3e", finalEstimate);
+    const ErrorEstimate finalEstimate = out.estimator.estimate();
+    char estimateText[64] = "n/a (one frame)";
+    if (!std::isnan(finalEstimate.relMse))
+        std::snprintf(estimateText, sizeof estimateText, "%.3e (band %.1e .. %.1e)", finalEstimate.relMse,
+                      finalEstimate.low, finalEstimate.high);
     // The whole run so far, start-up included (what --time bounds), then its parts.
     char timeText[160];
     if (out.frames > 1)

@@ -164,19 +164,21 @@ TEST_CASE("half-buffer estimate with unequal halves") {
     CHECK(std::abs(estimator.estimatedRelMse() / (2.0 / 4.01 / 3.0) - 1.0) < 1e-6);
 }
 
-TEST_CASE("report points lie about 1.2 times apart") {
+TEST_CASE("report points lie about 1.2 times apart, at every power of two") {
     std::vector<uint32_t> spp{2};
-    while (spp.back() < 60) spp.push_back(ripple::apps::nextReportSpp(spp.back()));
-    CHECK(spp == std::vector<uint32_t>{2, 3, 4, 5, 6, 7, 8, 10, 12, 14, 17, 20, 24, 29, 35, 42, 50, 60});
+    while (spp.back() < 128) spp.push_back(ripple::apps::nextReportSpp(spp.back()));
+    CHECK(spp == std::vector<uint32_t>{2, 3, 4, 5, 6, 7, 8, 10, 12, 14, 16, 19, 23, 28, 32, 38, 46, 55, 64, 77, 92,
+                                       110, 128});
 }
 
 // The real thing: 64 spp of the 48x48 Cornell demo, one sample per frame, reported at 19 points.
 // (a) The estimated relMSE is within a factor 2 of the true relMSE at every point, and within a factor 1.25
-//     from 4 spp on (measured: ratio 1.38 at 2 spp, where a pixel whose half got no light has a denominator
-//     of epsilon alone, 1.18 at 3, then 0.97 to 1.08).
+//     from 4 spp on (measured: ratio 1.35 at 2 spp and 1.24 at 3, where a half of one or two samples often
+//     got no light, 1.18 at 4, then 0.98 to 1.14, 1.09 at 8 spp). The band holds the true relMSE at every
+//     point (checked too).
 // (b) The least-squares slope of log(true relMSE) against log(spp) is -1 within 0.15 (a sample costs the
 //     same time throughout, so this is the slope against time without the noise of a shared machine's
-//     clock): error falls as 1/time for this unbiased renderer (measured: -0.955). The render is
+//     clock): error falls as 1/time for this unbiased renderer (measured: -0.954). The render is
 //     deterministic (fixed sample seeds), so these numbers repeat run to run.
 TEST_CASE("the estimate tracks the true relMSE, which falls as 1/spp") {
     TempFolder dir;
@@ -186,22 +188,69 @@ TEST_CASE("the estimate tracks the true relMSE, which falls as 1/spp") {
                                     "' -o '" + (dir / "c.pfm").string() + "'");
     REQUIRE_MESSAGE(run.exitCode == 0, run.output);
     const auto rows = readCsv(report);
-    REQUIRE(rows.size() == 20);  // header, spp 2 .. 60 (18 points), 64
-    REQUIRE(rows[0].size() == 8);
+    REQUIRE(rows.size() == 20);  // header, spp 2 .. 64 (19 points)
+    REQUIRE(rows[0].size() == 10);
     std::ostringstream table;  // shown when a check fails
-    for (size_t i = 1; i < rows.size(); ++i) table << rows[i][1] << " spp: estimated " << rows[i][2] << ", true " << rows[i][3] << "\n";
+    for (size_t i = 1; i < rows.size(); ++i) table << rows[i][1] << " spp: estimated " << rows[i][2] << ", true " << rows[i][5] << "\n";
     INFO(table.str());
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int n = 0;
     for (size_t i = 1; i < rows.size(); ++i) {
-        const double spp = std::stod(rows[i][1]), estimate = std::stod(rows[i][2]), truth = std::stod(rows[i][3]);
+        const double spp = std::stod(rows[i][1]), estimate = std::stod(rows[i][2]), truth = std::stod(rows[i][5]);
         const double factor = spp >= 4 ? 1.25 : 2.0;
         CHECK_MESSAGE(estimate <= factor * truth, "spp " << spp);
         CHECK_MESSAGE(estimate >= truth / factor, "spp " << spp);
+        CHECK_MESSAGE(std::stod(rows[i][3]) <= truth, "spp " << spp);  // band_low
+        CHECK_MESSAGE(std::stod(rows[i][4]) >= truth, "spp " << spp);  // band_high
         const double x = std::log(spp), y = std::log(truth);
         sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
     }
     const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
     CAPTURE(slope);
     CHECK(std::abs(slope + 1.0) < 0.15);
+}
+
+// Calibration against an independently seeded reference: each shared scene (and the default demo) at 64x64,
+// a reference of 1024 spp with seed 1, then 128 spp with seed 2 reported at 8, 32 and 128 spp. The reference's
+// own noise adds Var(F) n / 1024 to the measured relMSE in expectation, so the true relMSE of the image is
+// taken as the measured one divided by 1 + n / 1024. Checked: (a) the band holds the true relMSE on every
+// scene at every one of these spp; (b) on the scenes without highlights smaller than a pixel (the Cornell
+// box, the bunny, Sponza, the default demo) the estimate itself is within 35% (measured 0.67 to 1.09;
+// docs/error-estimate.md has these and the metallic scenes, where the estimate is up to 27 times high at
+// 8 spp and the band says so). Fixed seeds: the numbers repeat run to run.
+TEST_CASE("sample files: the error estimate is calibrated against an independently seeded reference") {
+    struct Scene { std::string arguments; bool subPixelHighlights; };
+    const std::string data = std::string(RIPPLE_DATA_DIR) + "/gltf/";
+    const std::vector<Scene> scenes{{"'" + data + "cornell-box.glb'", false},
+                                    {"'" + data + "bunny.glb'", false},
+                                    {"'" + data + "sponza-lod4-geometry.glb'", false},
+                                    {"--demo default", false},
+                                    {"'" + data + "damaged-helmet.glb'", true},
+                                    {"'" + data + "metal-rough-spheres.glb'", true}};
+    constexpr double kReferenceSpp = 1024;
+    for (const Scene& scene : scenes) {
+        CAPTURE(scene.arguments);
+        TempFolder dir;
+        const std::string reference = (dir / "reference.pfm").string();
+        const ProgramRun referenceRun = runRender(scene.arguments + " --size 64x64 --spp 1024 --seed 1 --quiet -o '" +
+                                                  reference + "'");
+        REQUIRE_MESSAGE(referenceRun.exitCode == 0, referenceRun.output);
+        const auto report = dir / "series.csv";
+        const ProgramRun run = runRender(scene.arguments + " --size 64x64 --spp 128 --seed 2 --quiet --reference '" +
+                                         reference + "' --report '" + report.string() + "' -o '" +
+                                         (dir / "image.pfm").string() + "'");
+        REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+        int checked = 0;
+        for (const auto& row : readCsv(report)) {
+            if (row[1] != "8" && row[1] != "32" && row[1] != "128") continue;
+            const double spp = std::stod(row[1]), estimate = std::stod(row[2]), low = std::stod(row[3]),
+                         high = std::stod(row[4]), truth = std::stod(row[5]) / (1.0 + spp / kReferenceSpp);
+            INFO("spp " << spp << ": estimated " << estimate << " (band " << low << " .. " << high << "), true " << truth);
+            CHECK(low <= truth);
+            CHECK(truth <= high);
+            if (!scene.subPixelHighlights) CHECK(std::abs(estimate / truth - 1.0) <= 0.35);
+            ++checked;
+        }
+        CHECK(checked == 3);
+    }
 }

@@ -324,7 +324,7 @@ TEST_CASE("ripple-render --report writes the series as CSV and a plot") {
     const auto report = dir / "series.csv";
     std::string arguments = "--demo cornell --size 16x16 --spp 12 --quiet --report '" + report.string() + "' -o '" +
                             (dir / "t.png").string() + "'";
-    std::vector<std::string> header{"time_s", "spp", "estimated_relmse"};
+    std::vector<std::string> header{"time_s", "spp", "estimated_relmse", "band_low", "band_high"};
     SUBCASE("without a reference") {}
     SUBCASE("with a reference: the true error too") {
         const std::vector<float> grey(16 * 16 * 4, 0.25f);
