@@ -174,6 +174,14 @@ void ProgressiveFrames::readPass(ANARIFrame frame, bool reduced) {
     const size_t floats = size_t(width) * height * 4;
     r.rgba.assign(static_cast<const float*>(pixels), static_cast<const float*>(pixels) + floats);
     anariUnmapFrame(device_, frame, "channel.color");
+    if (!reduced) {  // a restart (fewer samples than before, or a new size) starts the estimate over
+        if (!estimator_ || samples <= estimator_->samples() || glm::uvec2(width, height) != estimator_->size())
+            estimator_.emplace(width, height);
+        estimator_->addAccumulatedFrame(r.rgba.data(), samples);
+        r.estimate = estimator_->estimate();
+    } else {
+        r.estimate = {};  // the view changed: the full frame starts over
+    }
 }
 
 }  // namespace ripple::apps

@@ -6,6 +6,7 @@
 
 #include "apps/common/AnariScene.h"
 #include "apps/common/AnariSession.h"
+#include "apps/common/ErrorEstimate.h"
 
 #include <anari/anari.h>
 
@@ -35,6 +36,9 @@ struct PassResult {
     uint32_t samples = 0;               // per pixel accumulated in it
     double milliseconds = 0.0;          // the pass on the device ("duration"), else wall time to ready
     std::optional<float> raysPerSecond; // the device's "ripple.raysPerSecond", when it has it
+    // The full-size frame's estimated relMSE and its band, as ripple-render reports it (NaN until its
+    // accumulation holds two passes); moving passes leave it as it was.
+    ErrorEstimate estimate;
 };
 
 class ProgressiveFrames {
@@ -86,6 +90,7 @@ private:
     ViewerSettings settings_;
     bool fullStale_ = true;             // the full frame restarts with its next pass
     uint32_t fullSamples_ = 0;
+    std::optional<HalfBufferEstimator> estimator_;  // the full frame's passes since its restart
     bool countsSamples_ = true;         // the device answers "numSamples"
     bool hasRays_ = true;               // the device answers "ripple.raysPerSecond"
     ANARIFrame inFlight_ = nullptr;

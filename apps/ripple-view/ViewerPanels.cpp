@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace ripple::apps {
@@ -81,6 +82,9 @@ void statsOverlay(const PassResult& pass, uint32_t fullSamples, bool moving, boo
         ImGui::Text("%.1f ms per pass, %ux%u%s", pass.milliseconds, pass.size.x, pass.size.y,
                     pass.reduced ? " (moving)" : "");
         if (pass.raysPerSecond) ImGui::Text("%.2f Mrays/s", double(*pass.raysPerSecond) * 1e-6);
+        if (!std::isnan(pass.estimate.relMse))
+            ImGui::Text("estimated relMSE %.2e (%.1e .. %.1e)", pass.estimate.relMse, pass.estimate.low,
+                        pass.estimate.high);
     }
     ImGui::End();
 }

@@ -58,6 +58,9 @@ void writeScreenshot(const std::filesystem::path& file, const PassResult& pass, 
     writeOutputImage(file, outputFormatOf(file, "--screenshot"), pass.size.x, pass.size.y, pass.rgba.data());
     std::printf("wrote %s (%ux%u, %u spp", file.c_str(), pass.size.x, pass.size.y, pass.samples);
     if (!std::isnan(milliseconds)) std::printf("; %.1f ms per pass after the first", milliseconds);
+    if (!std::isnan(pass.estimate.relMse))
+        std::printf("; estimated relMSE %.3e (band %.1e .. %.1e)", pass.estimate.relMse, pass.estimate.low,
+                    pass.estimate.high);
     std::printf(")\n");
     std::fflush(stdout);
 }

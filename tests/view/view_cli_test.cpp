@@ -71,7 +71,7 @@ TEST_CASE("ripple-view refuses a screenshot it cannot write before opening a win
 // The viewer's full-size passes of one sample accumulate as ripple-render's frames do (same device, seed,
 // camera and batches), so the two images agree; the check allows any unbiased difference: mean luminance
 // within 5%, and the Cornell box's red wall on the left and green on the right (margins as in
-// render_cli_test's Cornell case, measured ratios 3.7 and 1.5).
+// render_cli_test's Cornell case, measured ratios 3.7 and 1.5); both report the same error estimate.
 TEST_CASE("xvfb: ripple-view --screenshot renders the Cornell demo as ripple-render does") {
     TempFolder dir;
     const auto viewed = dir / "view.png", rendered = dir / "render.png";
@@ -95,4 +95,12 @@ TEST_CASE("xvfb: ripple-view --screenshot renders the Cornell demo as ripple-ren
     CHECK(std::abs(meanA - meanB) <= 0.05 * meanB);
     CHECK(a.mean(0, 8, 21, 43, 0) > 2.0 * a.mean(0, 8, 21, 43, 1));        // left: red
     CHECK(a.mean(56, 64, 21, 43, 1) > 1.25 * a.mean(56, 64, 21, 43, 0));   // right: green
+    // The stats' error estimate is ripple-render's: the same samples dealt into the same halves give the same
+    // number (to the printed digits and float rounding of the mapped averages).
+    const auto estimateIn = [](const std::string& output) {
+        const size_t at = output.rfind("estimated relMSE ");
+        REQUIRE_MESSAGE(at != std::string::npos, output);
+        return std::stod(output.substr(at + 17));
+    };
+    CHECK(estimateIn(view.output) == doctest::Approx(estimateIn(render.output)).epsilon(0.01));
 }
