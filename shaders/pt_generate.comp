@@ -64,7 +64,16 @@ void main() {
         }
         direction = normalize(direction);
     }
-    RaysRef(params.rays).rays[i] = Ray(vec4(origin, 0.0), vec4(direction, INFINITY));
+    // Near and far clip planes along forward: distances along this ray, whose direction is unit (or forward).
+    float tmin = 0.0, tmax = INFINITY;
+    if (kind != CAMERA_OMNIDIRECTIONAL) {
+        float along = dot(direction, f.cameraForward.xyz);
+        if (along > 0.0) {
+            tmin = f.cameraUp.w / along;
+            tmax = f.cameraFar / along;
+        }
+    }
+    RaysRef(params.rays).rays[i] = Ray(vec4(origin, tmin), vec4(direction, tmax));
     PathsRef(params.paths).paths[i] = PathState(vec4(1.0), pixel, 0u, PATH_FLAG_CAMERA, 0.0);
     Vec4sRef(f.sampleRadiance).values[pixel] = vec4(0.0);
     if (f.depth != 0ul) FloatsRef(f.depth).values[pixel] = INFINITY;

@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +32,8 @@ void writeCamera(const Camera& camera, gpu::FrameConstants& f) {
     if (camera.apertureRadius > 0.0f && !positive(camera.focusDistance)) reject("focusDistance must be finite and positive");
     for (int i = 0; i < 4; ++i)
         if (!std::isfinite(camera.imageRegion[i])) reject("imageRegion is NaN or Inf");
+    if (!(camera.nearClip >= 0.0f && std::isfinite(camera.nearClip) && camera.farClip > camera.nearClip))
+        reject("near must be finite and >= 0, and far greater than near");
 
     const glm::vec3 forward = glm::normalize(camera.direction);
     glm::vec3 right = glm::cross(forward, camera.up);
@@ -56,8 +59,10 @@ void writeCamera(const Camera& camera, gpu::FrameConstants& f) {
     f.cameraPosition = gpu::vec4(camera.position, std::bit_cast<float>(kind));
     f.cameraForward = gpu::vec4(forward, lens ? camera.apertureRadius : 0.0f);
     f.cameraRight = gpu::vec4(halfWidth * right, lens ? camera.focusDistance : 1.0f);
-    f.cameraUp = gpu::vec4(halfHeight * up, 0.0f);
+    const bool clips = camera.kind != Kind::Omnidirectional;
+    f.cameraUp = gpu::vec4(halfHeight * up, clips ? camera.nearClip : 0.0f);
     f.imageRegion = camera.imageRegion;
+    f.cameraFar = clips ? camera.farClip : std::numeric_limits<float>::infinity();
 }
 
 }  // namespace ripple::core

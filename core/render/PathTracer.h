@@ -23,6 +23,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -40,6 +41,10 @@ struct Camera {
     float apertureRadius = 0.0f;          // perspective: lens radius for depth of field (0: pinhole)
     float focusDistance = 1.0f;           // perspective: distance of the plane in focus along `direction`
     glm::vec4 imageRegion{0.0f, 0.0f, 1.0f, 1.0f}; // (minX, minY, maxX, maxY) of the screen in [0,1]^2
+    // Perspective and orthographic: camera rays see only what lies between these distances along
+    // `direction` (planes, not spheres).
+    float nearClip = 0.0f;
+    float farClip = std::numeric_limits<float>::infinity();
 };
 
 struct RenderSettings {

@@ -115,7 +115,8 @@ struct FrameConstants {
     vec4 cameraForward;    // unit; w: aperture radius (perspective depth of field; 0: pinhole)
     vec4 cameraRight;      // half the screen's width: at unit distance (perspective), in world units
                            // (orthographic), unit (omnidirectional); w: focus distance
-    vec4 cameraUp;         // half the screen's height, as cameraRight
+    vec4 cameraUp;         // half the screen's height, as cameraRight; w: near clip distance along forward
+                           // (perspective, orthographic; 0: none)
     vec4 imageRegion;      // (minX, minY, maxX, maxY) of the screen in [0,1]^2
     vec4 background;       // RGBA seen by camera rays that miss
     vec4 ambient;          // rgb: ambientColor * ambientRadiance, seen by secondary rays that miss
@@ -131,7 +132,7 @@ struct FrameConstants {
     float maxRadiance;        // clamp of each contribution's largest component; 0: no clamp
     uint lightSampling;       // LIGHT_SAMPLING_*
     float phaseAnisotropy;    // Henyey-Greenstein g of scattering in volumes, in (-1, 1); 0: isotropic
-    uint pad0;
+    float cameraFar;          // far clip distance along forward (perspective, orthographic); INFINITY: none
 };
 
 // Push constants of every pt_*.comp stage; each reads the fields it needs (0 where unused).

@@ -11,7 +11,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 
 using ripple::test::Image;
@@ -403,6 +405,62 @@ TEST_CASE("depth channel: distance to the first hit, +inf where nothing is hit")
         CHECK(std::isinf(image.depth[y * 16 + 13]));                            // right: nothing
     }
     CHECK(s.log.problems() == 0);
+}
+
+// Clip planes: two planes fill the view of a camera 5 units above the lower one and 3 above the upper one;
+// "near" and "far" are distances along the view direction (planes for both kinds of camera), so the depth
+// channel shows which plane each setting leaves. The perspective camera looks at them through a narrow
+// field of view, its pixels' rays within 1% of the axis's length.
+TEST_CASE("camera near and far: clip planes along the view direction, perspective and orthographic") {
+    RenderSession s;
+    const auto plane = [&](float y) {
+        ANARIGeometry quad = s.keep(anariNewGeometry(s.device, "quad"));
+        s.setObject(quad, "vertex.position", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-9, y, 9}, {9, y, 9}, {9, y, -9}, {-9, y, -9}}));
+        s.commit(quad);
+        return s.surface(quad, s.matte(glm::vec3(0.5f)));
+    };
+    ANARIWorld world = s.world({plane(0.0f), plane(2.0f)}, {});
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    for (const char* subtype : {"orthographic", "perspective"}) {
+        CAPTURE(subtype);
+        ANARICamera camera = s.keep(anariNewCamera(s.device, subtype));
+        s.set(camera, "position", glm::vec3(0, 5, 0));
+        s.set(camera, "direction", glm::vec3(0, -1, 0));
+        s.set(camera, "up", glm::vec3(0, 0, -1));
+        if (std::string(subtype) == "perspective") s.set(camera, "fovy", 0.2f);
+        for (const auto& [nearClip, farClip, expected] :
+             std::vector<std::tuple<float, float, float>>{{0.0f, kInf, 3.0f},   // defaults: the upper plane
+                                                          {4.0f, kInf, 5.0f},   // the upper one clipped
+                                                          {0.0f, 4.0f, 3.0f},   // far behind it
+                                                          {1.0f, 2.5f, kInf},   // both beyond far
+                                                          {3.5f, 4.5f, kInf}}) {// between the two
+            CAPTURE(nearClip);
+            CAPTURE(farClip);
+            s.set(camera, "near", nearClip);
+            if (std::isinf(farClip)) anariUnsetParameter(s.device, camera, "far");
+            else s.set(camera, "far", farClip);
+            s.commit(camera);
+            const Image image = s.render(s.frame(world, camera, s.renderer(1, 1), {8, 8}, ANARI_FLOAT32_VEC4, true));
+            REQUIRE(image.depth.size() == 64u);
+            for (const float depth : image.depth) {
+                if (std::isinf(expected)) CHECK(std::isinf(depth));
+                else CHECK(depth == doctest::Approx(expected).epsilon(0.01));
+            }
+        }
+    }
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    // far not beyond near is refused with a warning naming it, and nothing is clipped.
+    ANARICamera bad = s.keep(anariNewCamera(s.device, "orthographic"));
+    s.set(bad, "position", glm::vec3(0, 5, 0));
+    s.set(bad, "direction", glm::vec3(0, -1, 0));
+    s.set(bad, "up", glm::vec3(0, 0, -1));
+    s.set(bad, "near", 2.0f);
+    s.set(bad, "far", 1.0f);
+    s.commit(bad);
+    const Image image = s.render(s.frame(world, bad, s.renderer(1, 1), {8, 8}, ANARI_FLOAT32_VEC4, true));
+    CHECK(s.log.count({"parameter 'far' must be greater than 'near'"}) == 1);
+    CHECK(image.depth[27] == doctest::Approx(3.0f).epsilon(0.01));  // near 2 kept, far dropped
 }
 
 TEST_CASE("invalid geometry beside valid geometry renders nothing: the image is unchanged") {

@@ -4,6 +4,7 @@
 #include "anari/device/scene/ArrayConversion.h"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace ripple::device {
@@ -71,6 +72,20 @@ bool Camera::pullView(core::Camera::Kind kind) {
     if (!allFinite(camera_.imageRegion) || !(region.upper.x > region.lower.x) || !(region.upper.y > region.lower.y)) {
         reportWarning("parameter 'imageRegion' must be a non-empty finite box; using (0, 0)-(1, 1)");
         camera_.imageRegion = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+    }
+    if (kind != core::Camera::Kind::Omnidirectional) {  // clip planes: perspective and orthographic only
+        const float nearClip = get<float>("near", 0.0f);
+        const float farClip = get<float>("far", std::numeric_limits<float>::infinity());
+        if (!(std::isfinite(nearClip) && nearClip >= 0.0f)) {
+            reportWarning("parameter 'near' must be finite and not negative; no near clipping");
+        } else {
+            camera_.nearClip = nearClip;
+        }
+        if (!(farClip > camera_.nearClip)) {  // NaN included
+            reportWarning("parameter 'far' must be greater than 'near'; no far clipping");
+        } else {
+            camera_.farClip = farClip;
+        }
     }
     return true;
 }

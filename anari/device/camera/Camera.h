@@ -1,5 +1,5 @@
 // ANARI camera: perspective, orthographic and omnidirectional become a core::Camera. When the application sets no
-// "aspect", the frame's width / height is used.
+// "aspect", the frame's width / height is used. Perspective and orthographic cameras clip at "near" and "far".
 #pragma once
 
 #include "anari/device/object/Object.h"

@@ -1,6 +1,6 @@
 // Camera subtype "perspective" (KHR_CAMERA_PERSPECTIVE): a pinhole with vertical field of view "fovy"
 // (radians, default pi/3), with depth of field (KHR_CAMERA_DEPTH_OF_FIELD) from "apertureRadius" (default
-// 0: a pinhole) and "focusDistance" (default 1). "near" and "far" clipping are not supported yet.
+// 0: a pinhole) and "focusDistance" (default 1); "near" and "far" clip planes (Camera.cpp).
 #include "anari/device/camera/Camera.h"
 
 #include <cmath>
