@@ -21,13 +21,16 @@ void Volume::commit() {
     useChild(field_);
     visible_ = get<bool>("visible", true);
 
-    // valueRange: FLOAT32_BOX1 or FLOAT64_BOX1 (two numbers); an inverted range is taken in order.
+    // valueRange: FLOAT32_BOX1 or FLOAT64_BOX1 (two numbers); an inverted range is taken in order. The same
+    // two numbers as FLOAT32_VEC2 or FLOAT64_VEC2, which the SDK's own CTS and test scenes pass, read alike.
     valueRange_ = glm::vec2(0.0f, 1.0f);
     const ANARIDataType rangeType = parameterType("valueRange");
     if (const Parameter* p = findParameter("valueRange")) {
-        if (rangeType == ANARI_FLOAT32_BOX1 && p->bytes.size() >= 2 * sizeof(float)) {
+        const bool floats = rangeType == ANARI_FLOAT32_BOX1 || rangeType == ANARI_FLOAT32_VEC2;
+        const bool doubles = rangeType == ANARI_FLOAT64_BOX1 || rangeType == ANARI_FLOAT64_VEC2;
+        if (floats && p->bytes.size() >= 2 * sizeof(float)) {
             std::memcpy(&valueRange_, p->bytes.data(), 2 * sizeof(float));
-        } else if (rangeType == ANARI_FLOAT64_BOX1 && p->bytes.size() >= 2 * sizeof(double)) {
+        } else if (doubles && p->bytes.size() >= 2 * sizeof(double)) {
             double range[2];
             std::memcpy(range, p->bytes.data(), sizeof(range));
             valueRange_ = glm::vec2(float(range[0]), float(range[1]));
