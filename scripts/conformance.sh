@@ -4,7 +4,8 @@
 #   scripts/conformance.sh [options] <sdk-prefix>
 #
 # <sdk-prefix> is an installed ANARI-SDK (bin/anariInfo, bin/anariRenderTests, bin/anariCts, lib/libanari.so;
-# lib/libanari_library_helide.so when it was built with helide). docs/conformance.md says how to build it.
+# lib/libanari_library_helide.so when it was built with helide). docs/conformance.md says how to build it,
+# helide included (it needs Embree 4; scripts/helide-local-embree.cmake builds it from a local source tree).
 # Run by hand, not in CI. The script builds nothing: with helide in the SDK it generates helide's ground
 # truth for the CTS; without helide the CTS's image cases are skipped (only its behaviour checks score)
 # unless --reference names another library.
@@ -19,7 +20,13 @@
 #                         a consistency check between devices, not conformance, and the table says so.
 #   --embree-archive ZIP  when the SDK lacks helide: check that ZIP is the Embree 4.3.3 source archive the
 #                         SDK pins and print where to put it so that the SDK's configure step uses it offline
+#   --embree-source DIR   when the SDK lacks helide: check that DIR is an Embree 4.3.3 source tree (the
+#                         upstream v4.3.3 tag, or Debian trixie's embree_4.3.3+dfsg.orig.tar.xz unpacked) and
+#                         print the SDK configure options that build helide from it offline
+#   --render-reference    also render every anariRenderTests scene with the reference device (helide, from
+#                         the SDK) and give each device's images' PSNR against it (column 'dB helide')
 #   --render-size W H     anariRenderTests image size (default: the tool's own, 1024 768)
+#   --render-filter "A B" only these anariRenderTests scenes, e.g. "demo/cornell_box test/pbr_spheres"
 #   --cts-size N          CTS image width and height (default: the tool's own, 256)
 #   --cts-filter PATTERN  run only the CTS tests matching PATTERN (anariCts --filter syntax)
 #   --timeout S           limit for each process, in seconds (default 600); a process past it is a hang
@@ -46,6 +53,9 @@ devices="ripple ripple_ptc"
 out=""
 reference="helide"
 embree_archive=""
+embree_source=""
+render_ref=0
+render_filter=""
 render_w=""; render_h=""
 cts_size=""
 cts_filter=""
@@ -59,6 +69,9 @@ while [ $# -gt 0 ]; do
     --out) out=$2; shift 2 ;;
     --reference) reference=$2; shift 2 ;;
     --embree-archive) embree_archive=$2; shift 2 ;;
+    --embree-source) embree_source=$2; shift 2 ;;
+    --render-reference) render_ref=1; shift ;;
+    --render-filter) render_filter=$2; shift 2 ;;
     --render-size) render_w=$2; render_h=$3; shift 3 ;;
     --cts-size) cts_size=$2; shift 2 ;;
     --cts-filter) cts_filter=$2; shift 2 ;;
@@ -110,6 +123,31 @@ for t in anariInfo anariRenderTests anariCts; do
 done
 
 have_helide=0; [ -e "$sdk_lib/libanari_library_helide.so" ] && have_helide=1
+
+if [ -n "$embree_source" ]; then
+  src=$(cd "$embree_source" 2>/dev/null && pwd) || die "no such folder: $embree_source"
+  ver=$(sed -n 's/^SET(EMBREE_VERSION_\(MAJOR\|MINOR\|PATCH\) \([0-9]*\)).*/\2/p' "$src/CMakeLists.txt" 2>/dev/null | paste -sd.)
+  if [ -e "$src/include/embree4/rtcore.h" ] && [ -d "$src/common/tasking" ] && [ "$ver" = 4.3.3 ]; then
+    echo "Embree source OK ($ver). To build helide from it offline, configure the SDK with:"
+    echo "  -DBUILD_HELIDE_DEVICE=ON -DCMAKE_PROJECT_local_embree_INCLUDE=$repo_dir/scripts/helide-local-embree.cmake \\"
+    echo "  -DHELIDE_EMBREE_SOURCE=$src"
+    [ $have_helide = 1 ] && echo "(this SDK already has helide)"
+  else
+    echo "Embree source $src is not an Embree 4.3.3 source tree (version '${ver:-?}'; the SDK 0.16 pins 4.3.3)."
+  fi
+  echo
+fi
+
+# the device that renders the reference anariRenderTests images (--render-reference): from the SDK or
+# from the Ripple folder
+ref_dev=""
+if [ $render_ref = 1 ]; then
+  if [ -e "$sdk_lib/libanari_library_$reference.so" ] || [ -e "$ripple_lib/libanari_library_$reference.so" ]; then
+    ref_dev=$reference
+  else
+    echo "conformance.sh: note: no libanari_library_$reference.so: --render-reference renders nothing" >&2
+  fi
+fi
 
 # ---------------------------------------------------------------------------------------------------------
 # helpers
@@ -197,6 +235,26 @@ try:
         diff = [abs(x - y) for x, y in zip(pa, pb)]
         pixels = sum(1 for i in range(0, len(diff), bpp) if any(diff[i:i + bpp]))
         print('differs:%d:%d' % (pixels, max(diff)))
+    elif cmd == 'psnr':
+        # as the CTS does: alpha composited over white, data range 255, all channels together
+        import math
+        def rgb(img):
+            w, h, bpp, px = img
+            if bpp in (3, 1): return px
+            if bpp == 4:
+                out = bytearray(w * h * 3)
+                for i in range(w * h):
+                    a = px[4 * i + 3]
+                    for c in range(3):
+                        out[3 * i + c] = (px[4 * i + c] * a + 255 * (255 - a) + 127) // 255
+                return bytes(out)
+            return bytes(v for i in range(0, len(px), 2) for v in [(px[i] * px[i + 1] + 255 * (255 - px[i + 1]) + 127) // 255])
+        a, b = load(sys.argv[2]), load(sys.argv[3])
+        if a[:2] != b[:2]: print('size'); sys.exit()
+        pa, pb = rgb(a), rgb(b)
+        if len(pa) != len(pb): print('channels'); sys.exit()
+        mse = sum((x - y) * (x - y) for x, y in zip(pa, pb)) / len(pa)
+        print('inf' if mse == 0 else '%.1f' % (10 * math.log10(255 * 255 / mse)))
 except Exception as e:
     print('unreadable:%s' % e)
 PY
@@ -232,13 +290,15 @@ test/random_spheres test/textured_cube test/triangle_attributes"
 # images differ between any two runs, so "same" is not asked of them.
 clock_scenes="perf/spinning_cubes"
 
-declare -A scene_result scene_same scene_msgs scene_vs_first
+[ -n "$render_filter" ] && scenes=$render_filter
+
+declare -A scene_result scene_same scene_msgs scene_vs_first scene_db
 declare -A render_ok render_crash
 render_args=()
 [ -n "$render_w" ] && render_args=(--image_size "$render_w" "$render_h")
 
 if [ $do_render = 1 ] && [ -x "$prefix/bin/anariRenderTests" ]; then
-  for dev in $devices; do
+  for dev in $ref_dev $devices; do
     base="$out/render/$dev"; mkdir -p "$base/sequence"
     seq_rc=$(run_limited "$base/sequence.log" "$base/sequence" \
       "$prefix/bin/anariRenderTests" -l "$dev" "${render_args[@]}")
@@ -246,7 +306,7 @@ if [ $do_render = 1 ] && [ -x "$prefix/bin/anariRenderTests" ]; then
     case "$seq_rc" in 0|1|2|124|137) ;; *)
       backtrace "$base/bt-sequence.txt" "$base/sequence" "$prefix/bin/anariRenderTests" -l "$dev" "${render_args[@]}" ;;
     esac
-    for s in $(sed -n "s/^rendering '\([a-z0-9]*\)\/\1_\(.*\)_[0-9]*\.png'.*/\1\/\2/p" "$base/sequence.log" | sort -u); do
+    [ -z "$render_filter" ] && for s in $(sed -n "s/^rendering '\([a-z0-9]*\)\/\1_\(.*\)_[0-9]*\.png'.*/\1\/\2/p" "$base/sequence.log" | sort -u); do
       case " $(echo $scenes) " in *" $s "*) ;; *) scenes="$scenes $s" ;; esac
     done
     render_ok[$dev]=0; render_crash[$dev]=0
@@ -282,7 +342,7 @@ if [ $do_render = 1 ] && [ -x "$prefix/bin/anariRenderTests" ]; then
         # the same scene through the first device in the list (ripple_ptc against ripple): pixel-identical,
         # within 2 of 255 per channel, or different
         first=${devices%% *}; vs="-"
-        if [ "$dev" != "$first" ] && [ -d "$out/render/$first/alone/$tag" ]; then
+        if [ "$dev" != "$first" ] && [ "$dev" != "$ref_dev" ] && [ -d "$out/render/$first/alone/$tag" ]; then
           vs="yes"
           for img in $images; do
             r=$(imgtool same "$dir/$img" "$out/render/$first/alone/$tag/$img")
@@ -294,6 +354,17 @@ if [ $do_render = 1 ] && [ -x "$prefix/bin/anariRenderTests" ]; then
           case " $clock_scenes " in *" $s "*) [ "$vs" = no ] && vs="clock" ;; esac
         fi
         scene_vs_first["$dev|$s"]=$vs
+        # PSNR against the reference device's image of the scene (the lowest over the scene's images)
+        if [ -n "$ref_dev" ] && [ "$dev" != "$ref_dev" ]; then
+          db=""
+          for img in $images; do
+            [ -e "$out/render/$ref_dev/alone/$tag/$img" ] || { db="-"; break; }
+            r=$(imgtool psnr "$dir/$img" "$out/render/$ref_dev/alone/$tag/$img")
+            case "$r" in inf) r=99 ;; [0-9]*) ;; *) db="?"; break ;; esac
+            if [ -z "$db" ] || awk -v a="$r" -v b="$db" 'BEGIN {exit !(a < b)}'; then db=$r; fi
+          done
+          scene_db["$dev|$s"]=${db:--}
+        fi
         [ $blanks -gt 0 ] && notes="$blanks/$(echo "$images" | wc -l) blank"
         [ -n "$diffs" ] && notes="${notes:+$notes; }vs sequence (pixels:max)$diffs"
         [ $blanks -eq 0 ] && render_ok[$dev]=$((render_ok[$dev] + 1))
@@ -407,6 +478,7 @@ if [ $do_render = 1 ] && [ -x "$prefix/bin/anariRenderTests" ]; then
   for dev in $devices; do
     if [ "$dev" = "$first" ]; then printf ' | %-12s %-5s %-8s' "$dev" "same" "messages"
     else printf ' | %-12s %-5s %-8s %-8s' "$dev" "same" "messages" "=$first"; fi
+    [ -n "$ref_dev" ] && printf ' %-9s' "dB $ref_dev"
   done; echo
   for s in sequence $scenes; do
     printf '%-*s' $w "$s"
@@ -417,11 +489,16 @@ if [ $do_render = 1 ] && [ -x "$prefix/bin/anariRenderTests" ]; then
         m=${scene_msgs[$dev|$s]}; printf ' | %-12s %-5s %-8s' "${scene_result[$dev|$s]}" "${scene_same[$dev|$s]}" "${m%%  *}"
       fi
       [ "$dev" = "$first" ] || printf ' %-8s' "${scene_vs_first[$dev|$s]:-}"
+      [ -n "$ref_dev" ] && printf ' %-9s' "${scene_db[$dev|$s]:-}"
     done; echo
   done
   nsc=$(echo $scenes | wc -w)
   echo "  same: alone = in the sequence, pixel for pixel (clock: the scene animates by the clock); messages:"
   echo "  distinct warnings/errors the device printed; =$first: the image equals $first's (<=2: within 2 of 255)"
+  if [ -n "$ref_dev" ]; then
+    echo "  dB $ref_dev: PSNR against $ref_dev's image of the scene (lowest of the scene's images; 99: identical);"
+    echo "  $ref_dev rendered: $(for s in $scenes; do printf '%s ' "${scene_result[$ref_dev|$s]}"; done | tr ' ' '\n' | sort | uniq -c | awk '{printf "%s%s x%s", (NR>1?", ":""), $2, $1}')"
+  fi
   printf '%-*s' $w "scenes rendered, not blank"
   for dev in $devices; do printf ' | %-29s' "${render_ok[$dev]}/$nsc"; done; echo
   printf '%-*s' $w "crashes (scenes alone)"
