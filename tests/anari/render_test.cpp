@@ -116,6 +116,40 @@ TEST_CASE("geometry sphere: per-vertex radii and colours") {
     checkReference(s, "geometry_sphere", renderStage(s, {s.surface(geometry, s.matteFromAttribute())}));
 }
 
+// Attribute arrays longer than the vertices or primitives need are read up to what is needed, as helide does
+// and the SDK's CTS expects (its curve and cylinder cases size per-primitive arrays for the vertices);
+// shorter ones are an error naming the array, and the geometry renders nothing.
+TEST_CASE("geometry attribute arrays: longer than needed is read in part, shorter is an error") {
+    for (const size_t colours : {size_t(3), size_t(1)}) {
+        CAPTURE(colours);
+        RenderSession s;
+        ANARIGeometry geometry = spheres(s, {{-0.5f, 0.0f, 0.0f}, {0.5f, 0.0f, 0.0f}}, 0.4f);
+        const std::vector<glm::vec3> palette{{0.9f, 0.1f, 0.1f}, {0.1f, 0.9f, 0.1f}, {0.1f, 0.1f, 0.9f}};
+        s.setObject(geometry, "vertex.color", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>(palette.begin(), palette.begin() + long(colours))));
+        s.commit(geometry);
+        ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
+        s.set(camera, "position", glm::vec3(0, 0, 3));
+        s.set(camera, "direction", glm::vec3(0, 0, -1));
+        s.set(camera, "up", glm::vec3(0, 1, 0));
+        s.set(camera, "height", 1.0f);
+        s.commit(camera);
+        ANARIRenderer renderer = s.renderer(4, 2, glm::vec4(0.0f));  // the ambient light needs a bounce
+        s.set(renderer, "ambientRadiance", 1.0f);
+        s.commit(renderer);
+        const Image image = s.render(s.frame(s.world({s.surface(geometry, s.matteFromAttribute())}, {}), camera,
+                                             renderer, {16, 8}, ANARI_FLOAT32_VEC4));
+        if (colours == 3) {
+            CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+            CHECK(image.at(3, 4).r > 4.0f * image.at(3, 4).g);   // left sphere: the first colour, red
+            CHECK(image.at(12, 4).g > 4.0f * image.at(12, 4).r); // right sphere: the second, green
+        } else {
+            CHECK_MESSAGE(s.log.count({"'vertex.color' has 1 elements, needs 2"}) == 1, s.log.dump());
+            for (const glm::vec4& p : image.linear) CHECK(p.r == 0.0f);  // nothing rendered
+        }
+    }
+}
+
 TEST_CASE("geometry cylinder: indexed, per-cylinder radii, capped") {
     RenderSession s;
     ANARIGeometry geometry = s.keep(anariNewGeometry(s.device, "cylinder"));

@@ -131,11 +131,14 @@ std::vector<glm::vec4> Geometry::pullVectors(std::string_view name, size_t count
         invalidate(elementTypeProblem(name, array->elementType(), "numbers (e.g. FLOAT32_VEC3)"));
         return {};
     }
-    if (values->size() != count) {
-        invalidate("parameter " + quoted(name) + " has " + std::to_string(values->size()) + " elements, expected " +
+    // Longer than needed is allowed (the SDK's CTS passes per-primitive arrays sized for the vertices, as
+    // helide reads only the first elements); shorter is not.
+    if (values->size() < count) {
+        invalidate("parameter " + quoted(name) + " has " + std::to_string(values->size()) + " elements, needs " +
                    std::to_string(count));
         return {};
     }
+    values->resize(count);
     if (std::optional<std::string> problem = nonFiniteProblem(name, *values)) {
         invalidate(*problem);
         return {};

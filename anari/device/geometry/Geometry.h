@@ -35,8 +35,8 @@ protected:
     // An optional index array of `components` integers per primitive, each below vertexCount. Fills
     // `indices` (empty when unset); false after invalidate() for a wrong type or an index out of range.
     bool pullIndices(std::string_view name, int components, size_t vertexCount, std::vector<uint64_t>& indices);
-    // An optional per-vertex or per-primitive array of float vectors with exactly `count` elements; empty
-    // when unset. A wrong type or count, or a NaN/Inf element, invalidates the geometry (reported once).
+    // An optional per-vertex or per-primitive array of float vectors, its first `count` elements; empty when
+    // unset. A wrong type, fewer elements, or a NaN/Inf element invalidates the geometry (reported once).
     std::vector<glm::vec4> pullVectors(std::string_view name, size_t count, glm::vec4 fill = {0, 0, 0, 1});
     // The uniform "color" repeated `count` times; empty when unset. It applies when neither
     // "primitive.color" nor "vertex.color" is given.
