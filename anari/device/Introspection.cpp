@@ -177,7 +177,7 @@ const std::vector<Entry>& table() {
              {"inAttribute", ANARI_STRING, "texture coordinate attribute (first component used)", "attribute0",
               kAttributes},
              {"filter", ANARI_STRING, "texel filter", "linear", kFilters},
-             {"wrapMode1", ANARI_STRING, "wrap mode", "clampToEdge", kWrapModes},
+             {"wrapMode", ANARI_STRING, "wrap mode", "clampToEdge", kWrapModes},
              {"inTransform", ANARI_FLOAT32_MAT4, "applied to the attribute before lookup", kIdentity},
              {"inOffset", ANARI_FLOAT32_VEC4, "added after inTransform", kNoOffset},
              {"outTransform", ANARI_FLOAT32_MAT4, "applied to the texel", kIdentity},

@@ -164,11 +164,19 @@ TEST_CASE("emissive from an image2D sampler (nearest) is seen exactly, texel by 
         }
 }
 
-TEST_CASE("image1D sampler: a colour map along u, linear filter between texel centres") {
+TEST_CASE("image1D sampler: a colour map along u, linear filter between texel centres, wrapMode") {
+    // Two texels: black at u = 0.25, white at u = 0.75; clamped beyond, linear between. Then shifted by
+    // inOffset 0.5 with "wrapMode" (the spec's name for image1D) "repeat": u + 0.5 past 1 wraps to u - 0.5.
+    for (const bool shiftedAndRepeated : {false, true}) {
+    CAPTURE(shiftedAndRepeated);
     RenderSession s;
-    // Two texels: black at u = 0.25, white at u = 0.75; clamped beyond, linear between.
     ANARIArray1D map = s.array(ANARI_FLOAT32_VEC4, std::vector<glm::vec4>{{0, 0, 0, 1}, {1, 1, 1, 1}});
     ANARISampler sampler = imageSampler(s, "image1D", map, "linear");
+    if (shiftedAndRepeated) {
+        s.set(sampler, "wrapMode", "repeat");
+        s.set(sampler, "inOffset", glm::vec4(0.5f, 0.0f, 0.0f, 0.0f));
+        s.commit(sampler);
+    }
     ANARIMaterial material = physicallyBased(s);
     s.set(material, "baseColor", glm::vec3(0.0f));
     s.setObject(material, "emissive", ANARI_SAMPLER, sampler);
@@ -182,10 +190,17 @@ TEST_CASE("image1D sampler: a colour map along u, linear filter between texel ce
     CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
     for (uint32_t x = 0; x < 64; ++x) {
         const float u = (float(x) + 0.5f) / 64.0f;
-        const float expected = std::clamp((u - 0.25f) / 0.5f, 0.0f, 1.0f);
+        // Repeating, the texel centres recur every 1: the map rises over [0.25, 0.75] and falls back linearly
+        // from white at 0.75 to black at 1.25 (= 0.25); shifted by 0.5, pixel u reads u + 0.5.
+        float expected = std::clamp((u - 0.25f) / 0.5f, 0.0f, 1.0f);
+        if (shiftedAndRepeated) {
+            const float v = u + 0.5f > 1.0f ? u - 0.5f : u + 0.5f;
+            expected = v < 0.25f ? 0.5f - 2.0f * v : v <= 0.75f ? (v - 0.25f) / 0.5f : 1.0f - 2.0f * (v - 0.75f);
+        }
         INFO("pixel " << x << " u " << u);
         CHECK(std::abs(image.at(x, 0).r - expected) <= 1.0f / 64.0f + 1e-4f);
         CHECK(std::abs(image.at(x, 1).g - expected) <= 1.0f / 64.0f + 1e-4f);
+    }
     }
 }
 

@@ -52,7 +52,8 @@ public:
         if (filter != "linear" && filter != "nearest")
             reportWarning("parameter 'filter' has unknown value '" + filter + "'; using 'linear'");
         texture.linearFilter = filter != "nearest";
-        texture.wrapS = wrapMode(checkedWrapMode("wrapMode1"));
+        // image1D's is "wrapMode" (KHR_SAMPLER_IMAGE1D); image2D and image3D number theirs.
+        texture.wrapS = wrapMode(checkedWrapMode(dimensions_ == 1 ? "wrapMode" : "wrapMode1"));
         texture.wrapT = dimensions_ == 1 ? core::Texture::Wrap::ClampToEdge : wrapMode(checkedWrapMode("wrapMode2"));
         texture.wrapR = dimensions_ == 3 ? wrapMode(checkedWrapMode("wrapMode3")) : core::Texture::Wrap::ClampToEdge;
         texture.inTransform = get<glm::mat4>("inTransform", glm::mat4(1.0f));
