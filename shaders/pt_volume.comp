@@ -28,6 +28,7 @@ void main() {
     bool collided = false;
     bool ranOut = false;
     vec3 albedo = vec3(0.0);
+    uint objectId = 0xFFFFFFFFu, instanceId = 0xFFFFFFFFu;
     uint collisions = 0u;
     for (uint v = 0u; v < scene.volumeCount; ++v) {
         VolumeRecord volume = VolumesRef(scene.volumes).volumes[v];
@@ -37,6 +38,8 @@ void main() {
         if (track.transmittance == 0.0 && track.t < tEnd) {
             tEnd = track.t;
             albedo = track.albedo;
+            objectId = volume.objectId;
+            instanceId = volume.instanceId;
             collided = true;
         }
     }
@@ -60,7 +63,7 @@ void main() {
     r.materialKind = MATERIAL_VOLUME;
     r.f0 = 0.0;
     r.primitiveId = 0xFFFFFFFFu;
-    r.objectId = 0xFFFFFFFFu;
-    r.instanceId = 0xFFFFFFFFu;
+    r.objectId = objectId;
+    r.instanceId = instanceId;
     SurfacesRef(params.surfaces).records[i] = r;
 }

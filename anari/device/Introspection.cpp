@@ -327,6 +327,7 @@ const std::vector<Entry>& table() {
              {"opacity", ANARI_ARRAY1D, "opacity over the value range (FLOAT32)"},
              {"unitDistance", ANARI_FLOAT32, "distance over which opacity o lets 1 - o through", &kOne},
              {"visible", ANARI_BOOL, "whether it renders", &kTrue},
+             {"id", ANARI_UINT32, "object id for the objectId channel where it scatters; ~0u when unset"},
          }})},
         {ANARI_GROUP, "", "surfaces, volumes and lights placed together by instances",
          joined({kName, {

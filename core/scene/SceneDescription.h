@@ -222,6 +222,8 @@ struct Volume {
     std::vector<float> opacities;         // likewise; empty: 1
     float unitDistance = 1.0f;
     glm::mat4 transform{1.0f};            // object to world; must be affine and invertible
+    uint32_t objectId = ~0u;              // the application's ids (objectId, instanceId channels); ~0u: unset
+    uint32_t instanceId = ~0u;
 };
 
 struct SceneDescription {

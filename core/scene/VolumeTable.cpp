@@ -76,6 +76,8 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         record.dimY = v.dims.y;
         record.dimZ = v.dims.z;
         record.filterMode = v.linearFilter ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
+        record.objectId = v.objectId;
+        record.instanceId = v.instanceId;
         const glm::uvec3 macro = glm::max((extent + gpu::VOLUME_MACROCELL - 1u) / gpu::VOLUME_MACROCELL, glm::uvec3(1u));
         record.macroX = macro.x;
         record.macroY = macro.y;

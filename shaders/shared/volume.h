@@ -31,7 +31,11 @@ struct VolumeRecord {
     uint voxelOffset;      // first float of this field in SceneDesc.volumeData
     uint majorantOffset;   // first float of its macrocell majorants (world-space extinction per unit length)
     uint tableOffset;      // first float of its table: tableSize entries of 4 floats (albedo rgb, extinction)
+    uint objectId;         // the application's ids for the objectId and instanceId channels (~0u: unset)
+    uint instanceId;
     uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 RIPPLE_GPU_END

@@ -21,8 +21,8 @@ struct Placement {
     uint32_t instanceId = kNoInstance;
 };
 
-// Calls onSurface(surface, placement, objectId) for every renderable surface, onVolume(volume, placement)
-// for every renderable volume and onLight(light, placement) for every valid light, in the order the
+// Calls onSurface(surface, placement, objectId) for every renderable surface, onVolume(volume, placement,
+// objectId) for every renderable volume and onLight(light, placement) for every valid light, in the order the
 // application gave them. Unset ids are ~0u, as the spec says.
 template <class OnSurface, class OnVolume, class OnLight>
 void forEachPlaced(const World& world, OnSurface&& onSurface, OnVolume&& onVolume, OnLight&& onLight) {
@@ -31,7 +31,7 @@ void forEachPlaced(const World& world, OnSurface&& onSurface, OnVolume&& onVolum
         for (size_t i = 0; i < surfaces.size(); ++i)
             if (surfaces[i]->renderable()) onSurface(*surfaces[i], placement, surfaces[i]->id().value_or(kNoInstance));
         for (Volume* volume : volumes)
-            if (volume->renderable()) onVolume(*volume, placement);
+            if (volume->renderable()) onVolume(*volume, placement, volume->id().value_or(kNoInstance));
         for (Light* light : lights)
             if (light->isValid()) onLight(*light, placement);
     };
@@ -75,9 +75,11 @@ public:
                 instance.instanceId = placement.instanceId;
                 description_.instances.push_back(instance);
             },
-            [&](const Volume& volume, const Placement& placement) {
+            [&](const Volume& volume, const Placement& placement, uint32_t objectId) {
                 description_.volumes.push_back(volume.volume());
                 description_.volumes.back().transform = placement.transform;
+                description_.volumes.back().objectId = objectId;
+                description_.volumes.back().instanceId = placement.instanceId;
             },
             [&](const Light& light, const Placement& placement) {
                 description_.lights.push_back(placedLight(light.light(), placement.transform));
@@ -236,7 +238,7 @@ bvh::Aabb worldBounds(World& world) {
                 bounds.extend(glm::vec3(placement.transform * glm::vec4(p, 1.0f)));
             }
         },
-        [&](const Volume& volume, const Placement& placement) {
+        [&](const Volume& volume, const Placement& placement, uint32_t) {
             const bvh::Aabb local = volume.bounds();
             if (local.empty()) return;
             for (int corner = 0; corner < 8; ++corner) {

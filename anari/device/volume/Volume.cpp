@@ -20,6 +20,7 @@ void Volume::commit() {
     }
     useChild(field_);
     visible_ = get<bool>("visible", true);
+    id_ = getOptional<uint32_t>("id");
 
     // valueRange: FLOAT32_BOX1 or FLOAT64_BOX1 (two numbers); an inverted range is taken in order. The same
     // two numbers as FLOAT32_VEC2 or FLOAT64_VEC2, which the SDK's own CTS and test scenes pass, read alike.

@@ -17,6 +17,8 @@ public:
     bool renderable() const { return isValid() && visible_ && field_ && field_->isValid(); }
     // The committed volume in object space (transform identity); the field's voxels are copied in.
     core::Volume volume() const;
+    // "id" (KHR_FRAME_CHANNEL_OBJECT_ID): what the objectId channel shows where the volume scatters.
+    std::optional<uint32_t> id() const { return id_; }
     bvh::Aabb bounds() const { return field_ ? field_->bounds() : bvh::Aabb{}; }
 
 private:
@@ -26,6 +28,7 @@ private:
     std::vector<float> opacities_;
     float unitDistance_ = 1.0f;
     bool visible_ = true;
+    std::optional<uint32_t> id_;
 };
 
 }  // namespace ripple::device
