@@ -7,7 +7,8 @@
 # does (40 degrees vertical, from the front and a little above); for a scene without lights or uniformly
 # emissive materials, ripple-render's studio light (a sun of irradiance 2 from (0.4, -1, -0.6) and an ambient
 # fill of radiance 0.4, the background 0.35/0.35/0.38 seen by camera rays); path length = surface
-# interactions (Cycles' bounces + 1); a 1-pixel box filter; no denoising, no adaptive sampling, no clamping.
+# interactions (Cycles' bounces + 1); a 1-pixel box filter; no denoising, no adaptive sampling, no clamping,
+# no glossy filter (all of these trade bias for noise, and Ripple has none of them on).
 # Writes linear float RGB as OpenEXR (no view transform applies to EXR data).
 import argparse
 import math
@@ -136,6 +137,7 @@ def main():
     cycles.filter_width = 1.0
     cycles.sample_clamp_direct = 0.0
     cycles.sample_clamp_indirect = 0.0
+    cycles.blur_glossy = 0.0  # "Filter Glossy" (default 1) blurs glossy paths: a bias that hides fireflies
     bounces = max(args.max_path_length - 1, 0)
     cycles.max_bounces = bounces
     cycles.diffuse_bounces = bounces
