@@ -59,6 +59,9 @@ def main():
     if cameras:
         scene.camera = sorted(cameras, key=lambda o: o.name)[0]
         scene.camera.data.sensor_fit = "VERTICAL"
+        # ripple-render does not pass the glTF's znear/zfar on: no clipping here either.
+        scene.camera.data.clip_start = 1e-4
+        scene.camera.data.clip_end = 1e6
     else:
         lo = [math.inf] * 3
         hi = [-math.inf] * 3
@@ -84,7 +87,7 @@ def main():
         scene.collection.objects.link(cam)
         cam.location = gltf_to_blender(position)
         direction = gltf_to_blender([-f for f in frm])
-        cam.rotation_euler = direction.to_track_quat("-Z", "Z").to_euler()
+        cam.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
         scene.camera = cam
 
     # ripple-render's studio light for scenes with neither lights nor uniformly emissive materials.

@@ -142,7 +142,9 @@ void main() {
         if (passThroughs >= PATH_MAX_PASS_THROUGHS) return;
         path.flags += 1u << PATH_PASS_THROUGH_SHIFT;
         path.throughput.w += hitT;
-        appendPath(Ray(vec4(offsetRayOrigin(position, -geometricNormal, scene.originUnit), 0.0), vec4(ray.direction.xyz, INFINITY)), path);
+        // A camera ray keeps what is left of its reach (the camera's far plane); the direction is unchanged.
+        float reach = camera ? ray.direction.w - hitT : INFINITY;
+        appendPath(Ray(vec4(offsetRayOrigin(position, -geometricNormal, scene.originUnit), 0.0), vec4(ray.direction.xyz, reach)), path);
         return;
     }
     if (camera) radiance.values[path.pixel].a = 1.0;

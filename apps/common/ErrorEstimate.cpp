@@ -20,29 +20,27 @@ void HalfBufferEstimator::addAccumulatedFrame(const float* mean, uint32_t totalS
     if (totalSamples <= previousSamples_)
         throw std::runtime_error("the device's sample count went from " + std::to_string(previousSamples_) + " to " +
                                  std::to_string(totalSamples) + ": it restarted its accumulation");
-    std::vector<double> batchSum(previousSum_.size());
-    for (size_t i = 0; i < batchSum.size(); ++i) {
+    std::vector<double>& half = nextHalf(totalSamples - previousSamples_);
+    for (size_t i = 0; i < half.size(); ++i) {
         const double sum = double(mean[i]) * double(totalSamples);
-        batchSum[i] = sum - previousSum_[i];
+        half[i] += sum - previousSum_[i];
         previousSum_[i] = sum;
     }
-    addBatchSums(batchSum, totalSamples - previousSamples_);
     previousSamples_ = totalSamples;
 }
 
 void HalfBufferEstimator::addBatchFrame(const float* mean, uint32_t batchSamples) {
     if (batchSamples == 0) throw std::runtime_error("a frame of 0 samples");
-    std::vector<double> batchSum(previousSum_.size());
-    for (size_t i = 0; i < batchSum.size(); ++i) batchSum[i] = double(mean[i]) * double(batchSamples);
-    addBatchSums(batchSum, batchSamples);
+    std::vector<double>& half = nextHalf(batchSamples);
+    for (size_t i = 0; i < half.size(); ++i) half[i] += double(mean[i]) * double(batchSamples);
 }
 
-void HalfBufferEstimator::addBatchSums(const std::vector<double>& batchSum, uint32_t batchSamples) {
+std::vector<double>& HalfBufferEstimator::nextHalf(uint32_t batchSamples) {
     // Alternate batches, so that each half is an independent estimate of the same image.
     const int half = int(batches_ % 2);
-    for (size_t i = 0; i < batchSum.size(); ++i) halfSum_[half][i] += batchSum[i];
     halfSamples_[half] += batchSamples;
     ++batches_;
+    return halfSum_[half];
 }
 
 HalfBufferEstimator::PixelErrors HalfBufferEstimator::pixelErrors(double epsilon) const {
@@ -65,7 +63,8 @@ HalfBufferEstimator::PixelErrors HalfBufferEstimator::pixelErrors(double epsilon
                         const int nx = x + dx, ny = y + dy;
                         if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
                         const size_t i = (size_t(ny) * width_ + size_t(nx)) * 4 + c;
-                        neighbours[count++] = (halfSum_[0][i] + halfSum_[1][i]) / n;
+                        const double neighbour = (halfSum_[0][i] + halfSum_[1][i]) / n;
+                        if (std::isfinite(neighbour)) neighbours[count++] = neighbour;  // NaN would break the order
                     }
                 // The median (of an even count, the mean of the middle two): a neighbour's firefly never enters.
                 double median = 0.0;
@@ -78,6 +77,11 @@ HalfBufferEstimator::PixelErrors HalfBufferEstimator::pixelErrors(double epsilon
                 const size_t i = p * 4 + c;
                 const double a = halfSum_[0][i] / nA, b = halfSum_[1][i] / nB;
                 const double full = (halfSum_[0][i] + halfSum_[1][i]) / n;  // a 1x1 image has no neighbours
+                if (!std::isfinite(a) || !std::isfinite(b)) {  // a NaN or Inf pixel makes the estimate NaN, not wrong
+                    pixel = std::numeric_limits<double>::quiet_NaN();
+                    errors.optimisticTotal = pixel;
+                    continue;
+                }
                 const double mean = std::clamp(count > 0 ? median : full, std::min(a, b), std::max(a, b));
                 const double m = std::max(mean, 0.0);
                 const double variance = (a - b) * (a - b) * varianceFactor;

@@ -35,8 +35,8 @@ inline constexpr double kRelMseEpsilon = 1e-2;
 // mean in the denominator, the second F. So the estimate comes with a band: from the lower of it and the
 // optimistic value with F^2 as the denominator, divided by kBandBelow, to the higher times kBandAbove. Where
 // the two agree (no heavy tails) the band is narrow; a wide band says the image holds pixels whose mean it
-// cannot pin down. The margins cover the estimate's measured spread where the two agree (0.54 to 1.30 times
-// the true relMSE on the shared and demo scenes, docs/error-estimate.md).
+// cannot pin down. The margins cover the estimate's measured spread: 0.67 to 1.30 times the true relMSE on
+// the shared and demo scenes without heavy tails, down to 0.54 on one with a firefly (docs/error-estimate.md).
 inline constexpr double kBandBelow = 1.3, kBandAbove = 2.0;
 
 struct ErrorEstimate {
@@ -78,7 +78,8 @@ private:
         double optimisticTotal = 0.0;  // the sum over pixels and RGB with F^2 as the denominator
     };
     PixelErrors pixelErrors(double epsilon) const;
-    void addBatchSums(const std::vector<double>& batchSum, uint32_t batchSamples);
+    // The half the next batch goes to, its counts advanced.
+    std::vector<double>& nextHalf(uint32_t batchSamples);
 
     uint32_t width_, height_;
     std::vector<double> previousSum_;  // S_{k-1}: the accumulated sum after the previous frame, RGBA

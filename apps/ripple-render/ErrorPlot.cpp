@@ -162,11 +162,6 @@ void writeErrorPlot(const std::filesystem::path& file, const std::vector<Converg
 
     // Series, clipped to the plot area.
     canvas.setClip(left + 1, top + 1, right, bottom);
-    if (!estimate.empty()) {  // error ~ 1/time through the last estimate, where start-up costs weigh least
-        const double t0 = estimate.back()->seconds, e0 = estimate.back()->estimate.relMse;
-        const double tLo = std::pow(10.0, xLo), tHi = std::pow(10.0, xHi);
-        canvas.line(px(tLo), py(e0 * t0 / tLo), px(tHi), py(e0 * t0 / tHi), kGuide, 2, true);
-    }
     // The estimate's band, filled column by column between the points (straight on the log axes).
     for (size_t i = 1; i < estimate.size(); ++i) {
         const ErrorEstimate &a = estimate[i - 1]->estimate, &b = estimate[i]->estimate;
@@ -176,6 +171,11 @@ void writeErrorPlot(const std::filesystem::path& file, const std::vector<Converg
             const double yLow = py(a.low) + (py(b.low) - py(a.low)) * t, yHigh = py(a.high) + (py(b.high) - py(a.high)) * t;
             canvas.fill(x, int(std::lround(yHigh)), x + 1, int(std::lround(yLow)) + 1, kBand);
         }
+    }
+    if (!estimate.empty()) {  // error ~ 1/time through the last estimate, where start-up costs weigh least
+        const double t0 = estimate.back()->seconds, e0 = estimate.back()->estimate.relMse;
+        const double tLo = std::pow(10.0, xLo), tHi = std::pow(10.0, xHi);
+        canvas.line(px(tLo), py(e0 * t0 / tLo), px(tHi), py(e0 * t0 / tHi), kGuide, 2, true);
     }
     const auto drawSeries = [&](const std::vector<const ConvergencePoint*>& series, auto error, Color c) {
         for (size_t i = 0; i < series.size(); ++i) {

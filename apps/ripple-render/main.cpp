@@ -389,6 +389,8 @@ struct FrameSetup {
 FrameSetup makeFrame(const Options& options, const AnariWorld& scene, ANARICamera camera, glm::uvec2 size, Session& s) {
     FrameSetup setup;
     setup.batch = options.reporting() ? 1 : samplesPerFrame(options.spp);
+    // The error map needs two frames at least (one per half-buffer).
+    if (!options.errorMap.empty()) setup.batch = std::max(1u, std::min(setup.batch, options.spp / 2));
     ANARIRenderer renderer = anariNewRenderer(s.device, "default");
     if (!renderer) throw std::runtime_error("the device has no 'default' renderer");
     s.objects.push_back(renderer);

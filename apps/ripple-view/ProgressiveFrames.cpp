@@ -4,6 +4,7 @@
 #include "apps/common/AnariParams.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -128,6 +129,7 @@ bool ProgressiveFrames::startPass(bool moving, uint32_t maxSamples) {
     if (!moving && fullStale_) {
         fullSamples_ = 0;
         fullStale_ = false;
+        estimatorStale_ = true;
     }
     passBegin_ = std::chrono::steady_clock::now();
     anariRenderFrame(device_, inFlight_);
@@ -174,11 +176,20 @@ void ProgressiveFrames::readPass(ANARIFrame frame, bool reduced) {
     const size_t floats = size_t(width) * height * 4;
     r.rgba.assign(static_cast<const float*>(pixels), static_cast<const float*>(pixels) + floats);
     anariUnmapFrame(device_, frame, "channel.color");
-    if (!reduced) {  // a restart (fewer samples than before, or a new size) starts the estimate over
-        if (!estimator_ || samples <= estimator_->samples() || glm::uvec2(width, height) != estimator_->size())
+    if (!reduced) {  // the full frame's restart (startPass) starts the estimate over
+        if (estimatorStale_ || !estimator_ || samples <= estimator_->samples() ||
+            glm::uvec2(width, height) != estimator_->size()) {
             estimator_.emplace(width, height);
+            estimatorStale_ = false;
+            r.estimate = {};
+        }
         estimator_->addAccumulatedFrame(r.rgba.data(), samples);
-        r.estimate = estimator_->estimate();
+        // The estimate costs a pass over the image: at most every half second (and always while it has none).
+        const auto now = std::chrono::steady_clock::now();
+        if (std::isnan(r.estimate.relMse) || now - lastEstimate_ > std::chrono::milliseconds(500)) {
+            r.estimate = estimator_->estimate();
+            lastEstimate_ = now;
+        }
     } else {
         r.estimate = {};  // the view changed: the full frame starts over
     }

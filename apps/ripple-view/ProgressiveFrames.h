@@ -37,7 +37,8 @@ struct PassResult {
     double milliseconds = 0.0;          // the pass on the device ("duration"), else wall time to ready
     std::optional<float> raysPerSecond; // the device's "ripple.raysPerSecond", when it has it
     // The full-size frame's estimated relMSE and its band, as ripple-render reports it (NaN until its
-    // accumulation holds two passes); moving passes leave it as it was.
+    // accumulation holds two passes, and on moving passes: the view changed), recomputed at most every
+    // half second.
     ErrorEstimate estimate;
 };
 
@@ -67,6 +68,8 @@ public:
     bool busy() const { return inFlight_ != nullptr; }
 
     const PassResult& latest() const { return latest_; }
+    // The full frame's estimate from all its passes so far (latest().estimate may be half a second old).
+    ErrorEstimate estimateNow() const { return estimator_ ? estimator_->estimate() : ErrorEstimate{}; }
     // Samples per pixel of the full-size frame since its last restart (0 before its first pass).
     uint32_t fullSamples() const { return fullSamples_; }
     glm::uvec2 size() const { return size_; }
@@ -91,6 +94,8 @@ private:
     bool fullStale_ = true;             // the full frame restarts with its next pass
     uint32_t fullSamples_ = 0;
     std::optional<HalfBufferEstimator> estimator_;  // the full frame's passes since its restart
+    bool estimatorStale_ = true;        // the full frame restarted: the estimator starts over
+    std::chrono::steady_clock::time_point lastEstimate_;
     bool countsSamples_ = true;         // the device answers "numSamples"
     bool hasRays_ = true;               // the device answers "ripple.raysPerSecond"
     ANARIFrame inFlight_ = nullptr;

@@ -54,13 +54,13 @@ std::filesystem::path nextScreenshotName() {
 }
 
 // `milliseconds`: the mean full-size pass after the first (which creates the device's pipelines); NaN: none.
-void writeScreenshot(const std::filesystem::path& file, const PassResult& pass, double milliseconds) {
+void writeScreenshot(const std::filesystem::path& file, const PassResult& pass, const ErrorEstimate& estimate,
+                     double milliseconds) {
     writeOutputImage(file, outputFormatOf(file, "--screenshot"), pass.size.x, pass.size.y, pass.rgba.data());
     std::printf("wrote %s (%ux%u, %u spp", file.c_str(), pass.size.x, pass.size.y, pass.samples);
     if (!std::isnan(milliseconds)) std::printf("; %.1f ms per pass after the first", milliseconds);
-    if (!std::isnan(pass.estimate.relMse))
-        std::printf("; estimated relMSE %.3e (band %.1e .. %.1e)", pass.estimate.relMse, pass.estimate.low,
-                    pass.estimate.high);
+    if (!std::isnan(estimate.relMse))
+        std::printf("; estimated relMSE %.3e (band %.1e .. %.1e)", estimate.relMse, estimate.low, estimate.high);
     std::printf(")\n");
     std::fflush(stdout);
 }
@@ -186,11 +186,11 @@ int run(const Options& options, Session& s) {
                 const double meanMilliseconds =
                     fullPasses > 1 ? laterPassMilliseconds / double(fullPasses - 1) : std::nan("");
                 if (screenshotRequest) {
-                    writeScreenshot(*screenshotRequest, pass, meanMilliseconds);
+                    writeScreenshot(*screenshotRequest, pass, pass.reduced ? ErrorEstimate{} : frames.estimateNow(), meanMilliseconds);
                     screenshotRequest.reset();
                 }
                 if (headless && fullPasses >= options.frames) {
-                    writeScreenshot(options.screenshot, pass, meanMilliseconds);
+                    writeScreenshot(options.screenshot, pass, pass.reduced ? ErrorEstimate{} : frames.estimateNow(), meanMilliseconds);
                     window.endFrame();
                     break;
                 }

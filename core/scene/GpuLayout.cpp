@@ -78,6 +78,7 @@ static_assert(offsetof(PathCounters, pathGroups) == 32);
 static_assert(sizeof(QueueAdvanceParams) == 24);
 static_assert(sizeof(FrameConstants) == 184);
 static_assert(offsetof(FrameConstants, phaseAnisotropy) == 176);
+static_assert(offsetof(FrameConstants, cameraFar) == 180);
 static_assert(offsetof(FrameConstants, width) == 112);
 static_assert(offsetof(FrameConstants, sampleRadiance) == 128);
 static_assert(offsetof(FrameConstants, counters) == 160);

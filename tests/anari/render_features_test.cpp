@@ -509,8 +509,9 @@ TEST_CASE("volume transferFunction1D over a structuredRegular field: transmittan
     // A 2x2x2 UFIXED8 field of value 255 (1.0 after normalisation) spanning [-1, 1]^2 x [0, 1], a black
     // medium of opacity 1 - e^-1 over unitDistance 1: camera rays straight through it keep exp(-1) of the
     // white background. Also: the world's bounds include the volume, and nothing is reported, with
-    // valueRange as the spec's FLOAT32_BOX1 or as the FLOAT32_VEC2 that the SDK's CTS passes.
-    for (const ANARIDataType rangeType : {ANARI_FLOAT32_BOX1, ANARI_FLOAT32_VEC2}) {
+    // valueRange as the spec's FLOAT32_BOX1 or FLOAT64_BOX1, or as the FLOAT32_VEC2 that the SDK's CTS passes
+    // (or FLOAT64_VEC2).
+    for (const ANARIDataType rangeType : {ANARI_FLOAT32_BOX1, ANARI_FLOAT32_VEC2, ANARI_FLOAT64_BOX1, ANARI_FLOAT64_VEC2}) {
     CAPTURE(rangeType);
     RenderSession s;
     ANARIArray3D voxels = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_UFIXED8, 2, 2, 2));
@@ -526,7 +527,9 @@ TEST_CASE("volume transferFunction1D over a structuredRegular field: transmittan
     s.set(volume, "color", glm::vec3(0.0f));
     s.set(volume, "opacity", 1.0f - std::exp(-1.0f));
     const float range[2] = {0.0f, 1.0f};
-    s.setRaw(volume, "valueRange", rangeType, range);
+    const double range64[2] = {0.0, 1.0};
+    const bool doubles = rangeType == ANARI_FLOAT64_BOX1 || rangeType == ANARI_FLOAT64_VEC2;
+    s.setRaw(volume, "valueRange", rangeType, doubles ? static_cast<const void*>(range64) : range);
     s.commit(volume);
     ANARIWorld world = s.keep(anariNewWorld(s.device));
     s.setObject(world, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));

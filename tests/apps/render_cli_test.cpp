@@ -2,6 +2,7 @@
 // the problem, never a crash (a crash shows as a signal); small renders through the Ripple device (the
 // Cornell demo, a volume file); and the convergence options (--time, --target-error, --report) stopping and
 // writing what they promise.
+#include "apps/common/HeatMap.h"
 #include "apps/common/ImageIO.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
@@ -377,6 +378,15 @@ TEST_CASE("ripple-render --error-map writes each pixel's estimated relMSE") {
     REQUIRE(heat != nullptr);
     CHECK(w == 24);
     CHECK(h == 16);
+    // Every PNG pixel is the magma colour of log10 of the PFM's value at the same place, -4 to 0 (same rows).
+    int mismatches = 0;
+    for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 24; ++x) {
+            const float value = map.at(x, y, 0);
+            const auto expected = ripple::apps::magma(value > 0.0f ? (std::log10(value) + 4.0f) / 4.0f : 0.0f);
+            for (int c = 0; c < 3; ++c) mismatches += std::abs(int(heat[(y * 24 + x) * 3 + c]) - int(expected[c])) > 1;
+        }
+    CHECK(mismatches == 0);
     stbi_image_free(heat);
     const ProgramRun jpeg = runRender(common + " --error-map '" + (dir / "map.jpg").string() + "'");
     CHECK(jpeg.exitCode == 1);
