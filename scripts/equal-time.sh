@@ -67,14 +67,17 @@ seconds_since() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.2f", b - a }'; 
 relmse() { "$imgdiff" "$1" "$2" | awk '/^relMSE/ { print $2 }'; }
 
 echo "scene $scene, $size, path length $path_length, references of $reference_spp spp; output in $out"
-if [ ! -f "$out/ripple-reference.pfm" ]; then
+# References are kept in --out and reused by a later run with the same scene and settings.
+key="$(basename "$scene" .glb)-$size-$path_length-$reference_spp"
+ripple_reference="$out/ripple-reference-$key.pfm" cycles_reference="$out/cycles-reference-$key.exr"
+if [ ! -f "$ripple_reference" ]; then
   echo "Ripple reference ..."
   "$ripple_render" "$scene" --size "$size" --max-path-length "$path_length" --spp "$reference_spp" --seed 1 \
-    --quiet -o "$out/ripple-reference.pfm" > "$out/ripple-reference.log" 2>&1
+    --quiet -o "$ripple_reference" > "$out/ripple-reference-$key.log" 2>&1
 fi
-if [ ! -f "$out/cycles-reference.exr" ]; then
+if [ ! -f "$cycles_reference" ]; then
   echo "Cycles reference ..."
-  cycles "$out/cycles-reference.exr" "$out/cycles-reference.log" --spp "$reference_spp" --seed 1
+  cycles "$cycles_reference" "$out/cycles-reference-$key.log" --spp "$reference_spp" --seed 1
 fi
 # Cycles' start-up (Blender, import, scene sync, BVH): one sample's run, minus nothing; subtracted from
 # each budget so that the whole process takes about the budget, as Ripple's --time does.
@@ -95,6 +98,6 @@ for t in $times; do
   cycles_wall=$(seconds_since "$start")
   cycles_spp=$(grep -o 'Sample [0-9]*' "$out/cycles-$t.log" | awk '{ print $2 }' | sort -n | tail -1)
   printf '%8s | %10s %8s %12s | %10s %8s %12s\n' "$t" "$ripple_wall" "${ripple_spp:-?}" \
-    "$(relmse "$out/ripple-$t.pfm" "$out/ripple-reference.pfm")" "$cycles_wall" "${cycles_spp:-?}" \
-    "$(relmse "$out/cycles-$t.exr" "$out/cycles-reference.exr")"
+    "$(relmse "$out/ripple-$t.pfm" "$ripple_reference")" "$cycles_wall" "${cycles_spp:-?}" \
+    "$(relmse "$out/cycles-$t.exr" "$cycles_reference")"
 done
