@@ -95,6 +95,15 @@ ANARICamera RenderSession::perspective(glm::vec3 position, glm::vec3 target) {
     return camera;
 }
 
+ANARICamera RenderSession::orthographic(glm::vec3 position, glm::vec3 direction, float height) {
+    ANARICamera camera = keep(anariNewCamera(device, "orthographic"));
+    set(camera, "position", position);
+    set(camera, "direction", direction);
+    set(camera, "height", height);
+    commit(camera);
+    return camera;
+}
+
 ANARIRenderer RenderSession::renderer(int32_t pixelSamples, int32_t maxPathLength, glm::vec4 background) {
     ANARIRenderer renderer = keep(anariNewRenderer(device, "default"));
     setInt(renderer, "pixelSamples", pixelSamples);

@@ -83,6 +83,8 @@ public:
     ANARIGeometry floor();
     ANARILight directional(glm::vec3 direction, float irradiance);
     ANARICamera perspective(glm::vec3 position, glm::vec3 target);
+    // Parallel rays along `direction` from a view `height` units tall around `position`; up the default (0, 1, 0).
+    ANARICamera orthographic(glm::vec3 position, glm::vec3 direction, float height = 1.0f);
     ANARIRenderer renderer(int32_t pixelSamples, int32_t maxPathLength, glm::vec4 background = {0.1f, 0.1f, 0.15f, 1});
     ANARIWorld world(const std::vector<ANARISurface>& surfaces, const std::vector<ANARILight>& lights);
     ANARIFrame frame(ANARIWorld world, ANARICamera camera, ANARIRenderer renderer, glm::uvec2 size,

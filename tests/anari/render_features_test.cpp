@@ -75,15 +75,6 @@ ANARISpatialField floatField(RenderSession& s, glm::uvec3 dims, const std::vecto
 }
 
 // A committed orthographic camera (height 1 is the spec's default).
-ANARICamera orthographic(RenderSession& s, glm::vec3 position, glm::vec3 direction, float height = 1.0f) {
-    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-    s.set(camera, "position", position);
-    s.set(camera, "direction", direction);
-    s.set(camera, "height", height);
-    s.commit(camera);
-    return camera;
-}
-
 ANARISampler imageSampler(RenderSession& s, const char* subtype, ANARIObject image, const char* filter,
                           const glm::mat4& outTransform = glm::mat4(1.0f)) {
     ANARISampler sampler = s.keep(anariNewSampler(s.device, subtype));
@@ -101,8 +92,25 @@ ANARIRenderer emissionOnlyRenderer(RenderSession& s) {
 }
 
 // Orthographic, looking down -z at the origin; the frame's aspect sets the width of the view.
+// A world with one instance, id `instanceId`, of a group holding `object` as its only `parameter`
+// ("surface" or "volume", of ANARI type `type`).
+ANARIWorld instancedWorld(RenderSession& s, const char* parameter, ANARIDataType type, ANARIObject object,
+                          uint32_t instanceId) {
+    ANARIGroup group = s.keep(anariNewGroup(s.device));
+    s.setObject(group, parameter, ANARI_ARRAY1D, s.objects(type, {object}));
+    s.commit(group);
+    ANARIInstance instance = s.keep(anariNewInstance(s.device, "transform"));
+    s.setObject(instance, "group", ANARI_GROUP, group);
+    s.setRaw(instance, "id", ANARI_UINT32, &instanceId);
+    s.commit(instance);
+    ANARIWorld world = s.keep(anariNewWorld(s.device));
+    s.setObject(world, "instance", ANARI_ARRAY1D, s.objects(ANARI_INSTANCE, {instance}));
+    s.commit(world);
+    return world;
+}
+
 ANARICamera frontCamera(RenderSession& s, float height = 2.0f) {
-    return orthographic(s, glm::vec3(0, 0, 3), glm::vec3(0, 0, -1), height);  // up: the default (0, 1, 0)
+    return s.orthographic(glm::vec3(0, 0, 3), glm::vec3(0, 0, -1), height);  // up: the default (0, 1, 0)
 }
 
 ANARIMaterial physicallyBased(RenderSession& s) {
@@ -431,16 +439,7 @@ TEST_CASE("channels: primitiveId, objectId, instanceId exact; albedo and normal 
     const uint32_t surfaceId = 7, instanceId = 42;
     s.setRaw(surface, "id", ANARI_UINT32, &surfaceId);
     s.commit(surface);
-    ANARIGroup group = s.keep(anariNewGroup(s.device));
-    s.setObject(group, "surface", ANARI_ARRAY1D, s.objects(ANARI_SURFACE, {surface}));
-    s.commit(group);
-    ANARIInstance instance = s.keep(anariNewInstance(s.device, "transform"));
-    s.setObject(instance, "group", ANARI_GROUP, group);
-    s.setRaw(instance, "id", ANARI_UINT32, &instanceId);
-    s.commit(instance);
-    ANARIWorld world = s.keep(anariNewWorld(s.device));
-    s.setObject(world, "instance", ANARI_ARRAY1D, s.objects(ANARI_INSTANCE, {instance}));
-    s.commit(world);
+    ANARIWorld world = instancedWorld(s, "surface", ANARI_SURFACE, surface, instanceId);
     ANARIFrame frame = s.frame(world, frontCamera(s), s.renderer(1, 2), {8, 8}, ANARI_FLOAT32_VEC4);
     setChannel(s, frame, "channel.primitiveId", ANARI_UINT32);
     setChannel(s, frame, "channel.objectId", ANARI_UINT32);
@@ -572,16 +571,7 @@ TEST_CASE("channels: objectId and instanceId where a volume scatters") {
     const uint32_t volumeId = 9, instanceId = 5;
     s.setRaw(volume, "id", ANARI_UINT32, &volumeId);
     s.commit(volume);
-    ANARIGroup group = s.keep(anariNewGroup(s.device));
-    s.setObject(group, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));
-    s.commit(group);
-    ANARIInstance instance = s.keep(anariNewInstance(s.device, "transform"));
-    s.setObject(instance, "group", ANARI_GROUP, group);
-    s.setRaw(instance, "id", ANARI_UINT32, &instanceId);
-    s.commit(instance);
-    ANARIWorld world = s.keep(anariNewWorld(s.device));
-    s.setObject(world, "instance", ANARI_ARRAY1D, s.objects(ANARI_INSTANCE, {instance}));
-    s.commit(world);
+    ANARIWorld world = instancedWorld(s, "volume", ANARI_VOLUME, volume, instanceId);
     ANARIFrame frame = s.frame(world, frontCamera(s, 3.0f), s.renderer(1, 2), {8, 8}, ANARI_FLOAT32_VEC4);
     setChannel(s, frame, "channel.objectId", ANARI_UINT32);
     setChannel(s, frame, "channel.instanceId", ANARI_UINT32);
@@ -664,7 +654,7 @@ TEST_CASE("volume hostile input: each bad field or transfer function is reported
         ANARIWorld world = s.keep(anariNewWorld(s.device));
         s.setObject(world, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));
         s.commit(world);
-        ANARICamera camera = orthographic(s, glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
+        ANARICamera camera = s.orthographic(glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
         const Image image = s.render(s.frame(world, camera, s.renderer(2, 1, glm::vec4(1.0f)), {4, 4}, ANARI_FLOAT32_VEC4));
         CHECK_MESSAGE(s.log.count({c.expected}) >= 1, s.log.dump());
         for (const glm::vec4& p : image.linear) CHECK(p.r == 1.0f);  // nothing of the spoilt volume rendered
@@ -687,7 +677,7 @@ TEST_CASE("isosurface: exact crossing of the trilinear interpolant, its gradient
     s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
     s.setObject(iso, "isovalue", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, isovalues));
     s.commit(iso);
-    ANARICamera camera = orthographic(s, glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
+    ANARICamera camera = s.orthographic(glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
     const uint32_t size = 16;
     ANARIFrame frame = s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera, s.renderer(1, 1),
                                {size, size}, ANARI_FLOAT32_VEC4, true);
@@ -766,7 +756,7 @@ TEST_CASE("isosurface hostile input: a missing field or isovalue, a NaN isovalue
         s.set(iso, "isovalue", 0.5f);
         c.spoil(s, iso);
         s.commit(iso);
-        ANARICamera camera = orthographic(s, glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
+        ANARICamera camera = s.orthographic(glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
         const Image image = s.render(s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera,
                                              s.renderer(1, 1, glm::vec4(1.0f)), {4, 4}, ANARI_FLOAT32_VEC4));
         CHECK_MESSAGE(s.log.count({c.expected}) >= 1, s.log.dump());
@@ -803,7 +793,7 @@ TEST_CASE("isosurface: no ray leaks through a closed surface across cell faces, 
             s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
             s.set(iso, "isovalue", 0.5f);
             s.commit(iso);
-            ANARICamera camera = orthographic(s, centre - 3.0f * direction, direction, 2.0f);
+            ANARICamera camera = s.orthographic(centre - 3.0f * direction, direction, 2.0f);
             const uint32_t size = 64;
             const Image image = s.render(s.frame(s.world({s.surface(iso, s.matte(glm::vec3(0.5f)))}, {}), camera,
                                                  s.renderer(4, 1), {size, size}, ANARI_FLOAT32_VEC4, true));

@@ -45,12 +45,7 @@ Image renderEmission(RenderSession& s, ANARISampler emissive, glm::uvec2 size) {
     s.set(material, "baseColor", glm::vec3(0.0f));
     s.setObject(material, "emissive", ANARI_SAMPLER, emissive);
     s.commit(material);
-    ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-    s.set(camera, "position", glm::vec3(0, 0, 3));
-    s.set(camera, "direction", glm::vec3(0, 0, -1));
-    s.set(camera, "up", glm::vec3(0, 1, 0));
-    s.set(camera, "height", 2.0f);
-    s.commit(camera);
+    ANARICamera camera = s.orthographic(glm::vec3(0, 0, 3), glm::vec3(0, 0, -1), 2.0f);
     ANARIFrame frame = s.frame(s.world({s.surface(quadGrid(s), material)}, {}), camera,
                                s.renderer(1, 1, glm::vec4(0, 0, 0, 1)), size, ANARI_FLOAT32_VEC4);
     Image image = s.render(frame);

@@ -128,12 +128,7 @@ TEST_CASE("geometry attribute arrays: longer than needed is read in part, shorte
         s.setObject(geometry, "vertex.color", ANARI_ARRAY1D,
                     s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>(palette.begin(), palette.begin() + long(colours))));
         s.commit(geometry);
-        ANARICamera camera = s.keep(anariNewCamera(s.device, "orthographic"));
-        s.set(camera, "position", glm::vec3(0, 0, 3));
-        s.set(camera, "direction", glm::vec3(0, 0, -1));
-        s.set(camera, "up", glm::vec3(0, 1, 0));
-        s.set(camera, "height", 1.0f);
-        s.commit(camera);
+        ANARICamera camera = s.orthographic(glm::vec3(0, 0, 3), glm::vec3(0, 0, -1));
         ANARIRenderer renderer = s.renderer(4, 2, glm::vec4(0.0f));  // the ambient light needs a bounce
         s.set(renderer, "ambientRadiance", 1.0f);
         s.commit(renderer);
