@@ -83,6 +83,10 @@ def main():
         cam_data = bpy.data.cameras.new("framed")
         cam_data.sensor_fit = "VERTICAL"
         cam_data.angle_y = fovy
+        # Blender clips at 0.1 by default, more than the whole of a small model's view (metal-rough-spheres
+        # is 7 mm across): clip planes scaled to the framing distance, as ripple-render has none.
+        cam_data.clip_start = distance * 1e-4
+        cam_data.clip_end = distance * 1e4
         cam = bpy.data.objects.new("framed", cam_data)
         scene.collection.objects.link(cam)
         cam.location = gltf_to_blender(position)
