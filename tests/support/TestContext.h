@@ -1,15 +1,22 @@
 // The Vulkan context every GPU test shares: validation layers on, so any validation message fails the test
-// that caused it (see ValidationGuard).
+// that caused it (see ValidationGuard). RIPPLE_VK_VALIDATION=0 turns them off, as the device's variable of
+// the same name does: the sanitizer build's tests set it (tests/CMakeLists.txt).
 #pragma once
 
 #include "core/vk/Context.h"
 
 #include <doctest/doctest.h>
 
+#include <cstdlib>
+#include <string_view>
+
 namespace ripple::test {
 
 inline vk::Context& testContext() {
-    static vk::Context context(vk::ContextOptions{.validation = true});
+    static vk::Context context([] {
+        const char* validation = std::getenv("RIPPLE_VK_VALIDATION");
+        return vk::ContextOptions{.validation = !validation || std::string_view(validation) != "0"};
+    }());
     return context;
 }
 
