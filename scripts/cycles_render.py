@@ -1,15 +1,16 @@
 # Renders a glTF scene with Blender's Cycles as ripple-render would show it, for scripts/equal-time.sh:
 #
-#   blender -b --factory-startup --python scripts/cycles_render.py -- SCENE.glb OUT.exr \
+#   blender -b --factory-startup --python scripts/cycles_render.py -- SCENE.glb OUT.exr|OUT.pfm \
 #       --size 256x256 --max-path-length 5 (--spp N | --time S) --seed K
 #
 # Matched to ripple-render: the glTF's first camera, or one framing the scene's bounds the way ripple-render
 # does (40 degrees vertical, from the front and a little above); for a scene without lights or uniformly
-# emissive materials, ripple-render's studio light (a sun of irradiance 2 from (0.4, -1, -0.6) and an ambient
-# fill of radiance 0.4, the background 0.35/0.35/0.38 seen by camera rays); path length = surface
-# interactions (Cycles' bounces + 1); a 1-pixel box filter; no denoising, no adaptive sampling, no clamping,
-# no glossy filter (all of these trade bias for noise, and Ripple has none of them on).
-# Writes linear float RGB as OpenEXR (no view transform applies to EXR data).
+# emissive materials, ripple-render's studio light (a sun of irradiance 2 and angular diameter 0.00925 rad
+# from (0.4, -1, -0.6) and an ambient fill of radiance 0.4, the background 0.35/0.35/0.38 seen by camera
+# rays); path length = surface interactions (Cycles' bounces + 1); a 1-pixel box filter; no denoising, no
+# adaptive sampling, no clamping, no glossy filter (all of these trade bias for noise, and Ripple has none
+# of them on).
+# Writes linear float RGB as OpenEXR (no view transform applies to EXR data), or as PFM when OUT ends in .pfm.
 import argparse
 import math
 import sys
@@ -115,7 +116,7 @@ def main():
     if not has_lights and not emits:
         sun_data = bpy.data.lights.new("key", type="SUN")
         sun_data.energy = 2.0  # irradiance, W/m^2, as the ANARI directional light's
-        sun_data.angle = 0.0
+        sun_data.angle = 0.00925  # the sun's 0.53 degrees, as ripple-render's (apps/common/AnariScene.h)
         sun = bpy.data.objects.new("key", sun_data)
         scene.collection.objects.link(sun)
         d = Vector((0.4, -1.0, -0.6)).normalized()
@@ -169,8 +170,23 @@ def main():
     scene.render.image_settings.file_format = "OPEN_EXR"
     scene.render.image_settings.color_depth = "32"
     scene.render.image_settings.color_mode = "RGB"
-    scene.render.filepath = args.output
+    pfm = args.output.lower().endswith(".pfm")
+    scene.render.filepath = args.output[:-4] + ".exr" if pfm else args.output
     bpy.ops.render.render(write_still=True)
+    if pfm:
+        write_pfm(scene.render.filepath, args.output)
+
+
+def write_pfm(exr_path, pfm_path):
+    """Converts the written EXR to PFM (linear float RGB, rows bottom to top, as Blender holds them)."""
+    image = bpy.data.images.load(exr_path)
+    width, height = image.size
+    pixels = numpy.empty(width * height * 4, dtype=numpy.float32)
+    image.pixels.foreach_get(pixels)
+    rgb = pixels.reshape(height, width, 4)[:, :, :3]
+    with open(pfm_path, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (width, height))
+        f.write(rgb.astype("<f4").tobytes())
 
 
 main()

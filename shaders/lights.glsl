@@ -1,7 +1,8 @@
 // Lights for next-event estimation and for BSDF-sampled rays, and the weights that combine the two
-// (multiple importance sampling, power heuristic). Delta lights (directional, point, spot) are reached by
-// next-event estimation only. Area lights: quad, ring and hdri are not geometry, so a BSDF-sampled ray
-// tests them itself (testedLightsRadiance); emissive triangles are geometry, found by the trace, and their
+// (multiple importance sampling, power heuristic). Delta lights (point, spot, and directional without an
+// angular diameter) are reached by next-event estimation only. Area lights: quad, ring, hdri and the disc
+// of a directional light with an angular diameter (a sun) are not geometry, so a BSDF-sampled ray tests
+// them itself (testedLightsRadiance); emissive triangles are geometry, found by the trace, and their
 // light pdf comes from the density pt_surface stores in the SurfaceRecord (surfaceLightPdf). A light is
 // picked with the probability stored in its record (proportional to power). Needs texture.glsl.
 #ifndef RIPPLE_LIGHTS_GLSL
@@ -98,6 +99,29 @@ bool sampleEnvironment(SceneDesc scene, LightRecord light, vec2 u, out LightSamp
     return true;
 }
 
+// --- the disc of a directional light (a sun) ---
+// Uniform radiance over a cone of half angle a about -direction, 1 - cos a = c (edge1.x): the irradiance on
+// a surface facing it is radiance * pi sin^2 a, so radiance = irradiance / (pi c (2 - c)); directions are
+// sampled uniformly in the cone's solid angle 2 pi c.
+
+float sunSolidAngle(LightRecord light) { return 2.0 * PI * light.edge1.x; }
+
+vec3 sunRadiance(LightRecord light) {
+    float c = light.edge1.x;
+    return light.emission.rgb / (PI * c * (2.0 - c));
+}
+
+vec3 sampleSunDisc(LightRecord light, vec2 u) {
+    float oneMinusCos = u.x * light.edge1.x;
+    float cosTheta = 1.0 - oneMinusCos;
+    float sinTheta = sqrt(max(0.0, oneMinusCos * (2.0 - oneMinusCos)));
+    float phi = 2.0 * PI * u.y;
+    vec3 axis = -light.direction.xyz;
+    vec3 t, b;
+    orthonormalFrame(axis, t, b);
+    return normalize(sinTheta * (cos(phi) * t + sin(phi) * b) + cosTheta * axis);
+}
+
 // --- sampling a light from a point ---
 
 // False when the light sends nothing toward p (behind a one-sided emitter, outside a spot, p on the light).
@@ -107,9 +131,15 @@ bool sampleLight(SceneDesc scene, LightRecord light, vec3 p, vec2 u, out LightSa
     s.incident = vec3(0.0);
     s.pdf = 0.0;
     if (light.kind == LIGHT_DIRECTIONAL) {
-        s.direction = -light.direction.xyz;
         s.distance = INFINITY;
-        s.incident = light.emission.rgb;
+        if (light.edge1.x > 0.0) {
+            s.direction = sampleSunDisc(light, u);
+            s.pdf = 1.0 / sunSolidAngle(light);
+            s.incident = sunRadiance(light) * sunSolidAngle(light);
+        } else {
+            s.direction = -light.direction.xyz;
+            s.incident = light.emission.rgb;
+        }
         return true;
     }
     if (light.kind == LIGHT_HDRI) return sampleEnvironment(scene, light, u, s);
@@ -158,8 +188,8 @@ float surfaceLightPdf(SceneDesc scene, float density, float distance, float cosL
 }
 
 // Emission that a BSDF-sampled ray (from o along unit d, up to tmax; `before` is the distance from the
-// scattering point to o when the ray passed through transparent surfaces) collects from the quad, ring
-// and hdri lights, each weighted against next-event estimation with `bsdfPdf`.
+// scattering point to o when the ray passed through transparent surfaces) collects from the quad, ring,
+// hdri and sun-disc lights, each weighted against next-event estimation with `bsdfPdf`.
 vec3 testedLightsRadiance(SceneDesc scene, vec3 o, vec3 d, float tmax, float before, float bsdfPdf, uint strategy) {
     if (strategy == LIGHT_SAMPLING_LIGHTS_ONLY) return vec3(0.0);
     vec3 sum = vec3(0.0);
@@ -171,6 +201,10 @@ vec3 testedLightsRadiance(SceneDesc scene, vec3 o, vec3 d, float tmax, float bef
         if (light.kind == LIGHT_HDRI) {
             if (!isinf(tmax)) continue;
             radiance = environmentRadiance(scene, light, d, pdf);
+        } else if (light.kind == LIGHT_DIRECTIONAL) {
+            if (!isinf(tmax) || 1.0 + dot(d, light.direction.xyz) > light.edge1.x) continue;
+            radiance = sunRadiance(light);
+            pdf = 1.0 / sunSolidAngle(light);
         } else {
             vec3 n = light.direction.xyz;
             float cosLight = -dot(n, d);

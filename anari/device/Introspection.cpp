@@ -224,6 +224,7 @@ const std::vector<Entry>& table() {
          joined({kLightCommon, {
              {"direction", ANARI_FLOAT32_VEC3, "direction the light travels", kMinusZ},
              {"irradiance", ANARI_FLOAT32, "W/m^2 on a surface facing the light", &kOne},
+             {"angularDiameter", ANARI_FLOAT32, "apparent size of the light in radians, 0 to pi (0: a delta light)", &kZero},
          }})},
         {ANARI_LIGHT, "point", "isotropic point light",
          joined({kLightCommon, {

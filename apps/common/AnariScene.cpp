@@ -57,11 +57,14 @@ public:
         });
         if (lights.empty() && !emits) {
             // Many glTF files (scanned or sample models) carry no light: a key light from the upper front
-            // left and a grey ambient fill, as a studio would, instead of a black image.
+            // left and a grey ambient fill, as a studio would, instead of a black image. The key is a disc
+            // the size of the sun seen from the earth (0.53 degrees): unlike a delta light, its highlight on
+            // a mirror-like metal is found by BSDF sampling, not only by a rare light sample.
             GltfLight key;
             key.kind = GltfLight::Kind::Directional;
             key.direction = glm::normalize(glm::vec3(0.4f, -1.0f, -0.6f));
             key.intensity = 2.0f;
+            key.angularDiameter = kStudioSunAngularDiameter;
             lights.push_back(light(key));
             out.ambientRadiance = 0.4f;
             out.background = glm::vec4(0.35f, 0.35f, 0.38f, 1.0f);
@@ -228,6 +231,7 @@ private:
         if (l.kind == GltfLight::Kind::Directional) {
             set(d_, light, "direction", l.direction);
             set(d_, light, "irradiance", l.intensity);
+            if (l.angularDiameter > 0.0f) set(d_, light, "angularDiameter", l.angularDiameter);
         } else {
             set(d_, light, "position", l.position);
             set(d_, light, "intensity", l.intensity);

@@ -13,6 +13,10 @@
 
 namespace ripple::apps {
 
+// The apparent diameter of the studio key light that lights a scene without lights: the sun's, 0.53
+// degrees, in radians (scripts/cycles_render.py gives Cycles' sun the same).
+inline constexpr float kStudioSunAngularDiameter = 0.00925f;
+
 // A viewpoint, independent of ANARI and of the image size.
 struct CameraView {
     std::string name;

@@ -112,6 +112,9 @@ struct GltfLight {
     float outerConeAngle = 0.7853982f;
     glm::vec3 position{0.0f};
     glm::vec3 direction{0.0f, 0.0f, -1.0f}; // the direction light travels (local -Z)
+    // Directional: apparent diameter, radians (ANARI's "angularDiameter"). glTF has none (0, a delta
+    // light); the studio light of unlit scenes is a sun of this size.
+    float angularDiameter = 0.0f;
 };
 
 struct GltfScene {

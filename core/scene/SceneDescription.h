@@ -203,6 +203,9 @@ struct Light {
     float radius = 0.0f;                  // ring: outer radius (0: a spot light)
     float innerRadius = 0.0f;             // ring
     glm::vec3 up{0.0f, 0.0f, 1.0f};       // hdri: the direction of the image's top row
+    // Directional: the apparent diameter of the light's disc, radians, in [0, pi]; 0 is a delta light (a
+    // sun that no ray can hit). Within the disc the radiance is uniform, irradiance / (pi sin^2(d / 2)).
+    float angularDiameter = 0.0f;
     int32_t texture = kNoTexture;         // hdri: an equirectangular Rgba32Float texture (its radiance)
 };
 

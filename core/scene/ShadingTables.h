@@ -17,7 +17,7 @@ struct ShadingTables {
     std::vector<uint32_t> texels;              // every texture's words, at TextureRecord::texelOffset
     std::vector<gpu::LightRecord> lights;      // valid lights, then emissive triangles (core/scene/LightTable.h)
     float lightPowerTotal = 0.0f;              // sum of the lights' selection powers
-    uint32_t testedLightCount = 0;             // lights[0, this) are the ones rays test (quad, ring, hdri)
+    uint32_t testedLightCount = 0;             // lights[0, this) are the ones rays test (quad, ring, hdri, disc sun)
     int32_t environmentLight = -1;             // index in lights of the hdri light, or -1
     uint32_t bsdfTableOffset = 0;              // first word of the BSDF energy tables in texels
     uint64_t triangleLights = 0;               // LIGHT_TRIANGLE records made from emissive geometry

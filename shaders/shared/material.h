@@ -96,7 +96,8 @@ struct LightRecord {
     vec4 position;          // point, spot: position; quad, triangle: a corner; ring: centre; w: cdf up to this light
     vec4 direction;         // directional: unit direction light travels; quad, ring, triangle: unit normal of the
                             // front side; spot, ring: unit axis; hdri: unit direction of the image centre
-    vec4 edge1;             // quad, triangle: first edge; w: area. spot, ring: x cos outer, y cos inner; ring: z radius
+    vec4 edge1;             // quad, triangle: first edge; w: area. spot, ring: x cos outer, y cos inner; ring: z radius.
+                            // directional: x 1 - cos(half its angular diameter), 0 for a delta light
     vec4 edge2;             // quad, triangle: second edge. ring: w inner radius. hdri: unit up
     uint kind;              // LIGHT_*
     uint twoSided;          // quad, triangle: emits from both sides

@@ -139,7 +139,7 @@ struct SceneDesc {
     float originUnit;         // min(1, largest |coordinate| of the world): ray-origin offsets near 0 scale with it
     uint volumeCount;         // VolumeRecords in volumes
     float lightPowerTotal;    // sum of the lights' selection powers: an emissive triangle's pdf needs it
-    uint testedLightCount;    // the first lights, which rays test themselves (quad, ring, hdri)
+    uint testedLightCount;    // the first lights, which rays test themselves (quad, ring, hdri, disc sun)
     uint bsdfTables;          // first word of the BSDF energy tables in texels (core/scene/BsdfTables.h)
     int environmentLight;     // index of the hdri light, or -1
     uint64_t accelerationStructure; // the TLAS for ray-query traversal (accelerationStructureEXT); 0 when

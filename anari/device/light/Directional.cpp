@@ -1,8 +1,13 @@
 // Light subtype "directional" (KHR_LIGHT_DIRECTIONAL): parallel light travelling along "direction" with
-// "irradiance" W/m^2 on a surface facing it. "angularDiameter" (soft sun) is not supported yet.
+// "irradiance" W/m^2 on a surface facing it. "angularDiameter" (radians, 0 to pi) gives the light a disc of
+// uniform radiance, a sun that BSDF-sampled rays can hit; 0, the default, is a delta light.
 #include "anari/device/light/Light.h"
 
 #include "anari/device/object/ArrayChecks.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <string>
 
 
 namespace ripple::device {
@@ -25,6 +30,12 @@ public:
             return;
         }
         light_.direction = glm::normalize(direction);
+        const float angularDiameter = get<float>("angularDiameter", 0.0f);
+        if (!(angularDiameter >= 0.0f && angularDiameter <= glm::pi<float>())) {
+            invalidate("parameter 'angularDiameter' must be in [0, pi] radians, got " + std::to_string(angularDiameter));
+            return;
+        }
+        light_.angularDiameter = angularDiameter;
     }
 };
 
