@@ -13,7 +13,11 @@
 // it receives at any roughness (the white furnace test). The transmission lobe's value is its weight
 // times its sampling density, so it conserves energy exactly too. GGX lobes are sampled by their visible
 // normals (Heitz, JCGT 2018); a lobe is picked in proportion to its albedo and the lobes combined in one
-// mixture pdf. Directions are unit vectors pointing away from the surface; n is the shading normal, on the
+// mixture pdf. A GGX lobe at the roughness floor (alpha MIN_GGX_ALPHA, roughness 0.03 or less) is a
+// perfect mirror or refraction instead, as in other production renderers: a delta lobe that only
+// sampleBsdf follows (weight its albedo over its chance, pdf 0, so what the ray finds is not MIS-weighted)
+// and evalBsdf leaves out. A lobe that narrow cannot be found by light sampling except as a rare, huge
+// sample. Directions are unit vectors pointing away from the surface; n is the shading normal, on the
 // side of wo.
 #ifndef RIPPLE_BSDF_GLSL
 #define RIPPLE_BSDF_GLSL
@@ -35,6 +39,9 @@ struct SurfaceMaterial {
 };
 
 const float MIN_GGX_ALPHA = 1e-3;
+
+// A lobe at the roughness floor is a delta lobe (see above).
+bool isSmooth(float alpha) { return alpha <= MIN_GGX_ALPHA; }
 const float CLEARCOAT_F0 = 0.04;   // ior 1.5
 // Must match core/scene/BsdfTables.h.
 const uint BSDF_TABLE_SIZE = 32u;
@@ -94,6 +101,8 @@ struct Lobes {
     vec3 coatCompensation;
     vec3 specularCompensation;
     vec3 specularF0;
+    float coatAlbedo;    // directional albedo of the clear coat (times its weight) and of the specular lobe
+    vec3 specularAlbedo; // (times underCoat): what a delta lobe returns in all
     float underCoat;     // what the clear coat passes on: 1 - its albedo
     float underDielectric; // what the dielectric specular passes on to diffuse and transmission
 };
@@ -106,12 +115,13 @@ Lobes lobesAt(SurfaceMaterial m, float nv) {
     LobeEnergy dielectric = lobeEnergy(m, vec3(m.f0), nv, m.alpha);
     l.coatCompensation = coat.compensation;
     l.specularCompensation = spec.compensation;
-    float coatAlbedo = m.clearcoat * coat.albedo.x;
-    l.underCoat = 1.0 - coatAlbedo;
+    l.coatAlbedo = m.clearcoat * coat.albedo.x;
+    l.underCoat = 1.0 - l.coatAlbedo;
+    l.specularAlbedo = l.underCoat * spec.albedo;
     l.underDielectric = clamp(1.0 - dielectric.albedo.x, 0.0, 1.0);
     float base = l.underCoat * (1.0 - m.metallic) * l.underDielectric * luminance(m.baseColor);
-    float coatW = coatAlbedo;
-    float specW = l.underCoat * luminance(spec.albedo);
+    float coatW = l.coatAlbedo;
+    float specW = luminance(l.specularAlbedo);
     float diffW = base * (1.0 - m.transmission);
     float transW = base * m.transmission;
     float sum = coatW + specW + diffW + transW;
@@ -166,7 +176,7 @@ float transmissionPdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
     return visibleNormalPdf(nv, dot(n, h), vh, a2) * abs(lh) / max(denom * denom, 1e-12);
 }
 
-// f(wo, wi) * |cos(n, wi)|, and the pdf with which sampleBsdf picks wi.
+// f(wo, wi) * |cos(n, wi)| of the lobes that are not delta lobes, and the pdf with which sampleBsdf picks wi.
 vec3 evalBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi, out float pdf) {
     pdf = 0.0;
     float nl = dot(n, wi);
@@ -181,16 +191,18 @@ vec3 evalBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi, out float pdf) {
     vec3 value = vec3(0.0);
     if (nl > 0.0) {
         float p;
-        if (m.clearcoat > 0.0) {
+        if (m.clearcoat > 0.0 && !isSmooth(m.clearcoatAlpha)) {
             value += m.clearcoat * l.coatCompensation * ggxReflection(vec3(CLEARCOAT_F0), m.clearcoatAlpha, n, wo, wi, p);
             pdf += l.coat * p;
         }
-        value += l.underCoat * l.specularCompensation * ggxReflection(l.specularF0, m.alpha, n, wo, wi, p);
-        pdf += l.specular * p;
+        if (!isSmooth(m.alpha)) {
+            value += l.underCoat * l.specularCompensation * ggxReflection(l.specularF0, m.alpha, n, wo, wi, p);
+            pdf += l.specular * p;
+        }
         value += l.underCoat * (1.0 - m.metallic) * (1.0 - m.transmission) * l.underDielectric * m.baseColor * (nl / PI);
         pdf += l.diffuse * (nl / PI);
     }
-    if (m.transmission > 0.0) {
+    if (m.transmission > 0.0 && !isSmooth(m.alpha)) {
         float p = transmissionPdf(m, n, wo, wi);
         value += l.underCoat * (1.0 - m.metallic) * m.transmission * l.underDielectric * m.baseColor * p;
         pdf += l.transmission * p;
@@ -215,7 +227,8 @@ vec3 sampleVisibleNormal(vec3 v, float alpha, vec2 u) {
     return normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0, nh.z)));
 }
 
-// Samples wi; weight = f * |cos| / pdf, and its pdf. False when the sample carries nothing.
+// Samples wi; weight = f * |cos| / pdf, and its pdf (0 for a delta lobe's direction, whose weight is its
+// albedo over its chance). False when the sample carries nothing.
 bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec3 weight, out float pdf) {
     weight = vec3(0.0);
     pdf = 0.0;
@@ -231,15 +244,29 @@ bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec
     vec3 v = toLocal(wo, n);
     float pick = u.x;
     if (pick < l.coat) {
+        if (isSmooth(m.clearcoatAlpha)) {
+            wi = reflect(-wo, n);
+            weight = vec3(l.coatAlbedo / l.coat);
+            return true;
+        }
         wi = toWorld(reflect(-v, sampleVisibleNormal(v, m.clearcoatAlpha, u.yz)), n);
     } else if ((pick -= l.coat) < l.specular) {
+        if (isSmooth(m.alpha)) {
+            wi = reflect(-wo, n);
+            weight = l.specularAlbedo / l.specular;
+            return true;
+        }
         wi = toWorld(reflect(-v, sampleVisibleNormal(v, m.alpha, u.yz)), n);
     } else if ((pick -= l.specular) < l.diffuse) {
         wi = toWorld(sampleCosineHemisphere(u.yz), n);
     } else if (l.transmission > 0.0) {
-        vec3 h = sampleVisibleNormal(v, m.alpha, u.yz);
+        vec3 h = isSmooth(m.alpha) ? vec3(0.0, 0.0, 1.0) : sampleVisibleNormal(v, m.alpha, u.yz);
         vec3 t = refract(-v, h, 1.0 / m.eta);
         wi = toWorld(dot(t, t) > 0.0 ? t : reflect(-v, h), n);
+        if (isSmooth(m.alpha)) {  // the transmission lobe's f * cos is its weight times its density
+            weight = l.underCoat * (1.0 - m.metallic) * m.transmission * l.underDielectric * m.baseColor / l.transmission;
+            return true;
+        }
     } else {
         return false;
     }
