@@ -39,12 +39,12 @@ struct SurfaceMaterial {
 };
 
 const float MIN_GGX_ALPHA = 1e-3;
-
-// A lobe at the roughness floor is a delta lobe (see above).
-bool isSmooth(float alpha) { return alpha <= MIN_GGX_ALPHA; }
 const float CLEARCOAT_F0 = 0.04;   // ior 1.5
 // Must match core/scene/BsdfTables.h.
 const uint BSDF_TABLE_SIZE = 32u;
+
+// A lobe at the roughness floor is a delta lobe (see above).
+bool isSmooth(float alpha) { return alpha <= MIN_GGX_ALPHA; }
 
 // Table `table` (0: E, the albedo of GGX with F = 1; 1: W, the albedo weighted by (1 - v.h)^5) at
 // (mu, alpha), bilinear over mu and roughness = sqrt(alpha).
@@ -101,8 +101,8 @@ struct Lobes {
     vec3 coatCompensation;
     vec3 specularCompensation;
     vec3 specularF0;
-    float coatAlbedo;    // directional albedo of the clear coat (times its weight) and of the specular lobe
-    vec3 specularAlbedo; // (times underCoat): what a delta lobe returns in all
+    float coatAlbedo;    // the clear coat's directional albedo times its weight (all a delta coat returns)
+    vec3 specularAlbedo; // the specular lobe's times underCoat (all a delta specular lobe returns)
     float underCoat;     // what the clear coat passes on: 1 - its albedo
     float underDielectric; // what the dielectric specular passes on to diffuse and transmission
 };
