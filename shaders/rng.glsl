@@ -7,8 +7,7 @@
 // are the first points of the 4D Sobol sequence, each dimension Owen-scrambled and the point order
 // shuffled, with seeds hashed from (pixel, the call's first sample, bounce, group, seed) (Burley,
 // "Practical Hash-based Owen Scrambling", JCGT 2020). So a frame of n samples stratifies the pixel area,
-// the light and the BSDF lobes (the first two dimensions of each group as a (0,2)-sequence, the other
-// pairs less evenly) where n independent samples would clump, while
+// the light and the BSDF lobes the way n jittered strata would, in every pair of its dimensions, while
 // distinct frames, pixels, bounces and groups stay independent randomizations: a frame is one unbiased
 // randomized-QMC estimate, and the spread between frames (apps/common/ErrorEstimate.h) measures its error
 // honestly. A frame of one sample is a plain random sample. The volume tracking loops draw streams of
