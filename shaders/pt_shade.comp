@@ -135,7 +135,7 @@ void main() {
     vec3 position = r.position.xyz;
     vec3 geometricNormal = r.geometricNormal.xyz;
     vec3 wo = -direction;
-    vec4 uLight = random4(path.pixel, params.sampleIndex, f.frameFirstSample, params.bounce, RNG_LIGHT, f.seed);
+    vec4 uLight = random4(path.pixel, params.sampleIndex, params.bounce, RNG_LIGHT, f.seed);
 
     // Transparency: continue straight on, unchanged, with probability 1 - opacity.
     if (uLight.w >= r.geometricNormal.w) {
@@ -165,7 +165,7 @@ void main() {
                    depth >= f.maxPathLength);
 
     if (depth >= f.maxPathLength) return;
-    vec4 uBsdf = random4(path.pixel, params.sampleIndex, f.frameFirstSample, params.bounce, RNG_BSDF, f.seed);
+    vec4 uBsdf = random4(path.pixel, params.sampleIndex, params.bounce, RNG_BSDF, f.seed);
     vec3 wi;
     vec3 weight;
     float pdf;

@@ -438,9 +438,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     if (size_.x == 0) throw std::invalid_argument("PathTracer::render: call resize() first");
     const auto start = std::chrono::steady_clock::now();
     Impl& m = *impl_;
-    gpu::FrameConstants frame = frameConstants(camera, settings);
-    frame.frameFirstSample = accumulatedSamples_;
-    m.uploadFrame(frame, size_);
+    m.uploadFrame(frameConstants(camera, settings), size_);
     m.writeCounters({});
     // Leave out what this frame does not need: kernels specialised for its FeatureSet (FeatureSet.h).
     m.features = m.options.specialize ? FeatureSet{scene.features() | m.channelBits |

@@ -133,9 +133,6 @@ struct FrameConstants {
     uint lightSampling;       // LIGHT_SAMPLING_*
     float phaseAnisotropy;    // Henyey-Greenstein g of scattering in volumes, in (-1, 1); 0: isotropic
     float cameraFar;          // far clip distance along forward (perspective, orthographic); INFINITY: none
-    uint frameFirstSample;    // sampleIndex of this render() call's first sample: its samples share one
-                              // randomization of the low-discrepancy sequence (rng.glsl)
-    uint pad0;
 };
 
 // Push constants of every pt_*.comp stage; each reads the fields it needs (0 where unused).

@@ -346,68 +346,6 @@ TEST_CASE("path tracer: same seed, same image, bit for bit, whatever the wave si
     CHECK(std::memcmp(a.color.data(), c.color.data(), a.color.size() * sizeof(glm::vec4)) != 0);
 }
 
-// The samples are low-discrepancy within a frame and independent between frames (shaders/rng.glsl). A
-// straight edge crosses the image at a slant and alpha is the share of a pixel's samples that hit the
-// surface; against each pixel's exact coverage c, n independent samples miss by c (1 - c) / n in variance.
-// One frame of 64 samples must do far better (stratified: RMS error under 0.6 of independent sampling's,
-// about 0.35 expected); 64 frames of one sample each are independent randomizations and must not (over
-// 0.8 of it; 1 expected), or the error estimate from frame batches (apps/common/ErrorEstimate.h) would lie.
-TEST_CASE("path tracer: samples stratify within a frame and are independent between frames") {
-    test::ValidationGuard guard;
-    const glm::vec2 normal(std::cos(0.3f), std::sin(0.3f)), along(-normal.y, normal.x);
-    const float edge = 0.37f;  // the surface covers dot(p, normal) <= edge
-    auto point = [&](float s, float inside) { return glm::vec3((edge - inside) * normal + s * along, 0.0f); };
-    core::TriangleMesh halfPlane;
-    halfPlane.positions = {point(-200.0f, 0.0f), point(200.0f, 0.0f), point(200.0f, 200.0f), point(-200.0f, 200.0f)};
-    halfPlane.indices = {{0, 1, 2}, {0, 2, 3}};
-    core::SceneDescription d;
-    d.meshes.push_back(halfPlane);
-    d.instances.push_back({{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f), 0});
-    const uint32_t size = 128, samples = 64;
-    const core::Camera camera = test::lookingDown(1.0f, float(size));  // pixel (x, y) covers [x - 64, x - 63] x ...
-    core::Scene scene(testContext(), d);
-
-    // RMS of (alpha - coverage) over the pixels the edge crosses, over independent sampling's.
-    auto relativeError = [&](uint32_t frames) {
-        core::PathTracer tracer(testContext());
-        tracer.resize({size, size}, false);
-        core::RenderSettings settings;
-        settings.maxPathLength = 1;
-        settings.background = glm::vec4(0.0f);
-        settings.pixelSamples = samples / frames;
-        for (uint32_t f = 0; f < frames; ++f) tracer.render(scene, camera, settings);
-        std::vector<glm::vec4> color(size_t(size) * size);
-        tracer.readColor(core::ColorFormat::Rgba32Float, color.data());
-        double squaredError = 0.0, independentVariance = 0.0;
-        uint32_t pixels = 0;
-        for (uint32_t y = 0; y < size; ++y) {
-            for (uint32_t x = 0; x < size; ++x) {
-                const int grid = 256;  // the pixel's coverage, from a grid of points
-                int inside = 0;
-                for (int j = 0; j < grid; ++j)
-                    for (int i = 0; i < grid; ++i) {
-                        const glm::vec2 p(float(x) - 64.0f + (i + 0.5f) / grid, float(y) - 64.0f + (j + 0.5f) / grid);
-                        inside += glm::dot(p, normal) <= edge ? 1 : 0;
-                    }
-                const double coverage = double(inside) / (grid * grid);
-                if (coverage < 0.02 || coverage > 0.98) continue;
-                const double e = color[size_t(y) * size + x].a - coverage;
-                squaredError += e * e;
-                independentVariance += coverage * (1.0 - coverage) / samples;
-                ++pixels;
-            }
-        }
-        REQUIRE(pixels > 100);
-        return std::sqrt(squaredError / independentVariance);
-    };
-    const double oneFrame = relativeError(1), frameEach = relativeError(samples);
-    MESSAGE("RMS error over independent sampling's: one frame of " << samples << " samples " << oneFrame << ", "
-            << samples << " frames of one " << frameEach);
-    CHECK(oneFrame < 0.6);
-    CHECK(frameEach > 0.8);
-    CHECK(frameEach < 1.25);
-}
-
 TEST_CASE("path tracer: bad calls are clear errors") {
     test::ValidationGuard guard;
     core::PathTracer tracer(testContext());
