@@ -54,6 +54,24 @@ def main():
     meshes = [o for o in scene.objects if o.type == "MESH"]
     if not meshes:
         raise SystemExit(f"{args.scene}: no meshes")
+    # A glTF primitive without a material has glTF's default one (white, metallic 1, roughness 1), as in
+    # ripple-render; Blender would draw it with its own grey diffuse default.
+    default_material = None
+    for o in meshes:
+        if o.data.materials and all(m is not None for m in o.data.materials):
+            continue
+        if default_material is None:
+            default_material = bpy.data.materials.new("gltf_default")
+            default_material.use_nodes = True
+            bsdf = default_material.node_tree.nodes["Principled BSDF"]
+            bsdf.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+            bsdf.inputs["Metallic"].default_value = 1.0
+            bsdf.inputs["Roughness"].default_value = 1.0
+        if not o.data.materials:
+            o.data.materials.append(default_material)
+        for i, m in enumerate(o.data.materials):
+            if m is None:
+                o.data.materials[i] = default_material
 
     # Camera: the file's first, else ripple-render's framing of the bounds (in glTF coordinates).
     cameras = [o for o in scene.objects if o.type == "CAMERA"]

@@ -16,7 +16,9 @@
 #   --spp N                samples per image (default 16)
 #   --size WxH             image size (default 256x256)
 #   --max-path-length L    surface interactions per path (default 5)
-#   --out DIR              where the images go (default: a new folder under /tmp)
+#   --out DIR              where the images go (default: a new folder under /tmp); images already there for
+#                          the same renderer, scene, size, spp, path length and seed are reused
+#   --map FILE.png         also write a heat map of each pixel's relMSE x spp (log10, -3 black to 1 white)
 #   --ripple-render PATH   the ripple-render program (default: build/apps/ripple-render/ripple-render)
 #   -h, --help
 #
@@ -33,6 +35,7 @@ spp=16
 size=256x256
 path_length=5
 out=""
+map=""
 ripple_render="$repo_dir/build/apps/ripple-render/ripple-render"
 scene=""
 
@@ -44,6 +47,7 @@ while [ $# -gt 0 ]; do
     --size) size=$2; shift 2 ;;
     --max-path-length) path_length=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
+    --map) map=$2; shift 2 ;;
     --ripple-render) ripple_render=$2; shift 2 ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -*) die "unknown option $1 (see --help)" ;;
@@ -66,8 +70,12 @@ mkdir -p "$out"
 name=$(basename "$scene"); name=${name%.*}
 start=$(date +%s.%N)
 files=()
+rendered=0
 for seed in $(seq 1 "$images"); do
-  image="$out/$renderer-$name-$seed.pfm"
+  image="$out/$renderer-$name-$size-${spp}spp-L$path_length-$seed.pfm"
+  files+=("$image")
+  [ -f "$image" ] && continue
+  rendered=$((rendered + 1))
   if [ "$renderer" = ripple ]; then
     "$ripple_render" "$scene" --size "$size" --spp "$spp" --max-path-length "$path_length" --seed "$seed" -q \
       -o "$image" > "$out/$renderer-$name-$seed.log" 2>&1 || die "ripple-render failed: $out/$renderer-$name-$seed.log"
@@ -76,13 +84,13 @@ for seed in $(seq 1 "$images"); do
       --max-path-length "$path_length" --spp "$spp" --seed "$seed" > "$out/$renderer-$name-$seed.log" 2>&1 \
       || die "blender failed: $out/$renderer-$name-$seed.log"
   fi
-  files+=("$image")
 done
-seconds=$(python3 -c "import sys; print('%.1f' % ((float(sys.argv[2]) - float(sys.argv[1])) / int(sys.argv[3])))" \
-  "$start" "$(date +%s.%N)" "$images")
+# Seconds per image rendered now (-1 when every image was reused).
+seconds=$(python3 -c "import sys; n = int(sys.argv[3]); print('%.1f' % ((float(sys.argv[2]) - float(sys.argv[1])) / n) if n else -1)" \
+  "$start" "$(date +%s.%N)" "$rendered")
 
-python3 - "$renderer" "$name" "$spp" "$seconds" "${files[@]}" <<'PY'
-import json, sys
+python3 - "$renderer" "$name" "$spp" "$seconds" "$map" "${files[@]}" <<'PY'
+import json, struct, sys, zlib
 import numpy as np
 
 def read_pfm(path):
@@ -93,12 +101,27 @@ def read_pfm(path):
         data = np.fromfile(f, "<f4" if scale < 0 else ">f4")
     return data.reshape(height, width, 3 if kind == b"PF" else 1)
 
-renderer, scene, spp, seconds = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
-stack = np.stack([read_pfm(p).astype(np.float64) for p in sys.argv[5:]])
+def write_heat_map(path, values):
+    """log10 of values from -3 (black) through red and yellow to 1 (white), as an 8-bit RGB PNG."""
+    t = np.clip((np.log10(np.maximum(values, 1e-30)) + 3.0) / 4.0, 0.0, 1.0)
+    rgb = np.stack([np.clip(3 * t, 0, 1), np.clip(3 * t - 1, 0, 1), np.clip(3 * t - 2, 0, 1)], axis=2)
+    rows = (rgb[::-1] * 255 + 0.5).astype(np.uint8)  # PFM rows run bottom to top, PNG's top to bottom
+    raw = b"".join(b"\0" + row.tobytes() for row in rows)
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    height, width = values.shape
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+renderer, scene, spp, seconds, heat_map = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
+stack = np.stack([read_pfm(p).astype(np.float64) for p in sys.argv[6:]])
 if not np.isfinite(stack).all():
     sys.exit("noise-per-sample.sh: an image holds NaN or Inf")
 median = np.median(stack, axis=0)
 error = (stack.var(axis=0, ddof=1) / (median ** 2 + 0.01)).mean(axis=2)  # per pixel, at spp samples
+if heat_map:
+    write_heat_map(heat_map, error * spp)
 ranked = np.sort(error.ravel())[::-1]
 total = ranked.sum()
 result = {
@@ -107,8 +130,8 @@ result = {
     "relmse_x_spp_without_top10": float(ranked[10:].sum() / error.size * spp),
     "top10_share": float(ranked[:10].sum() / total) if total > 0 else 0.0,
 }
-print("%s %s: relMSE x spp %.4g (without the 10 worst pixels %.4g; they hold %.0f%%), %d images of %d spp, %.1f s each"
+print("%s %s: relMSE x spp %.4g (without the 10 worst pixels %.4g; they hold %.0f%%), %d images of %d spp%s"
       % (renderer, scene, result["relmse_x_spp"], result["relmse_x_spp_without_top10"], 100 * result["top10_share"],
-         len(stack), spp, seconds))
+         len(stack), spp, ", %.1f s each" % seconds if seconds >= 0 else " (reused)"))
 print(json.dumps(result))
 PY

@@ -337,6 +337,7 @@ std::vector<BadCase> allCases() {
         cases.push_back(pointArrayCase("curve", "vertex.position", bad, false));
         cases.push_back(lightCase("directional", "direction", 3, bad, false));
         cases.push_back(lightCase("directional", "irradiance", 1, bad, true));
+        cases.push_back(lightCase("directional", "angularDiameter", 1, bad, quick));
         cases.push_back(lightCase("directional", "color", 3, bad, false));
         cases.push_back(lightCase("point", "position", 3, bad, false));
         cases.push_back(lightCase("point", "intensity", 1, bad, false));

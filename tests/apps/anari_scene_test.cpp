@@ -79,7 +79,7 @@ const std::map<std::string, ParameterTable>& specification() {
         {"group/", {{"surface", {{ANARI_ARRAY1D}, {ANARI_SURFACE}}}, {"volume", {{ANARI_ARRAY1D}, {ANARI_VOLUME}}}}},
         {"instance/transform", {{"transform", {{ANARI_FLOAT32_MAT4}}}, {"group", {{ANARI_GROUP}}}}},
         {"world/", {{"instance", {{ANARI_ARRAY1D}, {ANARI_INSTANCE}}}, {"light", {{ANARI_ARRAY1D}, {ANARI_LIGHT}}}}},
-        {"light/directional", {{"color", kVec3}, {"direction", kVec3}, {"irradiance", kFloat}}},
+        {"light/directional", {{"color", kVec3}, {"direction", kVec3}, {"irradiance", kFloat}, {"angularDiameter", kFloat}}},
         {"light/point", {{"color", kVec3}, {"position", kVec3}, {"intensity", kFloat}}},
         {"light/spot",
          {{"color", kVec3}, {"position", kVec3}, {"direction", kVec3}, {"intensity", kFloat}, {"openingAngle", kFloat},

@@ -267,6 +267,46 @@ MeanAndError redStatistics(const test::Rendered& r) {
     return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1.0))};
 }
 
+// A floor of `floor` under a ceiling of radiance 1.5 (corner + [0, 1] alongX + [0, 1] alongY): once an
+// emissive rectangle, which only the trace finds, once a quad light facing the floor, which light sampling
+// and the rays that test it find. Viewed by ceilingCamera(), 60 degrees off the normal, the mirror
+// direction points into the ceiling.
+struct CeilingScenes {
+    core::SceneDescription emitter, lit;
+};
+
+CeilingScenes ceilingOver(const core::Material& floor) {
+    const glm::vec3 corner(-1.0f, -3.0f, 1.0f), alongX(5.5f, 0.0f, 0.0f), alongY(0.0f, 6.0f, 0.0f);
+    CeilingScenes out{test::sceneOf(test::squareMesh(100.0f)), test::sceneOf(test::squareMesh(100.0f))};
+    out.emitter.materials = {floor};
+    core::TriangleMesh ceiling;
+    ceiling.positions = {corner, corner + alongX, corner + alongX + alongY, corner + alongY};
+    ceiling.indices = {{0, 1, 2}, {0, 2, 3}};
+    out.emitter.meshes.push_back(ceiling);
+    core::Material glow;
+    glow.baseColor = glm::vec3(0.0f);
+    glow.emissive = glm::vec3(1.5f);
+    out.emitter.materials.push_back(glow);
+    out.emitter.instances.push_back({{core::GeometryKind::Triangles, 1}, glm::mat4(1.0f), 1});
+
+    out.lit.materials = {floor};
+    core::Light quad;
+    quad.kind = core::Light::Kind::Quad;
+    quad.position = corner;
+    quad.edge1 = alongY;  // cross(edge1, edge2) points down, at the floor
+    quad.edge2 = alongX;
+    quad.intensity = 1.5f;
+    out.lit.lights.push_back(quad);
+    return out;
+}
+
+core::Camera ceilingCamera() {
+    core::Camera camera = test::lookingDown(0.0f, 1e-3f);
+    camera.direction = {0.866f, 0.0f, -0.5f};
+    camera.position = -0.4f * camera.direction;
+    return camera;
+}
+
 }  // namespace
 
 // The same light reached two ways: an emissive rectangle above a physicallyBased floor, found only by
@@ -277,10 +317,7 @@ MeanAndError redStatistics(const test::Rendered& r) {
 // the light.
 TEST_CASE("shading: BSDF sampling and light sampling of the same emitter agree") {
     test::ValidationGuard guard;
-    core::Camera camera = test::lookingDown(0.0f, 1e-3f);
-    camera.direction = {0.866f, 0.0f, -0.5f};
-    camera.position = -0.4f * camera.direction;
-    const glm::vec3 corner(-1.0f, -3.0f, 1.0f), alongX(5.5f, 0.0f, 0.0f), alongY(0.0f, 6.0f, 0.0f);
+    const core::Camera camera = ceilingCamera();
     core::RenderSettings settings;
     settings.pixelSamples = 32;
     for (auto [metallic, roughness] : {std::pair{1.0f, 0.8f}, std::pair{0.3f, 0.4f}}) {
@@ -290,32 +327,11 @@ TEST_CASE("shading: BSDF sampling and light sampling of the same emitter agree")
         floor.baseColor = {0.8f, 0.8f, 0.8f};
         floor.metallic = metallic;
         floor.roughness = roughness;
-
-        core::SceneDescription emitter = test::sceneOf(test::squareMesh(100.0f));
-        emitter.materials = {floor};
-        core::TriangleMesh ceiling;
-        ceiling.positions = {corner, corner + alongX, corner + alongX + alongY, corner + alongY};
-        ceiling.indices = {{0, 1, 2}, {0, 2, 3}};
-        emitter.meshes.push_back(ceiling);
-        core::Material glow;
-        glow.baseColor = glm::vec3(0.0f);
-        glow.emissive = glm::vec3(1.5f);
-        emitter.materials.push_back(glow);
-        emitter.instances.push_back({{core::GeometryKind::Triangles, 1}, glm::mat4(1.0f), 1});
+        const CeilingScenes scenes = ceilingOver(floor);
         settings.maxPathLength = 2;
-        const MeanAndError bsdf = redStatistics(test::render(emitter, camera, settings));
-
-        core::SceneDescription lit = test::sceneOf(test::squareMesh(100.0f));
-        lit.materials = {floor};
-        core::Light quad;
-        quad.kind = core::Light::Kind::Quad;
-        quad.position = corner;
-        quad.edge1 = alongY;  // cross(edge1, edge2) points down, at the floor
-        quad.edge2 = alongX;
-        quad.intensity = 1.5f;
-        lit.lights.push_back(quad);
+        const MeanAndError bsdf = redStatistics(test::render(scenes.emitter, camera, settings));
         settings.maxPathLength = 1;
-        const MeanAndError light = redStatistics(test::render(lit, camera, settings));
+        const MeanAndError light = redStatistics(test::render(scenes.lit, camera, settings));
 
         MESSAGE("roughness " << roughness << ": BSDF sampling " << bsdf.mean << " +- " << bsdf.standardError
                              << ", light sampling " << light.mean << " +- " << light.standardError);
@@ -330,10 +346,6 @@ TEST_CASE("shading: BSDF sampling and light sampling of the same emitter agree")
 // below 1e-4), and light sampling adds nothing, so the quad light is not counted twice.
 TEST_CASE("shading: a mirror reflects an emitter exactly, without noise") {
     test::ValidationGuard guard;
-    core::Camera camera = test::lookingDown(0.0f, 1e-3f);
-    camera.direction = {0.866f, 0.0f, -0.5f};
-    camera.position = -0.4f * camera.direction;
-    const glm::vec3 corner(-1.0f, -3.0f, 1.0f), alongX(5.5f, 0.0f, 0.0f), alongY(0.0f, 6.0f, 0.0f);
     core::Material mirror;
     mirror.kind = core::Material::Kind::PhysicallyBased;
     mirror.baseColor = glm::vec3(1.0f);
@@ -342,33 +354,12 @@ TEST_CASE("shading: a mirror reflects an emitter exactly, without noise") {
     core::RenderSettings settings;
     settings.pixelSamples = 8;
     settings.maxPathLength = 2;
-
-    core::SceneDescription emitter = test::sceneOf(test::squareMesh(100.0f));
-    emitter.materials = {mirror};
-    core::TriangleMesh ceiling;
-    ceiling.positions = {corner, corner + alongX, corner + alongX + alongY, corner + alongY};
-    ceiling.indices = {{0, 1, 2}, {0, 2, 3}};
-    emitter.meshes.push_back(ceiling);
-    core::Material glow;
-    glow.baseColor = glm::vec3(0.0f);
-    glow.emissive = glm::vec3(1.5f);
-    emitter.materials.push_back(glow);
-    emitter.instances.push_back({{core::GeometryKind::Triangles, 1}, glm::mat4(1.0f), 1});
-
-    core::SceneDescription lit = test::sceneOf(test::squareMesh(100.0f));
-    lit.materials = {mirror};
-    core::Light quad;
-    quad.kind = core::Light::Kind::Quad;
-    quad.position = corner;
-    quad.edge1 = alongY;  // cross(edge1, edge2) points down, at the floor
-    quad.edge2 = alongX;
-    quad.intensity = 1.5f;
-    lit.lights.push_back(quad);
-
-    for (const core::SceneDescription* scene : {&emitter, &lit}) {
-        CAPTURE(scene == &lit);
-        const MeanAndError m = redStatistics(test::render(*scene, camera, settings));
-        MESSAGE(std::string(scene == &lit ? "quad light: " : "emissive rectangle: ") << m.mean << " +- " << m.standardError);
+    const CeilingScenes scenes = ceilingOver(mirror);
+    for (const core::SceneDescription* scene : {&scenes.emitter, &scenes.lit}) {
+        const bool light = scene == &scenes.lit;
+        CAPTURE(light);
+        const MeanAndError m = redStatistics(test::render(*scene, ceilingCamera(), settings));
+        MESSAGE(std::string(light ? "quad light: " : "emissive rectangle: ") << m.mean << " +- " << m.standardError);
         CHECK(std::abs(m.mean - 1.5) <= 0.015);
         CHECK(m.standardError < 1e-4);
     }

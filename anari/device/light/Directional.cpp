@@ -31,6 +31,7 @@ public:
         }
         light_.direction = glm::normalize(direction);
         const float angularDiameter = get<float>("angularDiameter", 0.0f);
+        if (reject(nonFiniteProblem("angularDiameter", angularDiameter))) return;
         if (!(angularDiameter >= 0.0f && angularDiameter <= glm::pi<float>())) {
             invalidate("parameter 'angularDiameter' must be in [0, pi] radians, got " + std::to_string(angularDiameter));
             return;
