@@ -496,8 +496,9 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
         if (plan.root) {
             const uint32_t spp = out.estimator.samples();
             progress.update(spp, reportsRays ? raysPerSecond : 0.0f);
-            const double estimate =
-                options.targetError || spp >= nextReport ? out.estimator.estimatedRelMse() : 0.0;
+            // The estimate costs a pass over the image: made only where something uses it, and once.
+            const bool estimated = options.targetError || spp >= nextReport;
+            const ErrorEstimate estimate = estimated ? out.estimator.estimate() : ErrorEstimate{};
             // --time stops before a frame predicted to end past the limit, counted from the process's start:
             // the run ends within it, at most one frame early; a start-up past it leaves the first frame
             // alone, and a frame far slower than the ones before overruns it. Under --time every frame is
@@ -505,10 +506,10 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
             // Ripple restarts its accumulation when pixelSamples changes): a frame that does not fit is
             // not started.
             stop = spp >= sppLimit || !budget.nextFrameFits(budget.elapsed()) ||
-                   (options.targetError && spp >= kMinSamplesForTarget && estimate <= *options.targetError);
+                   (options.targetError && spp >= kMinSamplesForTarget && estimate.relMse <= *options.targetError);
             if (options.reporting() && (spp >= nextReport || stop)) {
                 clock.pause();  // metrics and printing are not render time
-                ConvergencePoint point{clock.seconds(), spp, out.estimator.estimate(), std::nullopt};
+                ConvergencePoint point{clock.seconds(), spp, estimated ? estimate : out.estimator.estimate(), std::nullopt};
                 if (plan.reference) point.reference = compareToReference(out.estimator.meanImage(), *plan.reference);
                 if (printPoints) std::printf("%s\n", formatConvergencePoint(point).c_str());
                 std::fflush(stdout);
