@@ -76,13 +76,13 @@ for seed in $(seq 1 "$images"); do
   files+=("$image")
   [ -f "$image" ] && continue
   rendered=$((rendered + 1))
+  log="${image%.pfm}.log"
   if [ "$renderer" = ripple ]; then
     "$ripple_render" "$scene" --size "$size" --spp "$spp" --max-path-length "$path_length" --seed "$seed" -q \
-      -o "$image" > "$out/$renderer-$name-$seed.log" 2>&1 || die "ripple-render failed: $out/$renderer-$name-$seed.log"
+      -o "$image" > "$log" 2>&1 || die "ripple-render failed: $log"
   else
     blender -b --factory-startup --python "$script_dir/cycles_render.py" -- "$scene" "$image" --size "$size" \
-      --max-path-length "$path_length" --spp "$spp" --seed "$seed" > "$out/$renderer-$name-$seed.log" 2>&1 \
-      || die "blender failed: $out/$renderer-$name-$seed.log"
+      --max-path-length "$path_length" --spp "$spp" --seed "$seed" > "$log" 2>&1 || die "blender failed: $log"
   fi
 done
 # Seconds per image rendered now (-1 when every image was reused).
@@ -125,7 +125,8 @@ if heat_map:
 ranked = np.sort(error.ravel())[::-1]
 total = ranked.sum()
 result = {
-    "renderer": renderer, "scene": scene, "images": len(stack), "spp": spp, "seconds_per_image": seconds,
+    "renderer": renderer, "scene": scene, "images": len(stack), "spp": spp,
+    "seconds_per_image": seconds if seconds >= 0 else None,
     "relmse_x_spp": float(error.mean() * spp),
     "relmse_x_spp_without_top10": float(ranked[10:].sum() / error.size * spp),
     "top10_share": float(ranked[:10].sum() / total) if total > 0 else 0.0,
