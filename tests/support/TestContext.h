@@ -1,6 +1,6 @@
 // The Vulkan context every GPU test shares: validation layers on, so any validation message fails the test
-// that caused it (see ValidationGuard). RIPPLE_VK_VALIDATION=0 turns them off, as the device's variable of
-// the same name does: the sanitizer build's tests set it (tests/CMakeLists.txt).
+// that caused it (see ValidationGuard). RIPPLE_VK_VALIDATION=0 turns them off: the sanitizer build's tests
+// set it (tests/CMakeLists.txt). The device reads the same variable, off unless it is 1.
 #pragma once
 
 #include "core/vk/Context.h"
