@@ -224,6 +224,13 @@ void Device::setDeviceParameter(const char* name, ANARIDataType type, const void
             state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
                           std::string("device parameter 'traversal' is '") + value + "'; use one of " +
                               core::kTraversalNames + " (kept: " + core::traversalName(state_.traversal()) + ")");
+    } else if (key == "rayExchange" && type == ANARI_STRING) {
+        const char* value = static_cast<const char*>(mem);
+        if (const auto kind = core::parseExchangeKind(value)) state_.setRayExchange(*kind);
+        else
+            state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
+                          std::string("device parameter 'rayExchange' is '") + value + "'; use one of " +
+                              core::kExchangeNames + " (kept: " + core::exchangeKindName(state_.rayExchange()) + ")");
     } else if (key == "pointer_to_mpi_communicator" && type == ANARI_UINT64) {
         const void* communicator = nullptr;  // the same address, as a number
         std::memcpy(&communicator, mem, sizeof(communicator));

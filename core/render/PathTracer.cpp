@@ -456,6 +456,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     // This rank's pixels (all of them with one rank); every rank runs as many waves and bounces as the
     // busiest one, since each exchange needs all ranks.
     RayExchange& ranks = m.exchange();
+    if (ranks.rankCount() > 1) ranks.shareRegions(scene.regions());
     const std::vector<PixelRange> owned = ownedPixels(size_, ranks.rank(), ranks.rankCount());
     const std::vector<Wave> waves = packWaves(owned, m.capacity);
     const uint64_t waveCount = ranks.max(waves.size());

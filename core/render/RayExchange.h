@@ -1,14 +1,18 @@
 // How the wavefront loop meets the other ranks of a data-parallel render, without knowing MPI: after the
 // local closest-hit and any-hit traces it hands its queue to a RayExchange, which returns every ray with
 // the globally closest hit (and the SurfaceRecord packed by the rank that owns it) or occlusion. Local is
-// the one-rank exchange; mpi/RingExchange cycles the queues through all ranks.
+// the one-rank exchange; mpi/RingExchange cycles the queues through all ranks; mpi/BoundsExchange sends each
+// ray only to the ranks whose world boxes it enters.
 #pragma once
 
+#include "core/bvh/Aabb.h"
 #include "shaders/shared/path.h"
 #include "shaders/shared/ray.h"
 
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace ripple::core {
@@ -52,16 +56,26 @@ public:
 
 // Traffic of one rank, summed over a frame.
 struct ExchangeStats {
-    uint64_t raysSent = 0;      // path and shadow rays this rank sent, each hop counted
-    uint64_t bytesSent = 0;
-    uint64_t hops = 0;
+    uint64_t raysSent = 0;      // path and shadow rays this rank sent to another rank, each hop counted
+    uint64_t bytesSent = 0;     // rays and their answers (hits, occlusion) sent to other ranks
+    uint64_t regionBytes = 0;   // world boxes sent to other ranks (BoundsExchange, once per frame)
+    uint64_t hops = 0;          // rounds of sending (ring: hops; bounds: rounds)
 };
+
+// The exchanges a data-parallel render can use (the device parameter "rayExchange").
+enum class ExchangeKind : uint32_t { Bounds, Ring };
+inline constexpr const char* kExchangeNames = "\"bounds\", \"ring\"";
+std::optional<ExchangeKind> parseExchangeKind(std::string_view name);
+const char* exchangeKindName(ExchangeKind kind);
 
 class RayExchange {
 public:
     virtual ~RayExchange() = default;
     virtual uint32_t rank() const = 0;
     virtual uint32_t rankCount() const = 0;
+    // Collective, before a frame's first exchange: this rank's world boxes (Scene::regions()). Exchanges
+    // that route rays by them gather every rank's; the others ignore them.
+    virtual void shareRegions(std::span<const bvh::Aabb> mine) { (void)mine; }
     // On entry: this rank's queue after its local trace. On return: every ray has met every rank's part.
     virtual void exchangeClosest(std::vector<WireRay>& rays, RankTracer& tracer) = 0;
     virtual void exchangeShadow(std::vector<WireShadowRay>& rays, RankTracer& tracer) = 0;

@@ -2,6 +2,8 @@
 // Scene), TLAS built, primitives, shading attributes, materials and lights flattened and uploaded.
 #include "core/scene/Scene.h"
 
+#include "core/bvh/BoxClusters.h"
+
 #include "core/bvh/Bvh4Collapse.h"
 #include "core/bvh/Bvh4Compress.h"
 #include "core/render/FeatureSet.h"
@@ -337,6 +339,9 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         bounds_.extend(volumes.bounds);
         features_ |= gpu::FEATURE_VOLUMES;
     }
+    std::vector<bvh::Aabb> occupied = instanceBoxes;
+    occupied.insert(occupied.end(), volumes.boxes.begin(), volumes.boxes.end());
+    regions_ = bvh::clusterBoxes(occupied, kMaxRegions);
 
     // 3. Flatten: TLAS nodes first, then each BLAS, every BVH collapsed to 4 wide (the kernels' layout);
     //    primitives in leaf order; shading data per geometry.

@@ -83,12 +83,18 @@ public:
     // instances, textures, emission, alpha and light kinds. The frame adds its own (core/render/FeatureSet.h).
     uint32_t features() const { return features_; }
     const bvh::Aabb& bounds() const { return bounds_; }
+    // Where this scene's geometry and volumes lie: at most kMaxRegions world boxes covering every kept
+    // instance and volume (bvh::clusterBoxes), empty for an empty scene. What a data-parallel rank tells
+    // the others, so rays are sent only where they can meet something (mpi/BoundsExchange).
+    static constexpr size_t kMaxRegions = 64;
+    const std::vector<bvh::Aabb>& regions() const { return regions_; }
     // This scene's own emissive triangles as light records (what a data-parallel rank shares).
     const std::vector<gpu::LightRecord>& triangleLights() const { return triangleLights_; }
 
 private:
     SceneReport report_;
     bvh::Aabb bounds_;
+    std::vector<bvh::Aabb> regions_;
     uint32_t instanceCount_ = 0;
     uint32_t lightCount_ = 0;
     uint32_t features_ = 0;

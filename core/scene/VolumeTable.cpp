@@ -131,11 +131,14 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
 
         // World bounds: the grid box's corners.
         const glm::vec3 hiCorner = v.origin + glm::vec3(extent) * v.spacing;
+        bvh::Aabb box;
         for (int c = 0; c < 8; ++c) {
             const glm::vec3 corner((c & 1) ? hiCorner.x : v.origin.x, (c & 2) ? hiCorner.y : v.origin.y,
                                    (c & 4) ? hiCorner.z : v.origin.z);
-            table.bounds.extend(glm::vec3(v.transform * glm::vec4(corner, 1.0f)));
+            box.extend(glm::vec3(v.transform * glm::vec4(corner, 1.0f)));
         }
+        table.bounds.extend(box);
+        table.boxes.push_back(box);
         table.records.push_back(record);
     }
     return table;

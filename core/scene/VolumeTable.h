@@ -16,6 +16,7 @@ struct VolumeTable {
     std::vector<gpu::VolumeRecord> records;
     std::vector<float> data;
     bvh::Aabb bounds;                     // world box of the kept volumes
+    std::vector<bvh::Aabb> boxes;         // world box of each kept volume, as records
     uint64_t skipped = 0;
     std::vector<std::string> messages;    // one per skipped volume, naming it and the problem
 };

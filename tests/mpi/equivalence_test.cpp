@@ -1,6 +1,8 @@
-// N ranks, each holding only its part of a scene, render what one rank holding everything renders: the
-// ring exchange brings every ray the globally closest hit and occlusion, lights are gathered, pixels are
-// shaded at home and gathered on rank 0. Run under mpirun with 1 to 4 ranks (tests/mpi/CMakeLists.txt).
+// N ranks, each holding only its part of a scene, render what one rank holding everything renders: each
+// exchange (ring, bounds-culled) brings every ray the globally closest hit and occlusion, lights are
+// gathered, pixels are shaded at home and gathered on rank 0. Run under mpirun with 1 to 4 ranks
+// (tests/mpi/CMakeLists.txt).
+#include "mpi/BoundsExchange.h"
 #include "mpi/Communicator.h"
 #include "mpi/FrameGather.h"
 #include "mpi/LightGather.h"
@@ -15,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
 
 using namespace ripple;
 
@@ -45,9 +48,16 @@ Comparison compare(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>
 
 using ScenePart = std::function<core::SceneDescription(uint32_t rank, uint32_t ranks)>;
 
+std::unique_ptr<core::RayExchange> makeExchange(core::ExchangeKind kind, const mpi::Communicator& world) {
+    if (kind == core::ExchangeKind::Ring) return std::make_unique<mpi::RingExchange>(world);
+    return std::make_unique<mpi::BoundsExchange>(world);
+}
+
+constexpr core::ExchangeKind kExchanges[] = {core::ExchangeKind::Ring, core::ExchangeKind::Bounds};
+
 // Renders the scene split over all ranks and, on rank 0, compares it with the whole scene rendered by
 // rank 0 alone. Collective.
-void checkEquivalence(const ScenePart& part, const core::Camera& camera) {
+void checkEquivalence(const ScenePart& part, const core::Camera& camera, core::ExchangeKind kind) {
     test::ValidationGuard guard;
     const mpi::Communicator world = mpi::Communicator::world();
     const auto rank = uint32_t(world.rank()), ranks = uint32_t(world.size());
@@ -63,13 +73,13 @@ void checkEquivalence(const ScenePart& part, const core::Camera& camera) {
     world.min(std::span<float>(&bounds.lo.x, 3));
     world.max(std::span<float>(&bounds.hi.x, 3));
     mine.lightSceneRadius = 0.5f * glm::length(bounds.hi - bounds.lo);
-    mpi::RingExchange ring(world);
+    const std::unique_ptr<core::RayExchange> exchange = makeExchange(kind, world);
     core::PathTracerOptions options;
-    options.exchange = &ring;
+    options.exchange = exchange.get();
     test::Rendered split = test::render(mine, camera, settings, kSize, true, options);
     mpi::gatherFrame(world, kSize, sizeof(glm::vec4), split.color.data());
     mpi::gatherFrame(world, kSize, sizeof(float), split.depth.data());
-    const uint64_t raysSent = world.sum(ring.stats().raysSent);
+    const uint64_t raysSent = world.sum(exchange->stats().raysSent);
     if (ranks > 1) CHECK(raysSent > 0);
     CHECK(split.stats.flaggedRays == 0);
     if (rank != 0) return;
@@ -80,7 +90,7 @@ void checkEquivalence(const ScenePart& part, const core::Camera& camera) {
     CHECK(all.lightSceneRadius == mine.lightSceneRadius);
     const test::Rendered whole = test::render(all, camera, settings, kSize, true);
     const Comparison c = compare(split.color, whole.color);
-    MESSAGE(ranks << " ranks: " << c.equal << " of " << c.pixels << " pixels equal the one-rank render; rays sent "
+    MESSAGE(ranks << " ranks, " << std::string(core::exchangeKindName(kind)) << " exchange: " << c.equal << " of " << c.pixels << " pixels equal the one-rank render; rays sent "
                   << raysSent);
     CHECK(c.equal * 1000 >= c.pixels * 999);  // >= 99.9% of pixels
     uint64_t depthEqual = 0;
@@ -98,15 +108,15 @@ void checkEquivalence(const ScenePart& part, const core::Camera& camera) {
 }  // namespace
 
 TEST_CASE("data parallel: 4x4x4 boxes split over the ranks render as one rank holding all of them") {
-    checkEquivalence(test::boxesPart, test::boxesCamera());
+    for (const core::ExchangeKind kind : kExchanges) checkEquivalence(test::boxesPart, test::boxesCamera(), kind);
 }
 
 TEST_CASE("data parallel: mixed meshes, spheres, cylinders, metal and transparency split over the ranks") {
-    checkEquivalence(test::mixedPart, test::mixedCamera());
+    for (const core::ExchangeKind kind : kExchanges) checkEquivalence(test::mixedPart, test::mixedCamera(), kind);
 }
 
 TEST_CASE("data parallel: iso-surfaces of a field split into slabs over the ranks") {
-    checkEquivalence(test::isosurfacePart, test::volumeCamera());
+    for (const core::ExchangeKind kind : kExchanges) checkEquivalence(test::isosurfacePart, test::volumeCamera(), kind);
 }
 
 TEST_CASE("data parallel: world bounds are reduced, lights gathered in rank order") {
@@ -130,7 +140,9 @@ TEST_CASE("data parallel: world bounds are reduced, lights gathered in rank orde
 // differ from one rank's (each rank keys its own), so the images agree statistically, not pixel by pixel:
 // the image means within 3%, and 6x6-pixel tile means within 12% for 90% of the tiles (at 64 samples
 // their noise is a few percent). The volume matters: the image without it fails the tile criterion.
-TEST_CASE("data parallel: a scattering volume split into slabs over the ranks renders as on one rank") {
+namespace {
+
+void checkVolumeSlabs(core::ExchangeKind kind) {
     test::ValidationGuard guard;
     const mpi::Communicator world = mpi::Communicator::world();
     const auto rank = uint32_t(world.rank()), ranks = uint32_t(world.size());
@@ -142,9 +154,9 @@ TEST_CASE("data parallel: a scattering volume split into slabs over the ranks re
     core::SceneDescription mine = test::volumePart(rank, ranks);
     mine.lights = mpi::gatherLights(world, mine.lights);
     mine.lightSceneRadius = 8.0f;
-    mpi::RingExchange ring(world);
+    const std::unique_ptr<core::RayExchange> exchange = makeExchange(kind, world);
     core::PathTracerOptions options;
-    options.exchange = &ring;
+    options.exchange = exchange.get();
     test::Rendered split = test::render(mine, test::volumeCamera(), settings, size, false, options);
     mpi::gatherFrame(world, size, sizeof(glm::vec4), split.color.data());
     CHECK(split.stats.flaggedRays == 0);
@@ -163,7 +175,7 @@ TEST_CASE("data parallel: a scattering volume split into slabs over the ranks re
         return sum / double(3 * w * w);
     };
     const double splitMean = mean(split.color, 0, 0, size.x, size.x), wholeMean = mean(whole.color, 0, 0, size.x, size.x);
-    MESSAGE(ranks << " ranks: image mean " << splitMean << ", one rank " << wholeMean);
+    MESSAGE(ranks << " ranks, " << std::string(core::exchangeKindName(kind)) << " exchange: image mean " << splitMean << ", one rank " << wholeMean);
     CHECK(std::abs(splitMean - wholeMean) <= 0.03 * wholeMean);
     auto closeTiles = [&](const std::vector<glm::vec4>& image) {
         uint32_t close = 0;
@@ -184,4 +196,10 @@ TEST_CASE("data parallel: a scattering volume split into slabs over the ranks re
     const uint32_t closeWithout = closeTiles(test::render(empty, test::volumeCamera(), settings, size).color);
     MESSAGE("without the volume: " << closeWithout << " of " << tiles << " tiles within 12%");
     CHECK(closeWithout * 10 < tiles * 9);
+}
+
+}  // namespace
+
+TEST_CASE("data parallel: a scattering volume split into slabs over the ranks renders as on one rank") {
+    for (const core::ExchangeKind kind : kExchanges) checkVolumeSlabs(kind);
 }

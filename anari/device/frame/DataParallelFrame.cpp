@@ -31,7 +31,12 @@ std::string channelsText(uint64_t channels) {
 
 }  // namespace
 
-DataParallelFrame::DataParallelFrame(const mpi::Communicator& ranks) : ring_(ranks) {}
+DataParallelFrame::DataParallelFrame(const mpi::Communicator& ranks) : ranks_(ranks), ring_(ranks), bounds_(ranks) {}
+
+core::RayExchange* DataParallelFrame::exchange(core::ExchangeKind kind) {
+    if (kind == core::ExchangeKind::Ring) return &ring_;
+    return &bounds_;
+}
 
 std::string describeDisagreement(const std::vector<FrameFingerprint>& ranks) {
     using F = FrameFingerprint;
@@ -62,6 +67,10 @@ std::string describeDisagreement(const std::vector<FrameFingerprint>& ranks) {
                    std::to_string(root[F::MaxPathLength]);
         if (differs(F::Renderer))
             return rank + "'s renderer differs from rank 0's (subtype or parameters): every rank must set the same renderer";
+        if (differs(F::RayExchange))
+            return rank + " uses rayExchange '" + core::exchangeKindName(core::ExchangeKind(other[F::RayExchange])) +
+                   "', rank 0 '" + core::exchangeKindName(core::ExchangeKind(root[F::RayExchange])) +
+                   "': every rank must set the same device parameter rayExchange";
         if (differs(F::Camera))
             return rank + "'s camera differs from rank 0's: every rank must set the same camera";
     }
@@ -69,7 +78,7 @@ std::string describeDisagreement(const std::vector<FrameFingerprint>& ranks) {
 }
 
 std::string DataParallelFrame::disagreement(const FrameFingerprint& mine) {
-    const mpi::Communicator& ranks = ring_.communicator();
+    const mpi::Communicator& ranks = ranks_;
     std::array<uint64_t, FrameFingerprint::kFieldCount> lowest{}, highest{};
     ranks.minMax(mine.fields, lowest, highest);
     if (lowest == highest && lowest[FrameFingerprint::Renderable] == 1) return {};
@@ -86,7 +95,7 @@ std::string DataParallelFrame::disagreement(const FrameFingerprint& mine) {
 }
 
 bool DataParallelFrame::shareLights(SceneSync& sync, World& world, bool restart) {
-    const mpi::Communicator& ranks = ring_.communicator();
+    const mpi::Communicator& ranks = ranks_;
     bvh::Aabb bounds = worldBounds(world);
     ranks.min(std::span<float>(&bounds.lo.x, 3));
     ranks.max(std::span<float>(&bounds.hi.x, 3));
@@ -98,7 +107,7 @@ bool DataParallelFrame::shareLights(SceneSync& sync, World& world, bool restart)
 }
 
 const core::Scene& DataParallelFrame::scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) {
-    const mpi::Communicator& ranks = ring_.communicator();
+    const mpi::Communicator& ranks = ranks_;
     const core::Scene* scene = &sync.scene(context, rebuilt);
     if (ranks.max(rebuilt ? 1 : 0) == 0) return *scene;  // no emitter can have changed anywhere
     if (sync.setForeignTriangleLights(mpi::gatherForeignLightRecords(ranks, scene->triangleLights()))) {
@@ -110,7 +119,7 @@ const core::Scene& DataParallelFrame::scene(SceneSync& sync, const vk::Context& 
 }
 
 void DataParallelFrame::gather(glm::uvec2 size, size_t bytesPerPixel, void* pixels) {
-    mpi::gatherFrame(ring_.communicator(), size, bytesPerPixel, pixels);
+    mpi::gatherFrame(ranks_, size, bytesPerPixel, pixels);
 }
 
 std::string DataParallelFrame::whyCannotGather(glm::uvec2 size, uint64_t bytesPerPixel) const {
@@ -124,7 +133,7 @@ std::string DataParallelFrame::whyCannotGather(glm::uvec2 size, uint64_t bytesPe
 }
 
 void DataParallelFrame::failed(const std::string& message) {
-    ring_.communicator().abort(message);
+    ranks_.abort(message);
     std::abort();  // abort() returns only for one rank, which this distribution never has
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "anari/device/frame/FrameDistribution.h"
+#include "mpi/BoundsExchange.h"
 #include "mpi/RingExchange.h"
 
 #include <vector>
@@ -17,16 +18,18 @@ public:
 
     std::string disagreement(const FrameFingerprint& mine) override;
     bool shareLights(SceneSync& sync, World& world, bool restart) override;
-    bool anyRank(bool value) override { return ring_.communicator().max(value ? 1 : 0) > 0; }
+    bool anyRank(bool value) override { return ranks_.max(value ? 1 : 0) > 0; }
     bool rendersOnWorker() const override { return false; }
-    core::RayExchange* exchange() override { return &ring_; }
+    core::RayExchange* exchange(core::ExchangeKind kind) override;
     const core::Scene& scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) override;
     void gather(glm::uvec2 size, size_t bytesPerPixel, void* pixels) override;
     std::string whyCannotGather(glm::uvec2 size, uint64_t bytesPerPixel) const override;
     [[noreturn]] void failed(const std::string& message) override;
 
 private:
+    mpi::Communicator ranks_;
     mpi::RingExchange ring_;
+    mpi::BoundsExchange bounds_;
 };
 
 // The message for fingerprints that differ (indexed by rank; the same on every rank): the first rank that

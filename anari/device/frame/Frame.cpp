@@ -135,6 +135,7 @@ FrameFingerprint Frame::fingerprint(bool renderable) const {
     mine.fields[F::Channels] = uint64_t(uint32_t(colorType_)) << 32 | core::channelFeatures(channels_);
     if (!renderable) return mine;  // camera and renderer may be missing: Renderable stays 0
     mine.fields[F::Renderable] = 1;
+    mine.fields[F::RayExchange] = uint64_t(state().rayExchange());
     const core::RenderSettings& settings = renderer_->settings();
     mine.fields[F::PixelSamples] = settings.pixelSamples;
     mine.fields[F::MaxPathLength] = settings.maxPathLength;
@@ -271,13 +272,14 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
     std::lock_guard gpu(gpuMutex());
     vk::Context& context = state().vulkan();
     const uint64_t validationBefore = context.validationMessageCount();
-    core::RayExchange* exchange = distribution_->exchange();
-    const core::Traversal traversal = state().traversal();  // the device parameter "traversal"
-    if (!tracer_ || tracerTraversal_ != traversal) {
+    core::RayExchange* exchange = distribution_->exchange(state().rayExchange());  // the device parameters
+    const core::Traversal traversal = state().traversal();
+    if (!tracer_ || tracerTraversal_ != traversal || tracerExchange_ != exchange) {
         core::PathTracerOptions options;
         options.exchange = exchange;
         tracer_ = std::make_unique<core::PathTracer>(context, core::TraceOptions{.traversal = traversal}, options);
         tracerTraversal_ = traversal;
+        tracerExchange_ = exchange;
     }
     sync_.setTraversal(traversal);
 
@@ -324,7 +326,7 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
         results.sceneBytes = scene.report().gpuBytes;
         if (exchange) {
             results.raysSent = exchange->stats().raysSent;
-            results.bytesSent = exchange->stats().bytesSent;
+            results.bytesSent = exchange->stats().bytesSent + exchange->stats().regionBytes;
         }
         results.duration = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
         std::lock_guard lock(resultsMutex_);

@@ -124,6 +124,7 @@ private:
     SceneSync sync_;                            // used by the API thread, then the worker, never both at once
     std::unique_ptr<core::PathTracer> tracer_;  // worker only
     core::Traversal tracerTraversal_ = core::Traversal::Auto;  // what tracer_ was made with
+    core::RayExchange* tracerExchange_ = nullptr;              // and with which exchange
     core::FrameChannels tracerChannels_;        // worker only: what the tracer's buffers were sized for
     std::thread worker_;
     std::atomic<bool> finished_{true};

@@ -14,7 +14,7 @@ public:
     bool shareLights(SceneSync&, World&, bool restart) override { return restart; }
     bool anyRank(bool value) override { return value; }
     bool rendersOnWorker() const override { return true; }
-    core::RayExchange* exchange() override { return nullptr; }
+    core::RayExchange* exchange(core::ExchangeKind) override { return nullptr; }
     const core::Scene& scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) override {
         return sync.scene(context, rebuilt);
     }

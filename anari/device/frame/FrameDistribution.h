@@ -37,6 +37,7 @@ struct FrameFingerprint {
         MaxPathLength,
         Renderer,       // hash of subtype and settings
         Camera,         // hash of subtype and the camera as rendered
+        RayExchange,    // the device parameter rayExchange (core::ExchangeKind)
         kFieldCount
     };
     std::array<uint64_t, kFieldCount> fields{};
@@ -60,8 +61,8 @@ public:
     virtual bool anyRank(bool value) = 0;
     // Whether the frame may render on a worker thread (data-parallel: MPI is called from one thread).
     virtual bool rendersOnWorker() const = 0;
-    // The ray exchange the path tracer uses (null: this rank holds the whole scene). Owned here.
-    virtual core::RayExchange* exchange() = 0;
+    // The ray exchange of `kind` the path tracer uses (null: this rank holds the whole scene). Owned here.
+    virtual core::RayExchange* exchange(core::ExchangeKind kind) = 0;
     // Collective, on the rendering thread: the scene to render, with every rank's emitters where shared.
     virtual const core::Scene& scene(SceneSync& sync, const vk::Context& context, bool& rebuilt) = 0;
     // Collective: rank 0 assembles every rank's pixels; the others keep theirs (undefined by ANARI's rule).

@@ -4,6 +4,7 @@
 
 #include "anari/anari.h"
 #include "anari/device/object/HandleTable.h"
+#include "core/render/RayExchange.h"
 #include "mpi/Communicator.h"
 
 #include <atomic>
@@ -57,6 +58,10 @@ public:
     // RIPPLE_TRAVERSAL): what the frames' tracers and scenes are built for.
     void setTraversal(core::Traversal traversal) { traversal_ = traversal; }
     core::Traversal traversal() const { return traversal_.load(); }
+    // The device parameter "rayExchange" (core::ExchangeKind; Bounds when unset): how data-parallel frames
+    // send rays between ranks. Every rank must set the same (frames check it).
+    void setRayExchange(core::ExchangeKind kind) { rayExchange_ = kind; }
+    core::ExchangeKind rayExchange() const { return rayExchange_.load(); }
     // Creation order of frames and worlds: data-parallel ANARI identifies them by it across ranks.
     uint64_t nextFrameIndex() { return frames_++; }
     uint64_t nextWorldIndex() { return worlds_++; }
@@ -81,6 +86,7 @@ private:
     std::atomic<uint64_t> frames_{0};
     std::atomic<uint64_t> worlds_{0};
     std::atomic<core::Traversal> traversal_{};  // Auto
+    std::atomic<core::ExchangeKind> rayExchange_{};  // Bounds
 };
 
 }  // namespace ripple::device

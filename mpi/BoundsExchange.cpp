@@ -1,0 +1,278 @@
+// Bounds-culled exchange (see BoundsExchange.h). Wire formats, all little-endian as the ranks share one
+// architecture: a visiting ray is gpu::Ray (32 bytes, direction.w = best t so far) and its slot in the
+// sender's queue (4); a closest-hit answer is the slot (4) and the gpu::SurfaceRecord packed here (128),
+// sent only for a hit or an unfinished traversal; a shadow answer is the slot, occlusion and
+// transmittance (12), sent only where occluded, dimmed or unfinished.
+#include "mpi/BoundsExchange.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+namespace ripple::mpi {
+
+namespace {
+
+constexpr uint32_t kStatusFlags = ~0xFFu;  // HIT_FLAG_* bits above the low byte
+constexpr size_t kVisitorBytes = sizeof(gpu::Ray) + sizeof(uint32_t);
+constexpr size_t kHitAnswerBytes = sizeof(uint32_t) + sizeof(gpu::SurfaceRecord);
+constexpr size_t kShadowAnswerBytes = 3 * sizeof(uint32_t);
+static_assert(sizeof(gpu::Ray) == 32 && sizeof(gpu::SurfaceRecord) == 128);
+
+template <class T>
+void append(std::vector<uint8_t>& bytes, const T& value) {
+    const size_t at = bytes.size();
+    bytes.resize(at + sizeof(T));
+    std::memcpy(bytes.data() + at, &value, sizeof(T));
+}
+
+template <class T>
+T read(const std::vector<uint8_t>& bytes, size_t at) {
+    T value;
+    std::memcpy(&value, bytes.data() + at, sizeof(T));
+    return value;
+}
+
+float bestT(const core::WireRay& ray) {
+    return (ray.record.status & 0xFFu) == gpu::HIT_FOUND ? std::min(ray.record.position.w, ray.ray.direction.w)
+                                                        : ray.ray.direction.w;
+}
+
+void checkWhole(const std::vector<uint8_t>& bytes, size_t itemBytes, int sender, const char* what) {
+    if (bytes.size() % itemBytes != 0)
+        throw MpiError("ray exchange: rank " + std::to_string(sender) + " sent " + std::to_string(bytes.size()) +
+                       " bytes, not whole " + what);
+}
+
+uint32_t checkedSlot(uint32_t slot, size_t count, int sender) {
+    if (slot >= count)
+        throw MpiError("ray exchange: rank " + std::to_string(sender) + " answered for slot " + std::to_string(slot) +
+                       " of a queue of " + std::to_string(count));
+    return slot;
+}
+
+// The rays of `destinations[r]`, each with tmax = `tmaxOf(slot)`, as bytes for rank r.
+template <class Items, class TMax>
+std::vector<std::vector<uint8_t>> packVisitors(const Items& items, const std::vector<std::vector<uint32_t>>& destinations,
+                                               TMax tmaxOf) {
+    std::vector<std::vector<uint8_t>> outgoing(destinations.size());
+    for (size_t r = 0; r < destinations.size(); ++r) {
+        outgoing[r].reserve(destinations[r].size() * kVisitorBytes);
+        for (uint32_t slot : destinations[r]) {
+            gpu::Ray ray = items[slot].ray;
+            ray.direction.w = tmaxOf(slot);
+            append(outgoing[r], ray);
+            append(outgoing[r], slot);
+        }
+    }
+    return outgoing;
+}
+
+}  // namespace
+
+float regionEntry(const gpu::Ray& ray, float tmax, std::span<const bvh::Aabb> boxes) {
+    float nearest = std::numeric_limits<float>::infinity();
+    for (const bvh::Aabb& box : boxes) {
+        float t0 = ray.origin.w, t1 = tmax;
+        bool inside = true;
+        for (int a = 0; a < 3 && inside; ++a) {
+            const float o = ray.origin[a], d = ray.direction[a];
+            if (d == 0.0f) {
+                inside = o >= box.lo[a] && o <= box.hi[a];
+                continue;
+            }
+            float near = (box.lo[a] - o) / d, far = (box.hi[a] - o) / d;
+            if (near > far) std::swap(near, far);
+            t0 = std::max(t0, near);  // a NaN leaves the bound as it was
+            t1 = std::min(t1, far);
+        }
+        if (inside && t0 <= t1) nearest = std::min(nearest, t0);
+    }
+    return nearest;
+}
+
+BoundsExchange::BoundsExchange(Communicator communicator) : communicator_(std::move(communicator)) {}
+
+void BoundsExchange::shareRegions(std::span<const bvh::Aabb> mine) {
+    std::vector<uint8_t> bytes;
+    for (const bvh::Aabb& box : mine) {
+        append(bytes, box.lo);
+        append(bytes, box.hi);
+    }
+    const std::vector<std::vector<uint8_t>> all = communicator_.allgather(bytes);
+    stats_.regionBytes += bytes.size() * size_t(std::max(0, communicator_.size() - 1));
+    regions_.assign(all.size(), {});
+    for (size_t r = 0; r < all.size(); ++r) {
+        checkWhole(all[r], 2 * sizeof(glm::vec3), int(r), "boxes");
+        for (size_t at = 0; at < all[r].size(); at += 2 * sizeof(glm::vec3)) {
+            bvh::Aabb box{read<glm::vec3>(all[r], at), read<glm::vec3>(all[r], at + sizeof(glm::vec3))};
+            if (box.empty()) continue;
+            // Float rounding in the entry test and in the owner's traversal: grow by a relative margin.
+            const glm::vec3 magnitude = glm::max(glm::abs(box.lo), glm::abs(box.hi));
+            const float margin = 1e-4f * glm::length(box.hi - box.lo) +
+                                 1e-5f * std::max({magnitude.x, magnitude.y, magnitude.z}) + 1e-30f;
+            box.lo -= margin;
+            box.hi += margin;
+            regions_[r].push_back(box);
+        }
+    }
+}
+
+void BoundsExchange::visitClosest(std::vector<core::WireRay>& rays,
+                                  const std::vector<std::vector<uint32_t>>& destinations, core::RankTracer& tracer) {
+    const int ranks = communicator_.size();
+    const std::vector<std::vector<uint8_t>> outgoing =
+        packVisitors(rays, destinations, [&](uint32_t slot) { return bestT(rays[slot]); });
+    for (int r = 0; r < ranks; ++r) {
+        stats_.raysSent += destinations[size_t(r)].size();
+        stats_.bytesSent += outgoing[size_t(r)].size();
+    }
+    ++stats_.hops;
+    const std::vector<std::vector<uint8_t>> received = communicator_.alltoallv(outgoing);
+
+    // Every sender's visitors in one batch, traced here.
+    std::vector<core::WireRay> visitors;
+    for (int s = 0; s < ranks; ++s) {
+        checkWhole(received[size_t(s)], kVisitorBytes, s, "rays");
+        for (size_t at = 0; at < received[size_t(s)].size(); at += kVisitorBytes) {
+            core::WireRay visitor{};
+            visitor.ray = read<gpu::Ray>(received[size_t(s)], at);
+            visitor.homeRank = uint32_t(s);
+            visitor.id = read<uint32_t>(received[size_t(s)], at + sizeof(gpu::Ray));
+            visitors.push_back(visitor);  // record: a miss, so the ray's own tmax (the best t) bounds it
+        }
+    }
+    tracer.traceClosest(visitors);
+    std::vector<std::vector<uint8_t>> answers(static_cast<size_t>(ranks));
+    for (const core::WireRay& visitor : visitors) {
+        if (visitor.record.status == gpu::HIT_MISS) continue;
+        std::vector<uint8_t>& bytes = answers[visitor.homeRank];
+        append(bytes, visitor.id);
+        append(bytes, visitor.record);
+    }
+    for (int r = 0; r < ranks; ++r) stats_.bytesSent += answers[size_t(r)].size();
+    const std::vector<std::vector<uint8_t>> returned = communicator_.alltoallv(answers);
+
+    // In sender order, so ties between ranks resolve the same way on every run.
+    for (int s = 0; s < ranks; ++s) {
+        checkWhole(returned[size_t(s)], kHitAnswerBytes, s, "answers");
+        for (size_t at = 0; at < returned[size_t(s)].size(); at += kHitAnswerBytes) {
+            const uint32_t slot = checkedSlot(read<uint32_t>(returned[size_t(s)], at), rays.size(), s);
+            const auto found = read<gpu::SurfaceRecord>(returned[size_t(s)], at + sizeof(uint32_t));
+            gpu::SurfaceRecord& carried = rays[slot].record;
+            const bool closer = (found.status & 0xFFu) == gpu::HIT_FOUND &&
+                                ((carried.status & 0xFFu) != gpu::HIT_FOUND || found.position.w < carried.position.w);
+            if (closer) {
+                const uint32_t flags = carried.status & kStatusFlags;  // an unfinished traversal anywhere stays flagged
+                carried = found;
+                carried.status |= flags;
+            } else {
+                carried.status |= found.status & kStatusFlags;
+            }
+        }
+    }
+}
+
+void BoundsExchange::exchangeClosest(std::vector<core::WireRay>& rays, core::RankTracer& tracer) {
+    const int ranks = communicator_.size();
+    if (ranks <= 1) return;
+    if (regions_.size() != size_t(ranks))
+        throw MpiError("ray exchange: shareRegions was not called before the bounds exchange");
+    // Each ray's candidate ranks: those whose boxes its segment enters before its best hit, nearest first.
+    struct Candidate {
+        float entry;
+        uint32_t rank;
+        bool operator<(const Candidate& o) const { return entry < o.entry || (entry == o.entry && rank < o.rank); }
+    };
+    std::vector<Candidate> candidates;
+    std::vector<uint32_t> firstCandidate(rays.size() + 1, 0);
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const size_t begin = candidates.size();
+        const float best = bestT(rays[i]);
+        for (int r = 0; r < ranks; ++r) {
+            if (r == communicator_.rank()) continue;
+            const float entry = regionEntry(rays[i].ray, best, regions_[size_t(r)]);
+            if (std::isfinite(entry) && entry <= best) candidates.push_back({entry, uint32_t(r)});
+        }
+        std::sort(candidates.begin() + long(begin), candidates.end());
+        firstCandidate[i + 1] = uint32_t(candidates.size());
+    }
+    std::vector<std::vector<uint32_t>> destinations(static_cast<size_t>(ranks));
+    // Round 1: the nearest rank each ray enters.
+    for (size_t i = 0; i < rays.size(); ++i)
+        if (firstCandidate[i] < firstCandidate[i + 1]) destinations[candidates[firstCandidate[i]].rank].push_back(uint32_t(i));
+    visitClosest(rays, destinations, tracer);
+    // Round 2: every other rank the ray enters before the closest hit found so far.
+    for (auto& list : destinations) list.clear();
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const float best = bestT(rays[i]);
+        for (uint32_t k = firstCandidate[i] + 1; k < firstCandidate[i + 1]; ++k)
+            if (candidates[k].entry <= best) destinations[candidates[k].rank].push_back(uint32_t(i));
+    }
+    visitClosest(rays, destinations, tracer);
+}
+
+// One round: a shadow ray needs every rank it enters (occlusion anywhere is occlusion), and the answers
+// commute, so all go at once.
+void BoundsExchange::exchangeShadow(std::vector<core::WireShadowRay>& rays, core::RankTracer& tracer) {
+    const int ranks = communicator_.size();
+    if (ranks <= 1) return;
+    if (regions_.size() != size_t(ranks))
+        throw MpiError("ray exchange: shareRegions was not called before the bounds exchange");
+    std::vector<std::vector<uint32_t>> destinations(static_cast<size_t>(ranks));
+    for (size_t i = 0; i < rays.size(); ++i) {
+        if ((rays[i].occlusion & 0xFFu) == gpu::HIT_FOUND) continue;  // settled at home
+        for (int r = 0; r < ranks; ++r)
+            if (r != communicator_.rank() &&
+                std::isfinite(regionEntry(rays[i].ray, rays[i].ray.direction.w, regions_[size_t(r)])))
+                destinations[size_t(r)].push_back(uint32_t(i));
+    }
+    const std::vector<std::vector<uint8_t>> outgoing =
+        packVisitors(rays, destinations, [&](uint32_t slot) { return rays[slot].ray.direction.w; });
+    for (int r = 0; r < ranks; ++r) {
+        stats_.raysSent += destinations[size_t(r)].size();
+        stats_.bytesSent += outgoing[size_t(r)].size();
+    }
+    ++stats_.hops;
+    const std::vector<std::vector<uint8_t>> received = communicator_.alltoallv(outgoing);
+
+    std::vector<core::WireShadowRay> visitors;
+    for (int s = 0; s < ranks; ++s) {
+        checkWhole(received[size_t(s)], kVisitorBytes, s, "shadow rays");
+        for (size_t at = 0; at < received[size_t(s)].size(); at += kVisitorBytes) {
+            core::WireShadowRay visitor{};
+            visitor.ray = read<gpu::Ray>(received[size_t(s)], at);
+            visitor.homeRank = uint32_t(s);
+            visitor.id = read<uint32_t>(received[size_t(s)], at + sizeof(gpu::Ray));
+            visitor.occlusion = gpu::HIT_MISS;
+            visitor.transmittance = 1.0f;
+            visitors.push_back(visitor);
+        }
+    }
+    tracer.traceShadow(visitors);
+    std::vector<std::vector<uint8_t>> answers(static_cast<size_t>(ranks));
+    for (const core::WireShadowRay& visitor : visitors) {
+        if (visitor.occlusion == gpu::HIT_MISS && visitor.transmittance == 1.0f) continue;
+        std::vector<uint8_t>& bytes = answers[visitor.homeRank];
+        append(bytes, visitor.id);
+        append(bytes, visitor.occlusion);
+        append(bytes, visitor.transmittance);
+    }
+    for (int r = 0; r < ranks; ++r) stats_.bytesSent += answers[size_t(r)].size();
+    const std::vector<std::vector<uint8_t>> returned = communicator_.alltoallv(answers);
+    for (int s = 0; s < ranks; ++s) {
+        checkWhole(returned[size_t(s)], kShadowAnswerBytes, s, "shadow answers");
+        for (size_t at = 0; at < returned[size_t(s)].size(); at += kShadowAnswerBytes) {
+            const uint32_t slot = checkedSlot(read<uint32_t>(returned[size_t(s)], at), rays.size(), s);
+            const auto found = read<uint32_t>(returned[size_t(s)], at + 4);
+            core::WireShadowRay& carried = rays[slot];
+            // Occluded by any rank is occluded, even where another rank could not finish its traversal.
+            carried.occlusion = (found & 0xFFu) == gpu::HIT_FOUND ? gpu::HIT_FOUND : carried.occlusion | (found & kStatusFlags);
+            carried.transmittance *= read<float>(returned[size_t(s)], at + 8);
+        }
+    }
+}
+
+}  // namespace ripple::mpi
