@@ -144,6 +144,7 @@ void BoundsExchange::visitClosest(std::vector<core::WireRay>& rays,
             visitors.push_back(visitor);  // record: a miss, so the ray's own tmax (the best t) bounds it
         }
     }
+    stats_.raysReceived += visitors.size();
     tracer.traceClosest(visitors);
     std::vector<std::vector<uint8_t>> answers(static_cast<size_t>(ranks));
     for (const core::WireRay& visitor : visitors) {
@@ -251,6 +252,7 @@ void BoundsExchange::exchangeShadow(std::vector<core::WireShadowRay>& rays, core
             visitors.push_back(visitor);
         }
     }
+    stats_.raysReceived += visitors.size();
     tracer.traceShadow(visitors);
     std::vector<std::vector<uint8_t>> answers(static_cast<size_t>(ranks));
     for (const core::WireShadowRay& visitor : visitors) {

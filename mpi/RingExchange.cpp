@@ -25,7 +25,10 @@ void RingExchange::cycle(std::vector<WireItem>& items, Visit visit) {
             throw MpiError("ray exchange: received " + std::to_string(received.size()) + " bytes, not whole rays");
         batch.resize(received.size() / sizeof(WireItem));
         if (!received.empty()) std::memcpy(batch.data(), received.data(), received.size());
-        if (hop < ranks) visit(std::span<WireItem>(batch));  // the last hop is the one home
+        if (hop < ranks) {  // the last hop is the one home
+            stats_.raysReceived += batch.size();
+            visit(std::span<WireItem>(batch));
+        }
     }
     if (batch.size() != homeCount)
         throw MpiError("ray exchange: " + std::to_string(homeCount) + " rays left rank " + std::to_string(rank()) +

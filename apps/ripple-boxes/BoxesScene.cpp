@@ -133,7 +133,7 @@ private:
 }  // namespace
 
 BoxesPart buildBoxesPart(ANARIDevice device, uint32_t rank, uint32_t ranks, uint32_t tessellation,
-                         bool lightsOnEveryRank) {
+                         bool lightsOnEveryRank, BoxesPartition partition) {
     std::array<uint32_t, kBoxes> permutation{};
     std::iota(permutation.begin(), permutation.end(), 0u);
     uint32_t shuffle = 12345u;
@@ -149,18 +149,35 @@ BoxesPart buildBoxesPart(ANARIDevice device, uint32_t rank, uint32_t ranks, uint
             glm::vec3(0.3f) + 0.25f * glm::vec3(unitRandom(state), unitRandom(state), unitRandom(state));
         const glm::vec3 color =
             glm::vec3(0.2f) + 0.7f * glm::vec3(unitRandom(state), unitRandom(state), unitRandom(state));
-        if (permutation[i] % ranks != rank) continue;
+        const uint32_t column = (i % 4) * 4 + (i / 4) % 4;  // x-major over the 4x4 columns
+        const uint32_t owner = partition == BoxesPartition::Slabs ? column * ranks / 16 : permutation[i] % ranks;
+        if (owner != rank) continue;
         Mesh mesh;
         mesh.box(center - half, center + half, tessellation);
         builder.surface(mesh, color, i % 9 == 4);  // a few glossy metals: reflections cross ranks too
         ++part.boxes;
         part.triangles += mesh.indices.size();
     }
-    if (rank == ranks - 1) {
+    if (partition == BoxesPartition::Random && rank == ranks - 1) {
         Mesh floor;
         floor.grid({-30.0f, -30.0f, -0.4f}, {60.0f, 0.0f, 0.0f}, {0.0f, 60.0f, 0.0f}, 1);
         builder.surface(floor, glm::vec3(0.6f), false);
         part.triangles += floor.indices.size();
+    }
+    if (partition == BoxesPartition::Slabs) {
+        // The floor cell under each column: column edges halfway between the columns' centres (1.5 apart,
+        // centred on 0), the outer cells reaching the floor's edge at +-30.
+        // Each cell is a surface of its own, so the rank's world boxes stay tight.
+        const float edges[] = {-30.0f, -1.5f, 0.0f, 1.5f, 30.0f};
+        for (uint32_t column = 0; column < 16; ++column) {
+            if (column * ranks / 16 != rank) continue;
+            const uint32_t ix = column / 4, iy = column % 4;
+            Mesh cell;
+            cell.grid({edges[ix], edges[iy], -0.4f}, {edges[ix + 1] - edges[ix], 0.0f, 0.0f},
+                      {0.0f, edges[iy + 1] - edges[iy], 0.0f}, 1);
+            builder.surface(cell, glm::vec3(0.6f), false);
+            part.triangles += cell.indices.size();
+        }
     }
     if (rank == 0 || lightsOnEveryRank) {
         builder.pointLight({2.0f, -3.0f, 9.0f}, 60.0f);

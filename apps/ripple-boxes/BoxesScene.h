@@ -16,14 +16,19 @@ struct BoxesPart {
     uint64_t triangles = 0;      // triangles this rank holds (boxes and floor)
 };
 
-// This rank's boxes (box i belongs to rank permutation[i] % ranks, the same on every rank count), the
-// floor on the last rank, and the lights (a point light and a warm sun) on rank 0 alone: the device
+// How the boxes are dealt to the ranks. Random: the paper's, box i to rank permutation[i] % ranks (the same
+// on every rank count), the floor on the last rank: every rank's boxes are spread over the whole stack.
+// Slabs: spatially, the 16 vertical columns of 4 boxes in x-major order cut into `ranks` runs, and the
+// floor cut into the 16 cells under the columns, each with its column.
+enum class BoxesPartition { Random, Slabs };
+
+// This rank's boxes (see BoxesPartition), the lights (a point light and a warm sun) on rank 0 alone: the device
 // gathers lights, so the other ranks need none. Each face of a box is cut into tessellation^2 quads (two
 // triangles each), which changes the memory and trace cost but not the picture. Throws
 // std::runtime_error when the device returns no object. lightsOnEveryRank: every rank adds the lights, as
 // a device that renders each rank alone and composites (ripple_ptc) needs.
 BoxesPart buildBoxesPart(ANARIDevice device, uint32_t rank, uint32_t ranks, uint32_t tessellation,
-                         bool lightsOnEveryRank = false);
+                         bool lightsOnEveryRank = false, BoxesPartition partition = BoxesPartition::Random);
 
 // The view of the whole stack: the same on every rank, as data-parallel ANARI requires.
 struct BoxesView {

@@ -36,7 +36,13 @@ struct Options {
     uint32_t frames = 5;
     std::string json = "ripple-boxes-bench.json";
     std::string compare;  // --compare PREFIX: the three-way comparison instead of one image
+    std::string exchange = "bounds";  // the device parameter rayExchange
+    std::string partition = "random";
 };
+
+BoxesPartition partitionOf(const Options& options) {
+    return options.partition == "slabs" ? BoxesPartition::Slabs : BoxesPartition::Random;
+}
 
 struct StatusLog {
     int rank = 0;
@@ -60,8 +66,40 @@ struct RankReport {
     uint64_t peakRssKiB = 0;
     uint64_t raysSent = 0;   // per frame, averaged over the timed frames
     uint64_t bytesSent = 0;
+    uint64_t raysReceived = 0;
+    uint64_t raysTraced = 0;  // its own rays
     double secondsPerFrame = 0.0;
+
+    uint64_t work() const { return raysTraced + raysReceived; }
 };
+
+// The whole run's traffic: bytes per ray-hop over all ranks, and the busiest rank's traced rays (its own
+// and visitors) over the mean.
+struct BenchSummary {
+    double secondsPerFrame = 0.0;  // the slowest rank's
+    double bytesPerRankFrame = 0.0;
+    double bytesPerRayHop = 0.0;
+    double raysSentPerRank = 0.0;
+    double loadImbalance = 1.0;
+};
+
+BenchSummary summarize(const std::vector<RankReport>& ranks) {
+    BenchSummary s;
+    uint64_t bytes = 0, rays = 0, work = 0, busiest = 0;
+    for (const RankReport& r : ranks) {
+        s.secondsPerFrame = std::max(s.secondsPerFrame, r.secondsPerFrame);
+        bytes += r.bytesSent;
+        rays += r.raysSent;
+        work += r.work();
+        busiest = std::max(busiest, r.work());
+    }
+    const double n = double(ranks.size());
+    s.bytesPerRankFrame = double(bytes) / n;
+    s.bytesPerRayHop = rays > 0 ? double(bytes) / double(rays) : 0.0;
+    s.raysSentPerRank = double(rays) / n;
+    s.loadImbalance = work > 0 ? double(busiest) / (double(work) / n) : 1.0;
+    return s;
+}
 
 // The library, device and objects of the run, released in reverse order; the device's last release is
 // collective, so every rank must get here.
@@ -85,17 +123,20 @@ uint64_t frameCounter(ANARIDevice device, ANARIFrame frame, const char* name) {
 void writeJson(const std::string& path, const Options& options, glm::uvec2 size, const std::vector<RankReport>& ranks) {
     std::ofstream out(path);
     if (!out) throw std::runtime_error("cannot write " + path);
-    double slowest = 0.0;
-    for (const RankReport& r : ranks) slowest = std::max(slowest, r.secondsPerFrame);
-    out << "{\n  \"ranks\": " << ranks.size() << ",\n  \"width\": " << size.x << ",\n  \"height\": " << size.y
+    const BenchSummary sum = summarize(ranks);
+    out << "{\n  \"ranks\": " << ranks.size() << ",\n  \"exchange\": \"" << options.exchange
+        << "\",\n  \"partition\": \"" << options.partition << "\",\n  \"width\": " << size.x << ",\n  \"height\": " << size.y
         << ",\n  \"spp\": " << options.spp << ",\n  \"maxPathLength\": " << options.maxPathLength
         << ",\n  \"tessellation\": " << options.tessellation << ",\n  \"frames\": " << options.frames
-        << ",\n  \"secondsPerFrame\": " << slowest << ",\n  \"perRank\": [\n";
+        << ",\n  \"secondsPerFrame\": " << sum.secondsPerFrame << ",\n  \"bytesPerRankFrame\": " << sum.bytesPerRankFrame
+        << ",\n  \"bytesPerRayHop\": " << sum.bytesPerRayHop << ",\n  \"raysSentPerRank\": " << sum.raysSentPerRank
+        << ",\n  \"loadImbalance\": " << sum.loadImbalance << ",\n  \"perRank\": [\n";
     for (size_t r = 0; r < ranks.size(); ++r) {
         const RankReport& x = ranks[r];
         out << "    {\"rank\": " << r << ", \"boxes\": " << x.boxes << ", \"triangles\": " << x.triangles
             << ", \"sceneBytes\": " << x.sceneBytes << ", \"peakRssKiB\": " << x.peakRssKiB
             << ", \"raysSentPerFrame\": " << x.raysSent << ", \"bytesSentPerFrame\": " << x.bytesSent
+            << ", \"raysReceivedPerFrame\": " << x.raysReceived << ", \"raysTracedPerFrame\": " << x.raysTraced
             << ", \"secondsPerFrame\": " << x.secondsPerFrame << "}" << (r + 1 < ranks.size() ? "," : "") << "\n";
     }
     out << "  ]\n}\n";
@@ -103,16 +144,22 @@ void writeJson(const std::string& path, const Options& options, glm::uvec2 size,
 }
 
 void printBench(glm::uvec2 size, const Options& options, const std::vector<RankReport>& ranks) {
-    std::printf("ripple-boxes bench: %zu rank(s), %ux%u, %u spp per frame, %u timed frames\n", ranks.size(), size.x,
-                size.y, options.spp, options.frames);
-    std::printf("%5s %6s %10s %12s %10s %14s %14s %10s\n", "rank", "boxes", "triangles", "scene MiB", "RSS MiB",
-                "rays sent/fr", "MiB sent/fr", "s/frame");
+    std::printf("ripple-boxes bench: %zu rank(s), %s exchange, %s partition, %ux%u, %u spp per frame, %u timed frames\n",
+                ranks.size(), options.exchange.c_str(), options.partition.c_str(), size.x, size.y, options.spp,
+                options.frames);
+    std::printf("%5s %6s %10s %10s %9s %13s %12s %13s %13s %9s\n", "rank", "boxes", "triangles", "scene MiB", "RSS MiB",
+                "rays sent/fr", "MiB sent/fr", "visitors/fr", "own rays/fr", "s/frame");
     for (size_t r = 0; r < ranks.size(); ++r) {
         const RankReport& x = ranks[r];
-        std::printf("%5zu %6llu %10llu %12.2f %10.1f %14llu %14.2f %10.3f\n", r, (unsigned long long)x.boxes,
+        std::printf("%5zu %6llu %10llu %10.2f %9.1f %13llu %12.2f %13llu %13llu %9.3f\n", r, (unsigned long long)x.boxes,
                     (unsigned long long)x.triangles, double(x.sceneBytes) / 1048576.0, double(x.peakRssKiB) / 1024.0,
-                    (unsigned long long)x.raysSent, double(x.bytesSent) / 1048576.0, x.secondsPerFrame);
+                    (unsigned long long)x.raysSent, double(x.bytesSent) / 1048576.0,
+                    (unsigned long long)x.raysReceived, (unsigned long long)x.raysTraced, x.secondsPerFrame);
     }
+    const BenchSummary s = summarize(ranks);
+    std::printf("per frame: %.3f s, %.2f MiB per rank, %.1f bytes per ray-hop, %.0f rays sent per rank, load "
+                "imbalance %.2f (busiest rank's traced rays over the mean)\n",
+                s.secondsPerFrame, s.bytesPerRankFrame / 1048576.0, s.bytesPerRayHop, s.raysSentPerRank, s.loadImbalance);
 }
 
 ANARIFrame makeFrame(Session& s, const Options& options, glm::uvec2 size, ANARIWorld world, ANARIDataType colorType);
@@ -141,10 +188,13 @@ std::vector<float> renderWay(const Options& options, glm::uvec2 size, const mpi:
         if (const void* self = mpi::Communicator::selfHandle())
             anariSetParameter(d, d, "mpiCommunicator", ANARI_VOID_POINTER, self);
         anariCommitParameters(d, d);
+    } else if (way == Way::Native) {
+        anariSetParameter(d, d, "rayExchange", ANARI_STRING, options.exchange.c_str());
+        anariCommitParameters(d, d);
     }
     const bool alone = way == Way::Single;
     const BoxesPart part = buildBoxesPart(d, alone ? 0u : uint32_t(ranks.rank()), alone ? 1u : uint32_t(ranks.size()),
-                                          options.tessellation, way == Way::Composited);
+                                          options.tessellation, way == Way::Composited, partitionOf(options));
     s.objects.push_back(part.world);
     ANARIFrame frame = makeFrame(s, options, size, part.world, ANARI_FLOAT32_VEC4);
     anariRenderFrame(d, frame);
@@ -275,8 +325,10 @@ int run(const Options& options, const mpi::Communicator& ranks) {
     Session s;
     openDevice(s, options.library, log);
     ANARIDevice d = s.device;
+    anariSetParameter(d, d, "rayExchange", ANARI_STRING, options.exchange.c_str());
+    anariCommitParameters(d, d);
 
-    const BoxesPart part = buildBoxesPart(d, rank, rankCount, options.tessellation);
+    const BoxesPart part = buildBoxesPart(d, rank, rankCount, options.tessellation, false, partitionOf(options));
     s.objects.push_back(part.world);
 
     const ANARIDataType colorType = pfm ? ANARI_FLOAT32_VEC4 : ANARI_UFIXED8_RGBA_SRGB;
@@ -298,11 +350,15 @@ int run(const Options& options, const mpi::Communicator& ranks) {
             anariFrameReady(d, frame, ANARI_WAIT);
             mine.raysSent += frameCounter(d, frame, "ripple.raysSent");
             mine.bytesSent += frameCounter(d, frame, "ripple.bytesSent");
+            mine.raysReceived += frameCounter(d, frame, "ripple.raysReceived");
+            mine.raysTraced += frameCounter(d, frame, "ripple.raysTraced");
         }
         mine.secondsPerFrame =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / options.frames;
         mine.raysSent /= options.frames;
         mine.bytesSent /= options.frames;
+        mine.raysReceived /= options.frames;
+        mine.raysTraced /= options.frames;
         mine.sceneBytes = frameCounter(d, frame, "ripple.sceneBytes");
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);
@@ -363,7 +419,17 @@ int main(int argc, char** argv) {
     app.add_option("--tessellation", options.tessellation, "each box side cut into NxN quads (more triangles)")
         ->check(CLI::Range(1u, 512u))->capture_default_str();
     app.add_option("--library", options.library, "ANARI library name")->capture_default_str();
-    app.add_flag("--bench", options.bench, "time frames; print per-rank rays and bytes sent, scene memory; write JSON");
+    app.add_option("--exchange", options.exchange,
+                   "how rays cross ranks (device parameter rayExchange): bounds (only to ranks whose world boxes "
+                   "a ray enters) or ring (every ray through every rank)")
+        ->check(CLI::IsMember({"bounds", "ring"}))->capture_default_str();
+    app.add_option("--partition", options.partition,
+                   "how boxes are dealt to ranks: random (the paper's: each rank's boxes spread over the stack) or "
+                   "slabs (spatial: runs of the 16 columns, the floor cut under them)")
+        ->check(CLI::IsMember({"random", "slabs"}))->capture_default_str();
+    app.add_flag("--bench", options.bench,
+                 "time frames; print per-rank rays and bytes sent, visitors traced, scene memory, bytes per ray-hop "
+                 "and load imbalance; write JSON");
     app.add_option("--frames", options.frames, "timed frames in --bench")->check(CLI::Range(1u, 1000u))->capture_default_str();
     app.add_option("--json", options.json, "where --bench writes its numbers (rank 0)")->capture_default_str();
     app.add_option("--compare", options.compare,

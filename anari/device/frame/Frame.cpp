@@ -315,6 +315,7 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
         if (!results.depth.empty()) distribution_->gather(job.size, sizeof(float), results.depth.data());
         results.numSamples = tracer_->accumulatedSamples();
         const double rays = double(stats.raysTraced + stats.shadowRays);
+        results.raysTraced = stats.raysTraced + stats.shadowRays;
         results.raysPerSecond = stats.seconds > 0.0 ? float(rays / stats.seconds) : 0.0f;
         results.flaggedRays = stats.flaggedRays;
         results.realCollisions = stats.realCollisions;
@@ -327,6 +328,7 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
         if (exchange) {
             results.raysSent = exchange->stats().raysSent;
             results.bytesSent = exchange->stats().bytesSent + exchange->stats().regionBytes;
+            results.raysReceived = exchange->stats().raysReceived;
         }
         results.duration = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
         std::lock_guard lock(resultsMutex_);
@@ -433,6 +435,8 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
                                                                      {"ripple.blasReused", &results_.blasReused},
                                                                      {"ripple.raysSent", &results_.raysSent},
                                                                      {"ripple.bytesSent", &results_.bytesSent},
+                                                                     {"ripple.raysReceived", &results_.raysReceived},
+                                                                     {"ripple.raysTraced", &results_.raysTraced},
                                                                      {"ripple.sceneBytes", &results_.sceneBytes},
                                                                      {"ripple.flaggedRays", &results_.flaggedRays},
                                                                      {"ripple.realCollisions", &results_.realCollisions},
