@@ -104,6 +104,7 @@ void BoundsExchange::shareRegions(std::span<const bvh::Aabb> mine) {
     const std::vector<std::vector<uint8_t>> all = communicator_.allgather(bytes);
     stats_.regionBytes += bytes.size() * size_t(std::max(0, communicator_.size() - 1));
     regions_.assign(all.size(), {});
+    groups_.assign(all.size(), {});
     for (size_t r = 0; r < all.size(); ++r) {
         checkWhole(all[r], 2 * sizeof(glm::vec3), int(r), "boxes");
         for (size_t at = 0; at < all[r].size(); at += 2 * sizeof(glm::vec3)) {
@@ -116,8 +117,23 @@ void BoundsExchange::shareRegions(std::span<const bvh::Aabb> mine) {
             box.lo -= margin;
             box.hi += margin;
             regions_[r].push_back(box);
+            if ((regions_[r].size() - 1) % kGroupSize == 0) groups_[r].emplace_back();
+            groups_[r].back().extend(box);
         }
     }
+}
+
+float BoundsExchange::entryInto(const gpu::Ray& ray, float tmax, size_t rank) const {
+    const std::vector<bvh::Aabb>& boxes = regions_[rank];
+    const std::vector<bvh::Aabb>& groups = groups_[rank];
+    float nearest = std::numeric_limits<float>::infinity();
+    for (size_t g = 0; g < groups.size(); ++g) {
+        const float bound = std::min(tmax, nearest);
+        if (!std::isfinite(regionEntry(ray, bound, std::span(&groups[g], 1)))) continue;
+        const size_t first = g * kGroupSize, count = std::min(kGroupSize, boxes.size() - first);
+        nearest = std::min(nearest, regionEntry(ray, bound, std::span(boxes).subspan(first, count)));
+    }
+    return nearest;
 }
 
 void BoundsExchange::visitClosest(std::vector<core::WireRay>& rays,
@@ -194,7 +210,7 @@ void BoundsExchange::exchangeClosest(std::vector<core::WireRay>& rays, core::Ran
         const float best = bestT(rays[i]);
         for (int r = 0; r < ranks; ++r) {
             if (r == communicator_.rank()) continue;
-            const float entry = regionEntry(rays[i].ray, best, regions_[size_t(r)]);
+            const float entry = entryInto(rays[i].ray, best, size_t(r));
             if (std::isfinite(entry) && entry <= best) candidates.push_back({entry, uint32_t(r)});
         }
         std::sort(candidates.begin() + long(begin), candidates.end());
@@ -227,7 +243,7 @@ void BoundsExchange::exchangeShadow(std::vector<core::WireShadowRay>& rays, core
         if ((rays[i].occlusion & 0xFFu) == gpu::HIT_FOUND) continue;  // settled at home
         for (int r = 0; r < ranks; ++r)
             if (r != communicator_.rank() &&
-                std::isfinite(regionEntry(rays[i].ray, rays[i].ray.direction.w, regions_[size_t(r)])))
+                std::isfinite(entryInto(rays[i].ray, rays[i].ray.direction.w, size_t(r))))
                 destinations[size_t(r)].push_back(uint32_t(i));
     }
     const std::vector<std::vector<uint8_t>> outgoing =

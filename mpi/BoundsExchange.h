@@ -32,6 +32,11 @@ public:
     const std::vector<std::vector<bvh::Aabb>>& regions() const { return regions_; }
 
 private:
+    // regionEntry into rank r's boxes, testing each run of kGroupSize boxes (siblings in the k-d split of
+    // Scene::regions()) against their union first.
+    static constexpr size_t kGroupSize = 8;
+    float entryInto(const gpu::Ray& ray, float tmax, size_t rank) const;
+
     // One round: each rank sends the rays listed for each destination, traces what it receives and
     // answers; the answers are merged into `rays` in sender order.
     void visitClosest(std::vector<core::WireRay>& rays, const std::vector<std::vector<uint32_t>>& destinations,
@@ -39,6 +44,7 @@ private:
 
     Communicator communicator_;
     std::vector<std::vector<bvh::Aabb>> regions_;
+    std::vector<std::vector<bvh::Aabb>> groups_;  // per rank: the union of each run of kGroupSize regions
     core::ExchangeStats stats_;
 };
 

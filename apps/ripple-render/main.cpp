@@ -49,6 +49,7 @@ struct Options {
     uint32_t spp = 16;
     std::string library = "ripple";
     std::string traversal;              // the device parameter "traversal"; empty: the device's default
+    std::string exchange;               // the device parameter "rayExchange"; empty: the device's default
     uint32_t maxPathLength = 5;
     uint32_t seed = 0;                  // the renderer's "seed": a reference must not share the image's samples
     std::optional<int> camera;
@@ -308,10 +309,11 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
 
 void openDevice(const Options& options, StatusLog& log, Session& s) {
     openAnariDevice(options.library, log, s);
-    if (!options.traversal.empty()) {
+    if (!options.traversal.empty())
         anariSetParameter(s.device, s.device, "traversal", ANARI_STRING, options.traversal.c_str());
-        anariCommitParameters(s.device, s.device);
-    }
+    if (!options.exchange.empty())
+        anariSetParameter(s.device, s.device, "rayExchange", ANARI_STRING, options.exchange.c_str());
+    if (!options.traversal.empty() || !options.exchange.empty()) anariCommitParameters(s.device, s.device);
 }
 
 // An "hdri" light of an equirectangular image (row 0 at the top, towards +Y): its centre column is seen
@@ -648,6 +650,7 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
             {"--environment-rotation", number(options.environmentRotation), false},
             {"--partition", optionHash(options.partition), false},
             {"--traversal", optionHash(options.traversal), false},
+            {"--exchange", optionHash(options.exchange), false},
             {"--library", optionHash(options.library), false},
             {"--reference", optionHash(options.reference), false},
             {"--report", optionHash(options.report), false}};
@@ -692,6 +695,11 @@ int main(int argc, char** argv) {
                    "ray traversal back-end, the device parameter 'traversal': auto (ray queries where the device "
                    "has them), software or rayQuery (default: the device's, which RIPPLE_TRAVERSAL may set)")
         ->check(CLI::IsMember({"auto", "software", "rayQuery"}));
+    app.add_option("--exchange", options.exchange,
+                   "under mpirun, how rays cross ranks, the device parameter 'rayExchange': bounds (only to the "
+                   "ranks whose world boxes a ray enters, nearest first; the default) or ring (every ray through "
+                   "every rank)")
+        ->check(CLI::IsMember({"bounds", "ring"}));
     app.add_option("--max-path-length", options.maxPathLength, "surface interactions per path")
         ->check(CLI::Range(1u, 1024u))->capture_default_str();
     app.add_option("--seed", options.seed,

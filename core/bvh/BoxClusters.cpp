@@ -1,45 +1,41 @@
-// Morton-order clustering of boxes (see BoxClusters.h).
+// Median-split clustering of boxes (see BoxClusters.h).
 #include "core/bvh/BoxClusters.h"
 
 #include <algorithm>
-#include <cstdint>
 
 namespace ripple::bvh {
 
 namespace {
 
-// 10 bits of x spread to every third bit.
-uint32_t spreadBits(uint32_t x) {
-    x &= 0x3FFu;
-    x = (x | (x << 16)) & 0x030000FFu;
-    x = (x | (x << 8)) & 0x0300F00Fu;
-    x = (x | (x << 4)) & 0x030C30C3u;
-    x = (x | (x << 2)) & 0x09249249u;
-    return x;
+// Splits boxes[first, last) into `count` clusters appended to `out`, in leaf order.
+void split(std::vector<Aabb>& boxes, size_t first, size_t last, size_t count, std::vector<Aabb>& out) {
+    if (count <= 1) {
+        Aabb cluster;
+        for (size_t i = first; i < last; ++i) cluster.extend(boxes[i]);
+        out.push_back(cluster);
+        return;
+    }
+    Aabb centres;
+    for (size_t i = first; i < last; ++i) centres.extend(boxes[i].center());
+    const glm::vec3 extent = centres.hi - centres.lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const size_t leftCount = count / 2;
+    const size_t middle = first + (last - first) * leftCount / count;  // boxes in proportion to clusters
+    std::nth_element(boxes.begin() + long(first), boxes.begin() + long(middle), boxes.begin() + long(last),
+                     [axis](const Aabb& a, const Aabb& b) { return a.center()[axis] < b.center()[axis]; });
+    split(boxes, first, middle, leftCount, out);
+    split(boxes, middle, last, count - leftCount, out);
 }
 
 }  // namespace
 
 std::vector<Aabb> clusterBoxes(std::span<const Aabb> boxes, size_t maxCount) {
     std::vector<Aabb> kept;
-    Aabb all;
     for (const Aabb& box : boxes)
-        if (!box.empty()) {
-            kept.push_back(box);
-            all.extend(box);
-        }
-    if (kept.size() <= maxCount || maxCount == 0) return maxCount == 0 ? std::vector<Aabb>{} : kept;
-
-    const glm::vec3 extent = glm::max(all.hi - all.lo, glm::vec3(1e-30f));
-    std::vector<std::pair<uint32_t, uint32_t>> order(kept.size());  // (Morton code of the centre, index)
-    for (size_t i = 0; i < kept.size(); ++i) {
-        const glm::vec3 unit = glm::clamp((kept[i].center() - all.lo) / extent, 0.0f, 1.0f);
-        const glm::uvec3 cell = glm::uvec3(unit * 1023.0f);
-        order[i] = {spreadBits(cell.x) | (spreadBits(cell.y) << 1) | (spreadBits(cell.z) << 2), uint32_t(i)};
-    }
-    std::sort(order.begin(), order.end());
-    std::vector<Aabb> clusters(maxCount);
-    for (size_t k = 0; k < order.size(); ++k) clusters[k * maxCount / order.size()].extend(kept[order[k].second]);
+        if (!box.empty()) kept.push_back(box);
+    std::vector<Aabb> clusters;
+    if (maxCount == 0 || kept.empty()) return clusters;
+    split(kept, 0, kept.size(), std::min(maxCount, kept.size()), clusters);
     return clusters;
 }
 

@@ -336,3 +336,48 @@ TEST_CASE("bvh: SAH cost is no worse than object-median splits") {
 }
 
 }  // namespace ripple::bvh
+
+#include "core/bvh/BoxClusters.h"
+
+namespace ripple::bvh {
+
+TEST_CASE("box clusters cover every box with at most the asked number, tightly, dropping empty ones") {
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> position(-100.0f, 100.0f), size(0.0f, 3.0f);
+    std::vector<Aabb> boxes(1000);
+    for (Aabb& b : boxes) {
+        b.lo = {position(random), position(random), position(random)};
+        b.hi = b.lo + glm::vec3(size(random), size(random), size(random));
+    }
+    boxes.push_back(Aabb{});  // empty: dropped
+    for (const size_t most : {size_t(1), size_t(7), size_t(64), size_t(5000)}) {
+        const std::vector<Aabb> clusters = clusterBoxes(boxes, most);
+        CHECK(clusters.size() == std::min(most, boxes.size() - 1));
+        size_t covered = 0;
+        for (size_t i = 0; i + 1 < boxes.size(); ++i)
+            covered += std::any_of(clusters.begin(), clusters.end(), [&](const Aabb& c) {
+                return glm::all(glm::lessThanEqual(c.lo, boxes[i].lo)) && glm::all(glm::greaterThanEqual(c.hi, boxes[i].hi));
+            });
+        CHECK(covered == boxes.size() - 1);
+        for (const Aabb& c : clusters) CHECK_FALSE(c.empty());
+    }
+    // Boxes in 8 small blobs at the corners of a 200-unit cube: 64 clusters follow the blobs, so together
+    // they cover under 1% of the union's volume.
+    std::vector<Aabb> blobs;
+    std::uniform_real_distribution<float> offset(-5.0f, 5.0f);
+    for (int i = 0; i < 1000; ++i) {
+        const glm::vec3 corner(i & 1 ? 100.0f : -100.0f, i & 2 ? 100.0f : -100.0f, i & 4 ? 100.0f : -100.0f);
+        const glm::vec3 lo = corner + glm::vec3(offset(random), offset(random), offset(random));
+        blobs.push_back({lo, lo + glm::vec3(size(random), size(random), size(random))});
+    }
+    Aabb all;
+    for (const Aabb& b : blobs) all.extend(b);
+    const auto volumeOf = [](const Aabb& c) { return double(c.hi.x - c.lo.x) * (c.hi.y - c.lo.y) * (c.hi.z - c.lo.z); };
+    double volume = 0.0;
+    for (const Aabb& c : clusterBoxes(blobs, 64)) volume += volumeOf(c);
+    CHECK(volume < 0.01 * volumeOf(all));
+    CHECK(clusterBoxes(boxes, 0).empty());
+    CHECK(clusterBoxes(std::vector<Aabb>{}, 8).empty());
+}
+
+}  // namespace ripple::bvh
