@@ -54,6 +54,14 @@ public:
     std::vector<std::vector<uint8_t>> gatherToRoot(std::span<const uint8_t> bytes) const;
     // outgoing[r] goes to rank r; returns what each rank sent here, indexed by sender (MPI_Alltoallv).
     std::vector<std::vector<uint8_t>> alltoallv(const std::vector<std::vector<uint8_t>>& outgoing) const;
+    // The same without copies for large messages: `send` holds the bytes for rank 0, then rank 1, ...
+    // (sendCounts[r] of them); `received` gets what each rank sent here, sender s's bytes at
+    // [receivedOffsets[s], receivedOffsets[s + 1]). The buffers are the caller's, kept between calls.
+    void alltoallv(std::span<const uint8_t> send, std::span<const uint64_t> sendCounts, std::vector<uint8_t>& received,
+                   std::vector<uint64_t>& receivedOffsets) const;
+    // Every rank's bytes in one buffer on rank 0 (rank r's at [offsets[r], offsets[r + 1])); others get
+    // nothing.
+    void gatherToRoot(std::span<const uint8_t> bytes, std::vector<uint8_t>& all, std::vector<uint64_t>& offsets) const;
     // Sends to rank + 1 and receives from rank - 1 (cyclically): one hop of a ring.
     std::vector<uint8_t> ringShift(std::span<const uint8_t> bytes) const;
     void barrier() const;

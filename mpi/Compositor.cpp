@@ -1,8 +1,12 @@
-// Parallel direct send (see Compositor.h): rank r owns rows [bandBegin(r), bandBegin(r + 1)); every rank
-// sends each owner the fragments of its rows in one MPI_Alltoallv, owners blend, rank 0 gathers the bands.
+// Radix-k deep compositing (see Compositor.h). Wire format of one part of a region, [first, last): a header
+// of two uint64 (pixels with fragments, fragments), the part's words of the bit mask, a uint16 count per
+// marked pixel (padded to 8 bytes), then the 20-byte fragments (padded to 8 bytes). Part boundaries are
+// multiples of 64 pixels (bar the image's end), so a part's mask is whole words of its region's mask. The
+// last message, each rank's blended region to rank 0, is the mask and one fragment per marked pixel.
 #include "mpi/Compositor.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -12,21 +16,296 @@ namespace ripple::mpi {
 
 namespace {
 
-struct Fragment {
-    uint32_t pixel;  // index inside the receiving rank's band
-    float rgba[4];
-    float depth;
-};
-static_assert(sizeof(Fragment) == 24);
+using Fragment = Compositor::Fragment;
+using DeepRegion = Compositor::DeepRegion;
+static_assert(sizeof(Fragment) == 20);
 
-struct BandPixel {
-    float rgba[4];
-    float depth;
+constexpr uint64_t kPixelsPerWord = 64;
+
+uint64_t wordsFor(uint64_t pixels) { return (pixels + kPixelsPerWord - 1) / kPixelsPerWord; }
+
+template <class T>
+void growTo(std::vector<T>& v, uint64_t size) {
+    if (v.size() < size) v.resize(size);
+}
+uint64_t padded8(uint64_t bytes) { return (bytes + 7) / 8 * 8; }
+
+// Start of part j of k of [first, first + count), rounded down to a multiple of 64 pixels.
+uint64_t partBegin(uint64_t first, uint64_t count, uint32_t j, uint32_t k) {
+    if (j == 0) return first;
+    if (j >= k) return first + count;
+    return first + count * j / k / kPixelsPerWord * kPixelsPerWord;
+}
+
+struct Span {
+    uint64_t first = 0, count = 0;
 };
+
+// The region rank `rank` owns after the rounds: in the round of stride s (the product of the earlier
+// group sizes) and group size k, its digit (rank / s) % k picks the part it keeps.
+Span finalRegion(uint32_t rank, uint64_t pixels, const std::vector<uint32_t>& rounds) {
+    Span region{0, pixels};
+    uint32_t stride = 1;
+    for (uint32_t k : rounds) {
+        const uint32_t digit = rank / stride % k;
+        const uint64_t begin = partBegin(region.first, region.count, digit, k);
+        region = {begin, partBegin(region.first, region.count, digit + 1, k) - begin};
+        stride *= k;
+    }
+    return region;
+}
+
+template <class T>
+T load(const uint8_t* at) {
+    T value;
+    std::memcpy(&value, at, sizeof(T));
+    return value;
+}
+
+// Read access to the fragments of a part, whether in a DeepRegion or a received message.
+struct PartView {
+    const uint8_t* words = nullptr;      // uint64 each
+    const uint8_t* counts = nullptr;     // uint16 each
+    const uint8_t* fragments = nullptr;  // Fragment each
+    uint64_t wordCount = 0, marked = 0, fragmentCount = 0;
+    uint64_t word(uint64_t w) const { return load<uint64_t>(words + w * 8); }
+    uint16_t count(uint64_t i) const { return load<uint16_t>(counts + i * 2); }
+    Fragment fragment(uint64_t i) const { return load<Fragment>(fragments + i * sizeof(Fragment)); }
+};
+
+// Where a word of a region's mask starts in its counts and fragments: found by a scan from a cursor that
+// only moves forward (parts are taken in order).
+struct Cursor {
+    uint64_t word = 0, marked = 0, fragments = 0;
+};
+
+void advanceTo(const DeepRegion& region, uint64_t toWord, Cursor& cursor) {
+    for (; cursor.word < toWord; ++cursor.word) {
+        const auto marked = uint64_t(std::popcount(region.words[cursor.word]));
+        for (uint64_t i = 0; i < marked; ++i) cursor.fragments += region.counts[cursor.marked + i];
+        cursor.marked += marked;
+    }
+}
+
+// The words of part [begin, end) of `region`: begin is a multiple of 64 pixels from region.first.
+uint64_t firstWord(const DeepRegion& region, uint64_t begin) { return (begin - region.first) / kPixelsPerWord; }
+uint64_t endWord(const DeepRegion& region, uint64_t end) { return wordsFor(end - region.first); }
+
+// Writes part [begin, end) of `region` in the wire format at `offset` of `out` (grown as needed, never
+// cleared: every byte of the part is written); `at` moves to its end. Returns the bytes written.
+uint64_t writePart(const DeepRegion& region, uint64_t begin, uint64_t end, Cursor& at, std::vector<uint8_t>& out,
+                   uint64_t offset) {
+    advanceTo(region, firstWord(region, begin), at);
+    const Cursor start = at;
+    advanceTo(region, endWord(region, end), at);
+    const uint64_t words = at.word - start.word, marked = at.marked - start.marked;
+    const uint64_t fragments = at.fragments - start.fragments;
+    const uint64_t bytes = 16 + words * 8 + padded8(marked * 2) + padded8(fragments * sizeof(Fragment));
+    growTo(out, offset + bytes);
+    uint8_t* p = out.data() + offset;
+    std::memcpy(p, &marked, 8);
+    std::memcpy(p + 8, &fragments, 8);
+    p += 16;
+    std::memcpy(p, region.words.data() + start.word, words * 8);
+    p += words * 8;
+    std::memcpy(p, region.counts.data() + start.marked, marked * 2);
+    std::memset(p + marked * 2, 0, padded8(marked * 2) - marked * 2);
+    p += padded8(marked * 2);
+    std::memcpy(p, region.fragments.data() + start.fragments, fragments * sizeof(Fragment));
+    std::memset(p + fragments * sizeof(Fragment), 0, padded8(fragments * sizeof(Fragment)) - fragments * sizeof(Fragment));
+    return bytes;
+}
+
+// A received part of `pixels` pixels, checked against its length.
+PartView parsePart(const uint8_t* bytes, uint64_t length, uint64_t pixels, int sender) {
+    PartView view;
+    view.wordCount = wordsFor(pixels);
+    const auto fail = [&] {
+        throw std::runtime_error("Compositor: rank " + std::to_string(sender) + " sent a malformed part of " +
+                                 std::to_string(length) + " bytes for " + std::to_string(pixels) + " pixels");
+    };
+    if (length < 16) fail();
+    const auto marked = load<uint64_t>(bytes), fragments = load<uint64_t>(bytes + 8);
+    if (marked > pixels || fragments > (length / sizeof(Fragment)) ||
+        16 + view.wordCount * 8 + padded8(marked * 2) + padded8(fragments * sizeof(Fragment)) != length)
+        fail();
+    view.marked = marked;
+    view.fragmentCount = fragments;
+    view.words = bytes + 16;
+    view.counts = view.words + view.wordCount * 8;
+    view.fragments = view.counts + padded8(marked * 2);
+    return view;
+}
+
+// Own data of a part as a view (no copy).
+PartView ownPart(const DeepRegion& region, uint64_t begin, uint64_t end, Cursor& at) {
+    advanceTo(region, firstWord(region, begin), at);
+    Cursor last = at;
+    advanceTo(region, endWord(region, end), last);
+    PartView view;
+    view.wordCount = last.word - at.word;
+    view.marked = last.marked - at.marked;
+    view.fragmentCount = last.fragments - at.fragments;
+    view.words = reinterpret_cast<const uint8_t*>(region.words.data() + at.word);
+    view.counts = reinterpret_cast<const uint8_t*>(region.counts.data() + at.marked);
+    view.fragments = reinterpret_cast<const uint8_t*>(region.fragments.data() + at.fragments);
+    return view;
+}
+
+// Walks the pixels of a part that any source marks, in order: onWord(w, mask) for each word of the merged
+// mask, then onPixel(fragments, n) with each marked pixel's fragments from every source, in source order.
+template <class OnWord, class OnPixel>
+void walkParts(const std::vector<PartView>& sources, uint64_t count, OnWord onWord, OnPixel onPixel) {
+    struct Source {
+        const uint8_t* counts;
+        const uint8_t* fragments;
+        const uint8_t* fragmentsEnd;
+        uint64_t word;
+    };
+    std::vector<Source> cursor;
+    for (const PartView& v : sources)
+        cursor.push_back({v.counts, v.fragments, v.fragments + v.fragmentCount * sizeof(Fragment), 0});
+    std::vector<Fragment> pixel(sources.size());
+    for (uint64_t w = 0; w < wordsFor(count); ++w) {
+        uint64_t any = 0;
+        for (size_t s = 0; s < sources.size(); ++s) any |= cursor[s].word = sources[s].word(w);
+        onWord(w, any);
+        for (uint64_t bits = any; bits != 0; bits &= bits - 1) {
+            const int bit = std::countr_zero(bits);
+            size_t n = 0;
+            for (Source& source : cursor) {
+                if (!((source.word >> bit) & 1u)) continue;
+                const auto k = load<uint16_t>(source.counts);
+                source.counts += 2;
+                const size_t bytes = size_t(k) * sizeof(Fragment);
+                if (bytes > size_t(source.fragmentsEnd - source.fragments))
+                    throw std::runtime_error("Compositor: a part's counts exceed its fragments");
+                if (n + k > pixel.size()) pixel.resize(n + k);
+                if (k == 1) std::memcpy(pixel.data() + n, source.fragments, sizeof(Fragment));  // inlined
+                else std::memcpy(pixel.data() + n, source.fragments, bytes);
+                source.fragments += bytes;
+                n += k;
+            }
+            if (n > UINT16_MAX) throw std::runtime_error("Compositor: more than 65535 fragments in one pixel");
+            onPixel(pixel.data(), n);
+        }
+    }
+}
+
+// Every source's fragments of [first, first + count), concatenated per pixel in source order.
+void mergeParts(const std::vector<PartView>& sources, uint64_t first, uint64_t count, DeepRegion& out) {
+    out.first = first;
+    out.count = count;
+    out.words.assign(wordsFor(count), 0);
+    uint64_t fragmentBound = 0;
+    for (const PartView& source : sources) fragmentBound += source.fragmentCount;
+    growTo(out.counts, count);
+    growTo(out.fragments, fragmentBound);
+    out.marked = out.fragmentCount = 0;
+    walkParts(sources, count, [&](uint64_t w, uint64_t mask) { out.words[w] = mask; },
+              [&](const Fragment* pixel, size_t n) {
+                  out.counts[out.marked++] = uint16_t(n);
+                  std::copy(pixel, pixel + n, out.fragments.begin() + long(out.fragmentCount));
+                  out.fragmentCount += n;
+              });
+}
+
+// Front-to-back blend of one pixel's fragments, sorted by depth in place (stable: equal depths keep rank
+// order).
+Fragment blend(Fragment* pixel, size_t n) {
+    if (n == 1) return pixel[0];  // blending over nothing gives the fragment itself
+    for (size_t a = 1; a < n; ++a)
+        for (size_t b = a; b > 0 && pixel[b - 1].depth > pixel[b].depth; --b) std::swap(pixel[b - 1], pixel[b]);
+    Fragment blended{{0.0f, 0.0f, 0.0f, 0.0f}, INFINITY};
+    for (const Fragment& f : std::span(pixel, n)) {
+        const float transmitted = 1.0f - blended.rgba[3];
+        for (int c = 0; c < 4; ++c) blended.rgba[c] += transmitted * f.rgba[c];
+        blended.depth = std::min(blended.depth, f.depth);
+    }
+    return blended;
+}
+
+// The last round: every source's fragments of a part of `count` pixels blended, as the message to rank 0
+// (the merged mask, then one blended fragment per marked pixel) at the start of `out` (grown as needed).
+// Returns its bytes.
+uint64_t blendParts(const std::vector<PartView>& sources, uint64_t count, std::vector<uint8_t>& out) {
+    const uint64_t words = wordsFor(count);
+    uint64_t marked = 0;
+    for (uint64_t w = 0; w < words; ++w) {
+        uint64_t any = 0;
+        for (const PartView& source : sources) any |= source.word(w);
+        marked += uint64_t(std::popcount(any));
+    }
+    const uint64_t bytes = words * 8 + marked * sizeof(Fragment);
+    growTo(out, bytes);
+    uint8_t* fragment = out.data() + words * 8;
+    walkParts(sources, count, [&](uint64_t w, uint64_t mask) { std::memcpy(out.data() + w * 8, &mask, 8); },
+              [&](Fragment* pixel, size_t n) {
+                  const Fragment blended = blend(pixel, n);
+                  std::memcpy(fragment, &blended, sizeof(Fragment));
+                  fragment += sizeof(Fragment);
+              });
+    return bytes;
+}
+
+uint64_t markedIn(const uint8_t* words, uint64_t count) {
+    uint64_t marked = 0;
+    for (uint64_t w = 0; w < count; ++w) marked += uint64_t(std::popcount(load<uint64_t>(words + w * 8)));
+    return marked;
+}
 
 }  // namespace
 
-Compositor::Compositor(Communicator ranks) : ranks_(std::move(ranks)) {}
+const char* compositeMethodName(CompositeMethod method) {
+    switch (method) {
+    case CompositeMethod::Auto: return "auto";
+    case CompositeMethod::DirectSend: return "directSend";
+    case CompositeMethod::BinarySwap: return "binarySwap";
+    case CompositeMethod::RadixK: return "radixK";
+    }
+    return "unknown";
+}
+
+std::optional<CompositeMethod> parseCompositeMethod(std::string_view name) {
+    for (CompositeMethod m : {CompositeMethod::Auto, CompositeMethod::DirectSend, CompositeMethod::BinarySwap,
+                              CompositeMethod::RadixK})
+        if (name == compositeMethodName(m)) return m;
+    return std::nullopt;
+}
+
+std::vector<uint32_t> compositeRounds(uint32_t ranks, CompositeMethod method) {
+    if (ranks <= 1) return {};
+    switch (method) {
+    case CompositeMethod::DirectSend: return {ranks};
+    case CompositeMethod::BinarySwap: {
+        if (!std::has_single_bit(ranks))
+            throw std::invalid_argument("binary swap needs a power-of-two rank count, not " + std::to_string(ranks));
+        return std::vector<uint32_t>(size_t(std::countr_zero(ranks)), 2u);
+    }
+    case CompositeMethod::Auto:
+    case CompositeMethod::RadixK: break;
+    }
+    std::vector<uint32_t> primes;  // descending
+    uint32_t rest = ranks;
+    for (uint32_t p = 2; p * p <= rest; ++p)
+        while (rest % p == 0) {
+            primes.push_back(p);
+            rest /= p;
+        }
+    if (rest > 1) primes.push_back(rest);
+    std::sort(primes.rbegin(), primes.rend());
+    std::vector<uint32_t> groups;  // first fit: each prime joins the first group it keeps within kMaxRadix
+    for (uint32_t p : primes) {
+        auto fits = std::find_if(groups.begin(), groups.end(), [&](uint32_t g) { return g * p <= kMaxRadix; });
+        if (fits != groups.end()) *fits *= p;
+        else groups.push_back(p);
+    }
+    std::sort(groups.rbegin(), groups.rend());
+    return groups;
+}
+
+Compositor::Compositor(Communicator ranks, CompositeMethod method)
+    : ranks_(std::move(ranks)), rounds_(compositeRounds(uint32_t(ranks_.size()), method)) {}
 
 void Compositor::resize(uint32_t width, uint32_t height) {
     width_ = width;
@@ -35,103 +314,123 @@ void Compositor::resize(uint32_t width, uint32_t height) {
     depth_.clear();
 }
 
-uint32_t Compositor::bandBegin(int rank) const {
-    return uint32_t(uint64_t(height_) * uint64_t(rank) / uint64_t(ranks_.size()));
-}
-
 void Compositor::composite(std::span<const float> rgba, std::span<const float> depth) {
-    const size_t pixels = size_t(width_) * height_;
+    const uint64_t pixels = uint64_t(width_) * height_;
     if (rgba.size() != pixels * 4 || depth.size() != pixels)
         throw std::invalid_argument("Compositor: an image of " + std::to_string(rgba.size() / 4) + " pixels and " +
                                     std::to_string(depth.size()) + " depths for a " + std::to_string(width_) + "x" +
                                     std::to_string(height_) + " frame");
-    bytesSent_ = 0;
+    bytesSent_ = fragmentsSent_ = 0;
     if (!ranks_.distributed()) {  // one rank: its image is the whole image
         rgba_.assign(rgba.begin(), rgba.end());
         depth_.assign(depth.begin(), depth.end());
         return;
     }
-    const int rankCount = ranks_.size();
-    const bool keepBackground = ranks_.rank() == 0;
-    auto sent = [&](size_t p) { return !std::isinf(depth[p]) || (keepBackground && rgba[p * 4 + 3] != 0.0f); };
-    // Counted first, so each owner's buffer is written in place at its final size; the buffers are kept
-    // from frame to frame, so a steady frame allocates (and page-faults) nothing for them.
-    outgoing_.resize(static_cast<size_t>(rankCount));
-    for (int owner = 0; owner < rankCount; ++owner) {
-        const size_t first = size_t(bandBegin(owner)) * width_, last = size_t(bandBegin(owner + 1)) * width_;
-        size_t count = 0;
-        for (size_t p = first; p < last; ++p) count += sent(p);
-        std::vector<uint8_t>& bytes = outgoing_[size_t(owner)];
-        bytes.resize(count * sizeof(Fragment));
-        uint8_t* out = bytes.data();
-        for (size_t p = first; p < last; ++p) {
-            if (!sent(p)) continue;
-            const Fragment fragment{uint32_t(p - first), {rgba[p * 4], rgba[p * 4 + 1], rgba[p * 4 + 2], rgba[p * 4 + 3]},
-                                    depth[p]};
-            std::memcpy(out, &fragment, sizeof(Fragment));
-            out += sizeof(Fragment);
-        }
-        if (owner != ranks_.rank()) bytesSent_ += bytes.size();  // what stays on this rank crosses nothing
-    }
-    const std::vector<std::vector<uint8_t>> received = ranks_.alltoallv(outgoing_);
+    const auto rank = uint32_t(ranks_.rank()), rankCount = uint32_t(ranks_.size());
 
-    // Bucket the fragments by pixel (counting sort, senders in rank order), then order each pixel's by
-    // depth with a stable insertion sort (a pixel has at most one fragment per rank); equal depths keep
-    // rank order, so the result does not depend on MPI's arrival order.
-    const size_t bandPixels = size_t(bandBegin(ranks_.rank() + 1) - bandBegin(ranks_.rank())) * width_;
-    std::vector<uint32_t>& starts = starts_;
-    starts.assign(bandPixels + 1, 0);
-    size_t total = 0;
-    for (const std::vector<uint8_t>& bytes : received) {
-        for (size_t at = 0; at + sizeof(Fragment) <= bytes.size(); at += sizeof(Fragment)) {
-            uint32_t pixel;
-            std::memcpy(&pixel, bytes.data() + at, sizeof(pixel));
-            if (pixel >= bandPixels) throw std::runtime_error("Compositor: a fragment outside the band");
-            ++starts[pixel + 1];
-            ++total;
+    // This rank's fragments: its surfaces, and on rank 0 the background where it is not transparent.
+    const bool keepBackground = rank == 0;
+    mine_.first = 0;
+    mine_.count = pixels;
+    mine_.words.assign(wordsFor(pixels), 0);
+    growTo(mine_.counts, pixels);
+    // Branch-free: every pixel's fragment is written at the next slot, which advances only for a marked one.
+    growTo(mine_.fragments, pixels + 1);
+    uint64_t marked = 0;
+    for (uint64_t w = 0; w < mine_.words.size(); ++w) {
+        uint64_t mask = 0;
+        const uint64_t first = w * kPixelsPerWord, last = std::min(pixels, first + kPixelsPerWord);
+        for (uint64_t p = first; p < last; ++p) {
+            const float* c = rgba.data() + p * 4;
+            const bool kept = !std::isinf(depth[p]) || (keepBackground && c[3] != 0.0f);
+            std::memcpy(mine_.fragments[marked].rgba, c, 16);
+            mine_.fragments[marked].depth = depth[p];
+            mask |= uint64_t(kept) << (p - first);
+            marked += kept;
         }
+        mine_.words[w] = mask;
     }
-    for (size_t p = 0; p < bandPixels; ++p) starts[p + 1] += starts[p];
-    std::vector<Fragment> byPixel(total);
-    std::vector<uint32_t>& cursor = cursor_;
-    cursor.assign(starts.begin(), starts.end() - 1);
-    for (const std::vector<uint8_t>& bytes : received) {
-        for (size_t at = 0; at + sizeof(Fragment) <= bytes.size(); at += sizeof(Fragment)) {
-            Fragment fragment;
-            std::memcpy(&fragment, bytes.data() + at, sizeof(Fragment));
-            byPixel[cursor[fragment.pixel]++] = fragment;
+    std::fill(mine_.counts.begin(), mine_.counts.begin() + long(marked), uint16_t(1));
+    mine_.marked = mine_.fragmentCount = marked;
+
+    uint32_t stride = 1;
+    uint64_t blendedBytes = 0;
+    for (uint32_t k : rounds_) {
+        const uint32_t digit = rank / stride % k;
+        const uint32_t base = rank - digit * stride;
+        // Send each member the part it keeps (nothing to ranks outside the group).
+        sendCounts_.assign(rankCount, 0);
+        uint64_t sendBytes = 0;
+        Cursor at;
+        for (uint32_t j = 0; j < k; ++j) {
+            const uint32_t member = base + j * stride;
+            const uint64_t begin = partBegin(mine_.first, mine_.count, j, k), end = partBegin(mine_.first, mine_.count, j + 1, k);
+            if (member == rank) continue;
+            sendCounts_[member] = writePart(mine_, begin, end, at, send_, sendBytes);
+            fragmentsSent_ += load<uint64_t>(send_.data() + sendBytes + 8);  // the part's header
+            sendBytes += sendCounts_[member];
+            bytesSent_ += sendCounts_[member];
         }
+        ranks_.alltoallv(std::span(send_).first(sendBytes), sendCounts_, received_, receivedOffsets_);
+        // Merge every member's fragments of the part this rank keeps, in member (= rank) order.
+        const uint64_t keepBegin = partBegin(mine_.first, mine_.count, digit, k);
+        const uint64_t keepEnd = partBegin(mine_.first, mine_.count, digit + 1, k);
+        std::vector<PartView> sources;
+        Cursor own;
+        for (uint32_t j = 0; j < k; ++j) {
+            const uint32_t member = base + j * stride;
+            if (member == rank) {
+                sources.push_back(ownPart(mine_, keepBegin, keepEnd, own));
+                continue;
+            }
+            const uint64_t from = receivedOffsets_[member], length = receivedOffsets_[member + 1] - from;
+            sources.push_back(parsePart(received_.data() + from, length, keepEnd - keepBegin, int(member)));
+        }
+        for (uint32_t r = 0; r < rankCount; ++r)  // nobody outside the group may send here
+            if ((r < base || (r - base) % stride != 0 || (r - base) / stride >= k) &&
+                receivedOffsets_[r + 1] != receivedOffsets_[r])
+                throw std::runtime_error("Compositor: rank " + std::to_string(r) + " sent to a rank outside its group");
+        stride *= k;
+        if (stride == rankCount) {  // the last round: blend straight into the message to rank 0
+            blendedBytes = blendParts(sources, keepEnd - keepBegin, send_);
+            break;
+        }
+        mergeParts(sources, keepBegin, keepEnd - keepBegin, merged_);
+        std::swap(mine_, merged_);
     }
 
-    std::vector<uint8_t>& band = band_;
-    band.resize(bandPixels * sizeof(BandPixel));
-    for (size_t p = 0; p < bandPixels; ++p) {
-        Fragment* begin = byPixel.data() + starts[p];
-        Fragment* end = byPixel.data() + starts[p + 1];
-        for (Fragment* it = begin + 1; it < end; ++it)  // stable: moves a fragment only past deeper ones
-            for (Fragment* j = it; j > begin && (j - 1)->depth > j->depth; --j) std::swap(*(j - 1), *j);
-        BandPixel out{{0.0f, 0.0f, 0.0f, 0.0f}, INFINITY};
-        for (const Fragment* it = begin; it != end; ++it) {
-            const float transmitted = 1.0f - out.rgba[3];
-            for (int c = 0; c < 4; ++c) out.rgba[c] += transmitted * it->rgba[c];
-            out.depth = std::min(out.depth, it->depth);
-        }
-        std::memcpy(band.data() + p * sizeof(BandPixel), &out, sizeof(BandPixel));
-    }
-    if (ranks_.rank() != 0) bytesSent_ += band.size();
+    if (rank != 0) bytesSent_ += blendedBytes;
+    ranks_.gatherToRoot(std::span(send_).first(blendedBytes), received_, receivedOffsets_);
+    if (rank != 0) return;
 
-    const std::vector<std::vector<uint8_t>> bands = ranks_.gatherToRoot(band);
-    if (ranks_.rank() != 0) return;
-    rgba_.assign(pixels * 4, 0.0f);
-    depth_.assign(pixels, INFINITY);
-    for (int owner = 0; owner < rankCount; ++owner) {
-        const size_t first = size_t(bandBegin(owner)) * width_;
-        const std::vector<uint8_t>& bytes = bands[size_t(owner)];
-        for (size_t i = 0; i * sizeof(BandPixel) < bytes.size(); ++i) {
-            BandPixel pixel;
-            std::memcpy(&pixel, bytes.data() + i * sizeof(BandPixel), sizeof(BandPixel));
-            std::copy(pixel.rgba, pixel.rgba + 4, rgba_.begin() + long((first + i) * 4));
-            depth_[first + i] = pixel.depth;
+    // Every pixel lies in one rank's region and is written once: blended, or background (0, +infinity).
+    rgba_.resize(pixels * 4);
+    depth_.resize(pixels);
+    for (uint32_t r = 0; r < rankCount; ++r) {
+        const Span region = finalRegion(r, pixels, rounds_);
+        const uint8_t* bytes = received_.data() + receivedOffsets_[r];
+        const uint64_t length = receivedOffsets_[r + 1] - receivedOffsets_[r], regionWords = wordsFor(region.count);
+        if (length < regionWords * 8 || (length - regionWords * 8) % sizeof(Fragment) != 0)
+            throw std::runtime_error("Compositor: rank " + std::to_string(r) + " sent a malformed region");
+        const uint8_t* fragment = bytes + regionWords * 8;
+        if ((length - regionWords * 8) / sizeof(Fragment) != markedIn(bytes, regionWords))
+            throw std::runtime_error("Compositor: rank " + std::to_string(r) + " sent a malformed region");
+        for (uint64_t w = 0; w < regionWords; ++w) {
+            const uint64_t bits = load<uint64_t>(bytes + w * 8);
+            const uint64_t first = region.first + w * kPixelsPerWord;
+            const uint64_t last = std::min(region.first + region.count, first + kPixelsPerWord);
+            for (uint64_t p = first; p < last; ++p) {
+                float* color = rgba_.data() + p * 4;
+                if ((bits >> (p - first)) & 1u) {
+                    const auto f = load<Fragment>(fragment);
+                    fragment += sizeof(Fragment);
+                    std::memcpy(color, f.rgba, 16);
+                    depth_[p] = f.depth;
+                } else {
+                    std::memset(color, 0, 16);
+                    depth_[p] = INFINITY;
+                }
+            }
         }
     }
 }

@@ -195,6 +195,60 @@ std::vector<std::vector<uint8_t>> Communicator::alltoallv(const std::vector<std:
     return result;
 }
 
+void Communicator::alltoallv(std::span<const uint8_t> send, std::span<const uint64_t> sendCounts,
+                             std::vector<uint8_t>& received, std::vector<uint64_t>& receivedOffsets) const {
+    const size_t ranks = size_t(size_);
+    if (sendCounts.size() != ranks)
+        throw MpiError("alltoallv: " + std::to_string(sendCounts.size()) + " send counts for " + std::to_string(ranks) +
+                       " ranks");
+    std::vector<int> counts(ranks), offsets(ranks), receiveCounts(ranks), receiveOffsets(ranks);
+    size_t at = 0;
+    for (size_t r = 0; r < ranks; ++r) {
+        counts[r] = countOf(sendCounts[r]);
+        offsets[r] = countOf(at);
+        at += sendCounts[r];
+    }
+    if (at > send.size()) throw MpiError("alltoallv: send counts exceed the send buffer");
+    if (!distributed()) {
+        received.assign(send.begin(), send.begin() + long(at));
+        receivedOffsets = {0, at};
+        return;
+    }
+    RIPPLE_MPI_CHECK(MPI_Alltoall(counts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, handle_->comm));
+    receivedOffsets.assign(ranks + 1, 0);
+    for (size_t r = 0; r < ranks; ++r) {
+        receiveOffsets[r] = countOf(receivedOffsets[r]);
+        receivedOffsets[r + 1] = receivedOffsets[r] + uint64_t(receiveCounts[r]);
+    }
+    received.resize(std::max<size_t>(receivedOffsets[ranks], 1));
+    static const uint8_t none = 0;
+    RIPPLE_MPI_CHECK(MPI_Alltoallv(send.empty() ? &none : send.data(), counts.data(), offsets.data(), MPI_BYTE,
+                                   received.data(), receiveCounts.data(), receiveOffsets.data(), MPI_BYTE, handle_->comm));
+    received.resize(receivedOffsets[ranks]);
+}
+
+void Communicator::gatherToRoot(std::span<const uint8_t> bytes, std::vector<uint8_t>& all,
+                                std::vector<uint64_t>& offsets) const {
+    if (!distributed()) {
+        all.assign(bytes.begin(), bytes.end());
+        offsets = {0, bytes.size()};
+        return;
+    }
+    const int mine = countOf(bytes.size());
+    std::vector<int> counts(static_cast<size_t>(size_)), displacements(static_cast<size_t>(size_));
+    RIPPLE_MPI_CHECK(MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, handle_->comm));
+    offsets.assign(rank_ == 0 ? size_t(size_) + 1 : 0, 0);
+    for (int r = 0; r < size_ && rank_ == 0; ++r) {
+        displacements[size_t(r)] = countOf(offsets[size_t(r)]);
+        offsets[size_t(r) + 1] = offsets[size_t(r)] + uint64_t(counts[size_t(r)]);
+    }
+    all.resize(rank_ == 0 ? std::max<size_t>(offsets.back(), 1) : 1);
+    static const uint8_t none = 0;
+    RIPPLE_MPI_CHECK(MPI_Gatherv(bytes.empty() ? &none : bytes.data(), mine, MPI_BYTE, all.data(), counts.data(),
+                                 displacements.data(), MPI_BYTE, 0, handle_->comm));
+    all.resize(rank_ == 0 ? offsets.back() : 0);
+}
+
 std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) const {
     if (!distributed()) return std::vector<uint8_t>(bytes.begin(), bytes.end());
     const int next = (rank_ + 1) % size_, previous = (rank_ + size_ - 1) % size_;

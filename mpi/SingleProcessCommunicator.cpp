@@ -32,6 +32,18 @@ std::vector<std::vector<uint8_t>> Communicator::gatherToRoot(std::span<const uin
 std::vector<std::vector<uint8_t>> Communicator::alltoallv(const std::vector<std::vector<uint8_t>>& outgoing) const {
     return {outgoing.empty() ? std::vector<uint8_t>() : outgoing.front()};
 }
+void Communicator::alltoallv(std::span<const uint8_t> send, std::span<const uint64_t> sendCounts,
+                             std::vector<uint8_t>& received, std::vector<uint64_t>& receivedOffsets) const {
+    const uint64_t count = sendCounts.empty() ? 0 : sendCounts.front();
+    if (sendCounts.size() != 1 || count > send.size()) throw MpiError("alltoallv: send counts do not match one rank");
+    received.assign(send.begin(), send.begin() + long(count));
+    receivedOffsets = {0, count};
+}
+void Communicator::gatherToRoot(std::span<const uint8_t> bytes, std::vector<uint8_t>& all,
+                                std::vector<uint64_t>& offsets) const {
+    all.assign(bytes.begin(), bytes.end());
+    offsets = {0, bytes.size()};
+}
 const void* Communicator::selfHandle() { return nullptr; }
 std::shared_ptr<const void> Communicator::copyHandle(const void*) { return nullptr; }
 std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) const {

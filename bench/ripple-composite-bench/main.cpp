@@ -22,17 +22,23 @@ struct Options {
     uint32_t repeat = 9;
     double coverage = 0.5;  // fraction of each rank's pixels that hold a surface
     std::string json = "ripple-composite-bench.json";
+    std::string pattern = "noise";
+    std::string method = "auto";
 };
 
 // This rank's image: a surface on about `coverage` of the pixels (chosen by a hash of pixel and rank, so
 // the ranks overlap as independent layers would), half of them half transparent, premultiplied; the rest
-// background (infinite depth, transparent).
+// background (infinite depth, transparent). Pattern "noise" draws each pixel on its own (the worst case:
+// no two neighbours alike); "blocks" draws each 32x32 block as a whole, as a rendered part of a scene
+// covers the screen in patches.
 void makeImage(const Options& o, int rank, std::vector<float>& rgba, std::vector<float>& depth) {
     const size_t pixels = size_t(o.width) * o.height;
     rgba.assign(pixels * 4, 0.0f);
     depth.assign(pixels, INFINITY);
+    const bool blocks = o.pattern == "blocks";
     for (size_t p = 0; p < pixels; ++p) {
-        uint32_t h = uint32_t(p) * 2654435761u ^ uint32_t(rank + 1) * 2246822519u;
+        const size_t cell = blocks ? (p % o.width) / 32 + (p / o.width / 32) * 4096 : p;
+        uint32_t h = uint32_t(cell) * 2654435761u ^ uint32_t(rank + 1) * 2246822519u;
         h ^= h >> 15;
         h *= 2246822519u;
         h ^= h >> 13;
@@ -47,7 +53,9 @@ void makeImage(const Options& o, int rank, std::vector<float>& rgba, std::vector
 int run(const Options& o, const ripple::mpi::Communicator& ranks) {
     std::vector<float> rgba, depth;
     makeImage(o, ranks.rank(), rgba, depth);
-    ripple::mpi::Compositor compositor(ranks);
+    ripple::mpi::Compositor compositor(ranks, *ripple::mpi::parseCompositeMethod(o.method));
+    std::string rounds;
+    for (uint32_t k : compositor.rounds()) rounds += (rounds.empty() ? "" : "x") + std::to_string(k);
     compositor.resize(o.width, o.height);
     compositor.composite(rgba, depth);  // warm-up: first-touch of the buffers
     std::vector<double> seconds;
@@ -63,13 +71,15 @@ int run(const Options& o, const ripple::mpi::Communicator& ranks) {
     if (ranks.rank() != 0) return 0;
     std::sort(seconds.begin(), seconds.end());
     const double median = seconds[seconds.size() / 2];
-    std::printf("ripple-composite-bench: %d rank(s), %ux%u RGBA-z (%.0f%% coverage per rank): %.2f ms per composite "
-                "(median of %u, min %.2f, max %.2f), %.2f MiB moved per frame (all ranks)\n",
-                ranks.size(), o.width, o.height, 100.0 * o.coverage, 1e3 * median, o.repeat, 1e3 * seconds.front(),
+    std::printf("ripple-composite-bench: %d rank(s), %s (rounds %s), %ux%u RGBA-z (%.0f%% coverage per rank, %s): "
+                "%.2f ms per composite (median of %u, min %.2f, max %.2f), %.2f MiB moved per frame (all ranks)\n",
+                ranks.size(), o.method.c_str(), rounds.empty() ? "none" : rounds.c_str(), o.width, o.height,
+                100.0 * o.coverage, o.pattern.c_str(), 1e3 * median, o.repeat, 1e3 * seconds.front(),
                 1e3 * seconds.back(), double(bytes) / 1048576.0);
     std::ofstream out(o.json);
     out << "{\n  \"ranks\": " << ranks.size() << ",\n  \"width\": " << o.width << ",\n  \"height\": " << o.height
-        << ",\n  \"coverage\": " << o.coverage << ",\n  \"repeat\": " << o.repeat
+        << ",\n  \"coverage\": " << o.coverage << ",\n  \"pattern\": \"" << o.pattern << "\",\n  \"method\": \""
+        << o.method << "\",\n  \"rounds\": \"" << rounds << "\",\n  \"repeat\": " << o.repeat
         << ",\n  \"medianSeconds\": " << median << ",\n  \"minSeconds\": " << seconds.front()
         << ",\n  \"maxSeconds\": " << seconds.back() << ",\n  \"bytesPerFrame\": " << bytes << "\n}\n";
     if (!out) throw std::runtime_error("cannot write " + o.json);
@@ -90,6 +100,13 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1u, 1000u))->capture_default_str();
     app.add_option("--coverage", options.coverage, "fraction of each rank's pixels covered by a surface")
         ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+    app.add_option("--pattern", options.pattern,
+                   "which pixels are covered: noise (each pixel drawn alone) or blocks (32x32 blocks drawn whole)")
+        ->check(CLI::IsMember({"noise", "blocks"}))->capture_default_str();
+    app.add_option("--method", options.method,
+                   "compositing rounds: auto (radix-k, groups of at most 8), directSend, binarySwap (power-of-two "
+                   "rank counts) or radixK")
+        ->check(CLI::IsMember({"auto", "directSend", "binarySwap", "radixK"}))->capture_default_str();
     app.add_option("--json", options.json, "where rank 0 writes the numbers")->capture_default_str();
     try {
         app.parse(argc, argv);
