@@ -133,6 +133,15 @@ void PtcDevice::setDeviceParameter(const char* name, ANARIDataType dataType, con
             libraryName_ = static_cast<const char*>(mem);
         return;
     }
+    if (key == "compositing" && dataType == ANARI_STRING) {
+        const char* value = static_cast<const char*>(mem);
+        if (const auto method = mpi::parseCompositeMethod(value)) compositeMethod_ = *method;
+        else
+            report(ANARI_SEVERITY_ERROR, std::string("device parameter 'compositing' is '") + value + "'; use one of " +
+                                             mpi::kCompositeMethodNames + " (kept: " +
+                                             mpi::compositeMethodName(compositeMethod_) + ")");
+        return;
+    }
     if (key == "mpiCommunicator" && dataType == ANARI_VOID_POINTER) {
         communicatorHandle_ = mpi::Communicator::copyHandle(mem);  // a VOID_POINTER's value is mem itself
         return;
@@ -245,7 +254,8 @@ void PtcDevice::commitParameters(ANARIObject object) {
     FrameState& frame = it->second;
     try {
         if (!frame.compositor)  // collective: every rank commits its frame
-            frame.compositor = std::make_unique<mpi::Compositor>(mpi::Communicator::fromHandle(frame.communicatorHandle.get()));
+            frame.compositor = std::make_unique<mpi::Compositor>(mpi::Communicator::fromHandle(frame.communicatorHandle.get()),
+                                                                 compositeMethod_);
         frame.compositor->resize(frame.width, frame.height);
     } catch (const std::exception& error) {
         report(ANARI_SEVERITY_ERROR, std::string("anariCommitParameters(frame): ") + error.what());

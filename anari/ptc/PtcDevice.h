@@ -51,6 +51,7 @@ private:
     ANARIStatusCallback callback_;
     const void* callbackUserPtr_;
     std::string libraryName_;
+    mpi::CompositeMethod compositeMethod_ = mpi::CompositeMethod::Auto;  // the device parameter "compositing"
     std::shared_ptr<const void> communicatorHandle_;  // a copy of the application's MPI_Comm
     // Device parameters set before the wrapped device exists, replayed when it is created.
     struct PendingParameter {

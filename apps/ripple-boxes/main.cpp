@@ -68,6 +68,7 @@ struct RankReport {
     uint64_t bytesSent = 0;
     uint64_t raysReceived = 0;
     uint64_t raysTraced = 0;  // its own rays
+    uint64_t exchangeRounds = 0;
     double secondsPerFrame = 0.0;
 
     uint64_t work() const { return raysTraced + raysReceived; }
@@ -137,6 +138,7 @@ void writeJson(const std::string& path, const Options& options, glm::uvec2 size,
             << ", \"sceneBytes\": " << x.sceneBytes << ", \"peakRssKiB\": " << x.peakRssKiB
             << ", \"raysSentPerFrame\": " << x.raysSent << ", \"bytesSentPerFrame\": " << x.bytesSent
             << ", \"raysReceivedPerFrame\": " << x.raysReceived << ", \"raysTracedPerFrame\": " << x.raysTraced
+            << ", \"exchangeRoundsPerFrame\": " << x.exchangeRounds
             << ", \"secondsPerFrame\": " << x.secondsPerFrame << "}" << (r + 1 < ranks.size() ? "," : "") << "\n";
     }
     out << "  ]\n}\n";
@@ -352,6 +354,7 @@ int run(const Options& options, const mpi::Communicator& ranks) {
             mine.bytesSent += frameCounter(d, frame, "ripple.bytesSent");
             mine.raysReceived += frameCounter(d, frame, "ripple.raysReceived");
             mine.raysTraced += frameCounter(d, frame, "ripple.raysTraced");
+            mine.exchangeRounds += frameCounter(d, frame, "ripple.exchangeRounds");
         }
         mine.secondsPerFrame =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / options.frames;
@@ -359,6 +362,7 @@ int run(const Options& options, const mpi::Communicator& ranks) {
         mine.bytesSent /= options.frames;
         mine.raysReceived /= options.frames;
         mine.raysTraced /= options.frames;
+        mine.exchangeRounds /= options.frames;
         mine.sceneBytes = frameCounter(d, frame, "ripple.sceneBytes");
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);

@@ -329,6 +329,7 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
             results.raysSent = exchange->stats().raysSent;
             results.bytesSent = exchange->stats().bytesSent + exchange->stats().regionBytes;
             results.raysReceived = exchange->stats().raysReceived;
+            results.exchangeRounds = exchange->stats().hops;
         }
         results.duration = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
         std::lock_guard lock(resultsMutex_);
@@ -437,6 +438,7 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
                                                                      {"ripple.bytesSent", &results_.bytesSent},
                                                                      {"ripple.raysReceived", &results_.raysReceived},
                                                                      {"ripple.raysTraced", &results_.raysTraced},
+                                                                     {"ripple.exchangeRounds", &results_.exchangeRounds},
                                                                      {"ripple.sceneBytes", &results_.sceneBytes},
                                                                      {"ripple.flaggedRays", &results_.flaggedRays},
                                                                      {"ripple.realCollisions", &results_.realCollisions},
