@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -33,6 +34,11 @@ T read(const std::vector<uint8_t>& bytes, size_t at) {
     T value;
     std::memcpy(&value, bytes.data() + at, sizeof(T));
     return value;
+}
+
+uint64_t microsecondsSince(std::chrono::steady_clock::time_point start) {
+    return uint64_t(
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start).count());
 }
 
 float bestT(const core::WireRay& ray) {
@@ -85,6 +91,10 @@ float regionEntry(const gpu::Ray& ray, float tmax, std::span<const bvh::Aabb> bo
             }
             float near = (box.lo[a] - o) / d, far = (box.hi[a] - o) / d;
             if (near > far) std::swap(near, far);
+            // The division's rounding grows with the distance: widen the slab by a few ulps of it, as the
+            // kernels' box test does (BOX_TMAX_SCALE in intersect.glsl), so a grazing far ray is kept.
+            near -= std::abs(near) * 1e-6f;
+            far += std::abs(far) * 1e-6f;
             t0 = std::max(t0, near);  // a NaN leaves the bound as it was
             t1 = std::min(t1, far);
         }
@@ -161,7 +171,9 @@ void BoundsExchange::visitClosest(std::vector<core::WireRay>& rays,
         }
     }
     stats_.raysReceived += visitors.size();
+    const auto start = std::chrono::steady_clock::now();
     tracer.traceClosest(visitors);
+    stats_.visitMicroseconds += microsecondsSince(start);
     std::vector<std::vector<uint8_t>> answers(static_cast<size_t>(ranks));
     for (const core::WireRay& visitor : visitors) {
         if (visitor.record.status == gpu::HIT_MISS) continue;
@@ -269,7 +281,9 @@ void BoundsExchange::exchangeShadow(std::vector<core::WireShadowRay>& rays, core
         }
     }
     stats_.raysReceived += visitors.size();
+    const auto start = std::chrono::steady_clock::now();
     tracer.traceShadow(visitors);
+    stats_.visitMicroseconds += microsecondsSince(start);
     std::vector<std::vector<uint8_t>> answers(static_cast<size_t>(ranks));
     for (const core::WireShadowRay& visitor : visitors) {
         if (visitor.occlusion == gpu::HIT_MISS && visitor.transmittance == 1.0f) continue;

@@ -3,8 +3,10 @@
 // nearest first. A bounce takes two rounds: the first sends each ray to the nearest rank it enters; the
 // second to every other rank it enters before the closest hit found so far. Rays carry only what tracing
 // needs (36 bytes: origin, tmin, direction, the best t so far as tmax, slot); only hits, occlusion and
-// unfinished traversals come back. The image is the one the ring exchange (and one rank) gives: a ray is
-// left out only where no surface or volume of that rank can lie on its segment.
+// unfinished traversals come back. A ray is left out only where no surface or volume of that rank can lie
+// on its segment, so every ray finds the hit the ring exchange (and one rank) finds; only ties between
+// ranks at exactly equal t may resolve to another rank (the nearer rank in ray order, then the lower
+// rank), and volumes draw other random numbers (a visitor's are keyed by its slot in the batch traced).
 #pragma once
 
 #include "core/render/RayExchange.h"

@@ -132,6 +132,12 @@ PartView parsePart(const uint8_t* bytes, uint64_t length, uint64_t pixels, int s
     view.marked = marked;
     view.fragmentCount = fragments;
     view.words = bytes + 16;
+    // The mask must mark exactly `marked` pixels, none past the part's end (walkParts reads a count for
+    // each marked pixel).
+    uint64_t bits = 0;
+    for (uint64_t w = 0; w < view.wordCount; ++w) bits += uint64_t(std::popcount(view.word(w)));
+    const uint64_t tail = pixels % kPixelsPerWord;
+    if (bits != marked || (tail != 0 && (view.word(view.wordCount - 1) >> tail) != 0)) fail();
     view.counts = view.words + view.wordCount * 8;
     view.fragments = view.counts + padded8(marked * 2);
     return view;
@@ -304,8 +310,16 @@ std::vector<uint32_t> compositeRounds(uint32_t ranks, CompositeMethod method) {
     return groups;
 }
 
-Compositor::Compositor(Communicator ranks, CompositeMethod method)
-    : ranks_(std::move(ranks)), rounds_(compositeRounds(uint32_t(ranks_.size()), method)) {}
+Compositor::Compositor(Communicator ranks, CompositeMethod method) : ranks_(std::move(ranks)) {
+    // Ranks with other rounds would wait for each other forever: every rank checks that all chose alike
+    // (before anything can throw on one rank alone).
+    const uint64_t mine[] = {uint64_t(method)};
+    uint64_t lowest[1] = {}, highest[1] = {};
+    ranks_.minMax(mine, lowest, highest);
+    if (lowest[0] != highest[0])
+        throw std::invalid_argument("the ranks chose different compositing methods (every rank must set the same)");
+    rounds_ = compositeRounds(uint32_t(ranks_.size()), method);  // throws on every rank alike
+}
 
 void Compositor::resize(uint32_t width, uint32_t height) {
     width_ = width;

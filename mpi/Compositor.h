@@ -41,6 +41,8 @@ std::vector<uint32_t> compositeRounds(uint32_t ranks, CompositeMethod method);
 // sorts behind every surface. Ranks with empty worlds send only background, so they contribute nothing.
 class Compositor {
 public:
+    // Collective: throws std::invalid_argument on every rank when the ranks' methods differ, or for binary
+    // swap on a rank count that is not a power of two.
     explicit Compositor(Communicator ranks, CompositeMethod method = CompositeMethod::Auto);
 
     void resize(uint32_t width, uint32_t height);

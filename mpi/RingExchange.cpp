@@ -2,6 +2,7 @@
 // that comes home is its slot in the home queue; the id each ray carries checks that.
 #include "mpi/RingExchange.h"
 
+#include <chrono>
 #include <cstring>
 #include <string>
 
@@ -27,7 +28,10 @@ void RingExchange::cycle(std::vector<WireItem>& items, Visit visit) {
         if (!received.empty()) std::memcpy(batch.data(), received.data(), received.size());
         if (hop < ranks) {  // the last hop is the one home
             stats_.raysReceived += batch.size();
+            const auto start = std::chrono::steady_clock::now();
             visit(std::span<WireItem>(batch));
+            stats_.visitMicroseconds += uint64_t(std::chrono::duration_cast<std::chrono::microseconds>(
+                                                     std::chrono::steady_clock::now() - start).count());
         }
     }
     if (batch.size() != homeCount)

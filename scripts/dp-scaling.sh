@@ -25,7 +25,7 @@ mpirun=(mpirun --oversubscribe)
 [[ "$(id -u)" == 0 ]] && mpirun+=(--allow-run-as-root)
 # The boxes at 196,610 triangles (tessellation 16), 256x256, 4 spp, paths of 3; one rank uses every core,
 # several ranks one lavapipe thread each.
-scene=(--bench --size 256x256 --spp 4 --frames 3 --tessellation 16)
+scene=(--bench --size 256x256 --spp 4 --frames 4 --tessellation 16)
 for partition in random slabs; do
   "$boxes" "${scene[@]}" --partition "$partition" --json "$out/boxes-$partition-1.json" -o "$out/boxes-$partition-1.png" \
     | grep "per frame"

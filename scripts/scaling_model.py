@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Cost model of data-parallel rendering and compositing (docs/scaling.md).
 
-Reads the JSON files scripts/dp-scaling.sh writes, fits the model's three constants to the measured frame
+Reads the JSON files scripts/dp-scaling.sh writes, fits the model's constants to the measured frame
 times, prints each run's measured and predicted time and the error, and draws docs/scaling.png: the fit at
 1-8 ranks on this machine, and the model extrapolated to 1,024 ranks on the cluster stated below.
 
@@ -11,13 +11,17 @@ times, prints each run's measured and predicted time and the error, and draws do
 Needs numpy and matplotlib (Debian: python3-numpy, python3-matplotlib).
 
 The model. A frame traces the image's rays; with N ranks each ray is also traced by the other ranks it
-visits. With W_r the rays rank r traces (its own and visitors), C cores, K the exchange rounds per frame
-(ring: hops, bounds: rounds of alltoallv) and B_r the bytes rank r sends:
+visits. With C cores, K the exchange rounds per frame (ring: hops, bounds: rounds of alltoallv) and B_r
+the bytes rank r sends:
 
-    T = a * max(max_r W_r, sum_r W_r / C) + b * K + c * max_r B_r
+    T = a * O + w * S + b * K + c * max_r B_r + t * O * (N - 1)   (bounds only in the last term)
 
-a is seconds per traced ray on one core, b seconds per round (latency and the ranks waiting for each
-other), c seconds per byte. Compositing: T = g * P * f / N + (rounds + 1) * l + P * f * s * (N - 1) / N / bw
+O = max(max_r O_r, sum_r O_r / C) counts the rays the ranks trace of their own (generated, traced,
+shaded; one rank uses every core) and a is seconds per such ray on one core; S is the time the busiest
+rank spent tracing other ranks' rays (measured: ripple.visitMicroseconds), w its weight (1 if the
+measurement explains itself); b is seconds per round (submissions, host work, the ranks waiting for
+each other), c seconds per byte, t seconds per entry test of an own ray against another rank's boxes.
+The extrapolation traces a visiting ray in v seconds, measured at 2 ranks (no core shared). Compositing: T = g * P * f / N + (rounds + 1) * l + P * f * s * (N - 1) / N / bw
 (P pixels, f covered fraction, s = 20 bytes per fragment; g, l, bw fitted the same way).
 """
 
@@ -43,17 +47,19 @@ def load_runs(folder):
         with open(path) as f:
             j = json.load(f)
         ranks = j["perRank"]
-        work = [r["raysTracedPerFrame"] + r["raysReceivedPerFrame"] for r in ranks]
+        own = [r["raysTracedPerFrame"] for r in ranks]
+        visits = [r["raysReceivedPerFrame"] for r in ranks]
         runs.append({
             "file": os.path.basename(path),
             "ranks": j["ranks"],
             "exchange": j["exchange"] if j["ranks"] > 1 else "none",
             "partition": j["partition"],
             "seconds": j["secondsPerFrame"],
-            "work_max": max(work),
-            "work_total": sum(work),
-            "own_rays": sum(r["raysTracedPerFrame"] for r in ranks),
-            "visits": sum(r["raysReceivedPerFrame"] for r in ranks),
+            "own_max": max(own),
+            "own_rays": sum(own),
+            "visits_max": max(visits),
+            "visit_seconds": max(r.get("visitSecondsPerFrame", 0.0) for r in ranks),
+            "visits": sum(visits),
             "rounds": max(r.get("exchangeRoundsPerFrame", 0) for r in ranks),
             "bytes_max": max(r["bytesSentPerFrame"] for r in ranks),
             "bytes_per_hop": j["bytesPerRayHop"],
@@ -67,18 +73,25 @@ def load_runs(folder):
 
 
 def features(run):
-    compute = max(run["work_max"], run["work_total"] / CORES)
-    return [compute, run["rounds"], run["bytes_max"]]
+    """The model's terms: rays a rank traces of its own (the busiest rank's, or the ranks' total over the
+    cores when they share them; one rank uses every core), the seconds the busiest rank spent tracing
+    other ranks' rays (measured), exchange rounds, the busiest rank's bytes, and the bounds exchange's
+    entry tests (each own ray against each other rank)."""
+    n = run["ranks"]
+    own = run["own_rays"] / CORES if n == 1 else max(run["own_max"], run["own_rays"] / CORES)
+    tests = max(run["own_max"], run["own_rays"] / CORES) * (n - 1) if run["exchange"] == "bounds" else 0.0
+    return [own, run["visit_seconds"], run["rounds"], run["bytes_max"], tests]
 
 
 def fit(runs):
+    """Non-negative least squares on relative errors (each run weighs by its own time)."""
+    from scipy.optimize import nnls
     x = np.array([features(r) for r in runs], dtype=float)
     y = np.array([r["seconds"] for r in runs], dtype=float)
-    # Relative least squares (each run's error counts by its share of its own time), constants >= 0.
-    w = 1.0 / y
-    coefficients, *_ = np.linalg.lstsq(x * w[:, None], y * w, rcond=None)
-    coefficients = np.maximum(coefficients, 0.0)
-    return coefficients
+    scale = x.max(axis=0)
+    scale[scale == 0] = 1.0
+    coefficients, _ = nnls((x / scale) / y[:, None], np.ones_like(y))
+    return coefficients / scale
 
 
 def visits_per_ray(runs, exchange, partition):
@@ -102,7 +115,10 @@ def extrapolate(coefficients, runs, ranks):
     """Seconds per frame on the stated cluster, for the ring and for the bounds exchange on spatially
     partitioned data: visits per ray as fitted on the slabs here, the exponent capped at 1/3 (a ray
     crosses about N^(1/3) of N bricks)."""
-    a = coefficients[0]
+    a, _, b, _, t = coefficients
+    # Seconds per visiting ray on one core, measured where the ranks do not share a core (2 ranks).
+    two = [r for r in runs if r["ranks"] == 2 and r["visits_max"] > 0]
+    v = float(np.mean([r["visit_seconds"] / r["visits_max"] for r in two]))
     one = [r for r in runs if r["ranks"] == 1]
     rays = float(np.mean([r["own_rays"] for r in one]))  # the image's rays per frame
     # Ring: `cycles` queue cycles per frame of N hops each (one message per hop); bounds: `rounds`
@@ -112,21 +128,24 @@ def extrapolate(coefficients, runs, ranks):
     hop_bytes = {e: float(np.mean([r["bytes_per_hop"] for r in runs if r["exchange"] == e])) for e in ("ring", "bounds")}
     p, q = fit_power(visits_per_ray(runs, "bounds", "slabs"))
     q_bricks = min(q, 1.0 / 3.0)
-    seconds_per_ray = a / CORES  # a node traces on both cores
+    own_seconds, visit_seconds = a / CORES, v / CORES  # a node traces on both cores
     latency, bandwidth = CLUSTER["latency_s"], CLUSTER["bandwidth_bytes_per_s"]
     out = {"ranks": list(ranks), "ring": [], "bounds": [], "raysPerFrame": rays, "ringCycles": cycles,
+           "secondsPerVisit": v, "secondsPerRound": b,
            "boundsRounds": rounds, "visits_fit": {"p": p, "q": q, "q_bricks": q_bricks}}
     for n in ranks:
         if n == 1:
-            out["ring"].append(seconds_per_ray * rays)
-            out["bounds"].append(seconds_per_ray * rays)
+            out["ring"].append(own_seconds * rays)
+            out["bounds"].append(own_seconds * rays)
             continue
         # Ring: a rank traces its rays / N and every other rank's (rays in all), sends rays * bytes per hop.
-        out["ring"].append(seconds_per_ray * rays + cycles * n * latency + rays * hop_bytes["ring"] / bandwidth)
+        # Each round costs what it cost here (b: submissions, host work, waiting) plus its messages.
+        out["ring"].append(own_seconds * rays / n + visit_seconds * rays * (n - 1) / n + cycles * n * (b + latency)
+                           + rays * hop_bytes["ring"] / bandwidth)
         visits = p * (n - 1) ** q_bricks
-        work = rays / n * (1.0 + visits)
         sent = rays / n * visits * hop_bytes["bounds"]
-        out["bounds"].append(seconds_per_ray * work + rounds * (n - 1) * latency + sent / bandwidth)
+        out["bounds"].append(own_seconds * rays / n + visit_seconds * rays / n * visits
+                             + rounds * (b + (n - 1) * latency) + sent / bandwidth + t / CORES * rays / n * (n - 1))
     return out
 
 
@@ -140,9 +159,10 @@ def main():
     if not runs:
         sys.exit(f"scaling_model.py: no boxes-*.json in {args.folder}")
     coefficients = fit(runs)
-    a, b, c = coefficients
-    print(f"fit: a = {a * 1e9:.1f} ns per traced ray (one core), b = {b * 1e3:.3f} ms per exchange round, "
-          f"c = {c * 1e9:.3f} ns per byte sent ({1e-9 / c if c > 0 else float('inf'):.2f} GB/s)")
+    a, w, b, c, t = coefficients
+    print(f"fit: a = {a * 1e9:.1f} ns per own ray (one core), w = {w:.2f} x the measured visit seconds, "
+          f"b = {b * 1e3:.3f} ms per exchange round, c = {c * 1e9:.3f} ns per byte sent, "
+          f"t = {t * 1e9:.2f} ns per entry test (own ray x other rank)")
     print(f"{'run':34s} {'ranks':>5s} {'measured s':>10s} {'model s':>8s} {'error':>7s}")
     errors = []
     table = []
@@ -164,7 +184,7 @@ def main():
 
     if args.json:
         with open(args.json, "w") as f:
-            json.dump({"coefficients": {"a": a, "b": b, "c": c}, "runs": table, "extrapolation": ext,
+            json.dump({"coefficients": {"a": a, "w": w, "b": b, "c": c, "t": t}, "runs": table, "extrapolation": ext,
                        "largestError": max(errors)}, f, indent=2)
 
     import matplotlib

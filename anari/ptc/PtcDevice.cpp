@@ -253,9 +253,12 @@ void PtcDevice::commitParameters(ANARIObject object) {
     if (it == frames_.end()) return;
     FrameState& frame = it->second;
     try {
-        if (!frame.compositor)  // collective: every rank commits its frame
+        if (!frame.compositor || frame.compositeMethod != compositeMethod_) {  // collective: every rank commits
+            frame.compositor.reset();
             frame.compositor = std::make_unique<mpi::Compositor>(mpi::Communicator::fromHandle(frame.communicatorHandle.get()),
                                                                  compositeMethod_);
+            frame.compositeMethod = compositeMethod_;
+        }
         frame.compositor->resize(frame.width, frame.height);
     } catch (const std::exception& error) {
         report(ANARI_SEVERITY_ERROR, std::string("anariCommitParameters(frame): ") + error.what());

@@ -31,6 +31,7 @@ private:
         ANARIDataType colorType = ANARI_UNKNOWN, depthType = ANARI_UNKNOWN;
         std::shared_ptr<const void> communicatorHandle;  // a copy of the application's MPI_Comm
         std::unique_ptr<mpi::Compositor> compositor;
+        mpi::CompositeMethod compositeMethod = mpi::CompositeMethod::Auto;  // what compositor was made with
         std::vector<uint8_t> mappedColor;  // the composited color in colorType
         int references = 1;                // the application's, mirrored: the state lives as long as the frame
         ANARIObject renderer = nullptr;

@@ -69,6 +69,7 @@ struct RankReport {
     uint64_t raysReceived = 0;
     uint64_t raysTraced = 0;  // its own rays
     uint64_t exchangeRounds = 0;
+    uint64_t visitMicroseconds = 0;
     double secondsPerFrame = 0.0;
 
     uint64_t work() const { return raysTraced + raysReceived; }
@@ -139,6 +140,7 @@ void writeJson(const std::string& path, const Options& options, glm::uvec2 size,
             << ", \"raysSentPerFrame\": " << x.raysSent << ", \"bytesSentPerFrame\": " << x.bytesSent
             << ", \"raysReceivedPerFrame\": " << x.raysReceived << ", \"raysTracedPerFrame\": " << x.raysTraced
             << ", \"exchangeRoundsPerFrame\": " << x.exchangeRounds
+            << ", \"visitSecondsPerFrame\": " << double(x.visitMicroseconds) * 1e-6
             << ", \"secondsPerFrame\": " << x.secondsPerFrame << "}" << (r + 1 < ranks.size() ? "," : "") << "\n";
     }
     out << "  ]\n}\n";
@@ -355,6 +357,7 @@ int run(const Options& options, const mpi::Communicator& ranks) {
             mine.raysReceived += frameCounter(d, frame, "ripple.raysReceived");
             mine.raysTraced += frameCounter(d, frame, "ripple.raysTraced");
             mine.exchangeRounds += frameCounter(d, frame, "ripple.exchangeRounds");
+            mine.visitMicroseconds += frameCounter(d, frame, "ripple.visitMicroseconds");
         }
         mine.secondsPerFrame =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / options.frames;
@@ -363,6 +366,7 @@ int run(const Options& options, const mpi::Communicator& ranks) {
         mine.raysReceived /= options.frames;
         mine.raysTraced /= options.frames;
         mine.exchangeRounds /= options.frames;
+        mine.visitMicroseconds /= options.frames;
         mine.sceneBytes = frameCounter(d, frame, "ripple.sceneBytes");
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);

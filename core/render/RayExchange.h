@@ -59,6 +59,7 @@ struct ExchangeStats {
     uint64_t raysSent = 0;      // path and shadow rays this rank sent to another rank, each hop counted
     uint64_t bytesSent = 0;     // rays and their answers (hits, occlusion) sent to other ranks
     uint64_t raysReceived = 0;  // rays of other ranks traced here
+    uint64_t visitMicroseconds = 0;  // spent tracing them (the RankTracer's calls)
     uint64_t regionBytes = 0;   // world boxes sent to other ranks (BoundsExchange, once per frame)
     uint64_t hops = 0;          // rounds of sending (ring: hops; bounds: rounds)
 };

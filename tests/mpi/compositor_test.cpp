@@ -18,7 +18,9 @@ using namespace ripple;
 
 namespace {
 
-constexpr uint32_t kWidth = 131, kHeight = 67;
+struct Size {
+    uint32_t width, height;
+};
 
 struct Image {
     std::vector<float> rgba, depth;
@@ -26,8 +28,8 @@ struct Image {
 
 // Rank r covers a pixel where a hash says so; a third of the covered pixels are half transparent; depths
 // come from 4 levels, so ranks often tie. Rank 0's background is a visible grey.
-Image makeImage(uint32_t rank, bool empty) {
-    const size_t pixels = size_t(kWidth) * kHeight;
+Image makeImage(Size size, uint32_t rank, bool empty) {
+    const size_t pixels = size_t(size.width) * size.height;
     Image image{std::vector<float>(pixels * 4, 0.0f), std::vector<float>(pixels, INFINITY)};
     for (size_t p = 0; p < pixels; ++p) {
         uint32_t h = uint32_t(p) * 2654435761u ^ (rank + 1) * 2246822519u;
@@ -62,7 +64,7 @@ struct Composite {
 };
 
 Composite reference(const mpi::Communicator& world, const Image& mine) {
-    const size_t pixels = size_t(kWidth) * kHeight;
+    const size_t pixels = mine.depth.size();
     std::vector<uint8_t> bytes(pixels * 5 * sizeof(float));
     std::memcpy(bytes.data(), mine.rgba.data(), pixels * 16);
     std::memcpy(bytes.data() + pixels * 16, mine.depth.data(), pixels * 4);
@@ -96,32 +98,37 @@ Composite reference(const mpi::Communicator& world, const Image& mine) {
 
 }  // namespace
 
-TEST_CASE("compositing: every method gives the reference image bit for bit; an empty rank sends only masks") {
+// Sizes: not a multiple of the 64-pixel words; tiny (parts of no pixel at 3-4 ranks); and back, resizing
+// the same compositor between composites.
+TEST_CASE("compositing: every method gives the reference image bit for bit; an empty rank sends no fragment") {
     const mpi::Communicator world = mpi::Communicator::world();
     const auto rank = uint32_t(world.rank()), n = uint32_t(world.size());
-    const size_t pixels = size_t(kWidth) * kHeight;
+    std::vector<mpi::CompositeMethod> methods = {mpi::CompositeMethod::Auto, mpi::CompositeMethod::DirectSend,
+                                                 mpi::CompositeMethod::RadixK};
+    if (std::has_single_bit(n)) methods.push_back(mpi::CompositeMethod::BinarySwap);
     for (const bool lastEmpty : {false, true}) {
-        const Image mine = makeImage(rank, lastEmpty && n > 1 && rank == n - 1);
-        const Composite expected = reference(world, mine);
-        std::vector<mpi::CompositeMethod> methods = {mpi::CompositeMethod::Auto, mpi::CompositeMethod::DirectSend,
-                                                     mpi::CompositeMethod::RadixK};
-        if (std::has_single_bit(n)) methods.push_back(mpi::CompositeMethod::BinarySwap);
         for (const mpi::CompositeMethod method : methods) {
-            CAPTURE(mpi::compositeMethodName(method));
-            CAPTURE(lastEmpty);
             mpi::Compositor compositor(world, method);
-            compositor.resize(kWidth, kHeight);
-            compositor.composite(mine.rgba, mine.depth);
-            compositor.composite(mine.rgba, mine.depth);  // again, with the buffers of the first
-            // Only pixels with fragments travel: in one round, a rank with nothing sends no fragment (in
-            // later rounds it forwards those it was sent).
-            if (lastEmpty && n > 1 && rank == n - 1 && compositor.rounds().size() == 1)
-                CHECK(compositor.fragmentsSent() == 0);
-            if (!lastEmpty && n > 1) CHECK(compositor.fragmentsSent() > 0);
-            if (rank != 0) continue;
-            REQUIRE(compositor.rgba().size() == pixels * 4);
-            CHECK(std::memcmp(compositor.rgba().data(), expected.rgba.data(), pixels * 16) == 0);
-            CHECK(std::memcmp(compositor.depth().data(), expected.depth.data(), pixels * 4) == 0);
+            for (const Size size : {Size{131, 67}, Size{5, 3}, Size{131, 67}}) {
+                CAPTURE(mpi::compositeMethodName(method));
+                CAPTURE(lastEmpty);
+                CAPTURE(size.width);
+                const size_t pixels = size_t(size.width) * size.height;
+                const Image mine = makeImage(size, rank, lastEmpty && n > 1 && rank == n - 1);
+                const Composite expected = reference(world, mine);
+                compositor.resize(size.width, size.height);
+                compositor.composite(mine.rgba, mine.depth);
+                compositor.composite(mine.rgba, mine.depth);  // again, with the buffers of the first
+                // Only pixels with fragments travel: in one round, a rank with nothing sends no fragment
+                // (in later rounds it forwards those it was sent).
+                if (lastEmpty && n > 1 && rank == n - 1 && compositor.rounds().size() == 1)
+                    CHECK(compositor.fragmentsSent() == 0);
+                if (!lastEmpty && n > 1 && pixels > 64 * n) CHECK(compositor.fragmentsSent() > 0);
+                if (rank != 0) continue;
+                REQUIRE(compositor.rgba().size() == pixels * 4);
+                CHECK(std::memcmp(compositor.rgba().data(), expected.rgba.data(), pixels * 16) == 0);
+                CHECK(std::memcmp(compositor.depth().data(), expected.depth.data(), pixels * 4) == 0);
+            }
         }
     }
 }

@@ -71,12 +71,14 @@ struct Outcome {
 };
 
 // The queues every rank starts with, traced at home (its own cube) first as the path tracer does, then
-// exchanged. `cubes`: which ranks own their cube (the others hold nothing).
-Outcome route(core::RayExchange& exchange, const mpi::Communicator& world, const std::vector<bool>& cubes) {
+// exchanged. `cubes`: which ranks tell the others they own their cube (the others share no box);
+// `solid`: which of those really hold something there (a rank may share a box it has no hit in).
+Outcome route(core::RayExchange& exchange, const mpi::Communicator& world, const std::vector<bool>& cubes,
+              const std::vector<bool>& solid) {
     const auto rank = uint32_t(world.rank()), ranks = uint32_t(world.size());
     const float far = 3.0f * float(ranks) + 5.0f;
     const glm::vec3 mid(3.0f * float(rank) + 0.5f, 0.5f, 0.5f);
-    ScriptedTracer tracer(rank, cubes[rank]);
+    ScriptedTracer tracer(rank, cubes[rank] && solid[rank]);
     Outcome o;
     const gpu::Ray closest[] = {ray({-1.0f, 0.5f, 0.5f}, {1, 0, 0}, INFINITY), ray({far, 0.5f, 0.5f}, {-1, 0, 0}, INFINITY),
                                 ray(mid, {0, 1, 0}, INFINITY)};
@@ -105,7 +107,7 @@ TEST_CASE("bounds exchange: a ray goes only to ranks whose boxes it enters, near
     const mpi::Communicator world = mpi::Communicator::world();
     const auto rank = uint32_t(world.rank()), n = uint32_t(world.size());
     mpi::BoundsExchange bounds(world);
-    const Outcome o = route(bounds, world, std::vector<bool>(n, true));
+    const Outcome o = route(bounds, world, std::vector<bool>(n, true), std::vector<bool>(n, true));
     // +x: sent once (to rank 0) unless home is rank 0; -x: once (to the last rank) unless home is it; the
     // upward ray never; the through shadow ray to every other rank; the upward one never.
     CHECK(o.raysSentEverywhere == uint64_t(n - 1) * (n + 2));
@@ -122,7 +124,7 @@ TEST_CASE("bounds exchange: a ray goes only to ranks whose boxes it enters, near
 
     // The ring gives the same answers, sending every ray through every rank.
     mpi::RingExchange ring(world);
-    const Outcome r = route(ring, world, std::vector<bool>(n, true));
+    const Outcome r = route(ring, world, std::vector<bool>(n, true), std::vector<bool>(n, true));
     for (size_t i = 0; i < 3; ++i) {
         CHECK(r.rays[i].record.status == o.rays[i].record.status);
         CHECK(r.rays[i].record.baseColor.x == o.rays[i].record.baseColor.x);
@@ -138,7 +140,7 @@ TEST_CASE("bounds exchange: ranks with empty bounds are never sent a ray, and st
     std::vector<bool> cubes(n, false);
     cubes[0] = true;  // only rank 0 holds anything
     mpi::BoundsExchange bounds(world);
-    const Outcome o = route(bounds, world, cubes);
+    const Outcome o = route(bounds, world, cubes, cubes);
     CHECK(o.raysSentEverywhere == 3ull * (n - 1));  // +x, -x and the through shadow ray, from each other rank
     if (rank != 0) CHECK(o.visitsHere == 0);
     CHECK(o.rays[0].record.baseColor.x == 0.0f);
@@ -148,17 +150,45 @@ TEST_CASE("bounds exchange: ranks with empty bounds are never sent a ray, and st
     CHECK(o.shadows[0].occlusion == (rank == 0 ? gpu::HIT_MISS : gpu::HIT_FOUND));
 }
 
+// Round 2: rank 0 shares its cube but has nothing in it, so a +x ray from rank h >= 2 (its own hit at
+// x = 3h) first goes to rank 0 (nearest, no hit) and then at once to ranks 1..h-1, which it enters before
+// that hit; rank 1's is the closest. From ranks 0 and 1 it goes once (to rank 1, resp. rank 0).
+TEST_CASE("bounds exchange: a ray the nearest rank does not stop goes on to every rank it enters before its hit") {
+    const mpi::Communicator world = mpi::Communicator::world();
+    const auto rank = uint32_t(world.rank()), n = uint32_t(world.size());
+    std::vector<bool> solid(n, true);
+    solid[0] = false;
+    mpi::BoundsExchange bounds(world);
+    const Outcome o = route(bounds, world, std::vector<bool>(n, true), solid);
+    uint64_t plusX = 0;  // rays sent for the +x ray, over all home ranks
+    for (uint32_t h = 0; h < n && n > 1; ++h) plusX += h <= 1 ? 1 : h;
+    // -x: once from every rank but the last; the through shadow ray to every other rank.
+    CHECK(o.raysSentEverywhere == plusX + (n - 1) + uint64_t(n) * (n - 1));
+    if (n > 1) {
+        CHECK(o.rays[0].record.status == gpu::HIT_FOUND);
+        CHECK(o.rays[0].record.baseColor.x == 1.0f);  // rank 1's cube: the nearest with something in it
+        CHECK(o.rays[0].record.position.w == doctest::Approx(4.0));
+    } else {
+        CHECK(o.rays[0].record.status == gpu::HIT_MISS);
+    }
+    CHECK(o.rays[2].record.status == (rank == 0 ? gpu::HIT_MISS : gpu::HIT_FOUND));
+}
+
 TEST_CASE("bounds exchange: the entry distance of a segment into boxes") {
     const bvh::Aabb box{{0, 0, 0}, {1, 1, 1}};
     const auto entry = [&](glm::vec3 o, glm::vec3 d, float tmin, float tmax) {
         return mpi::regionEntry({gpu::vec4(o, tmin), gpu::vec4(d, tmax)}, tmax, std::span(&box, 1));
     };
-    CHECK(entry({-1, 0.5f, 0.5f}, {1, 0, 0}, 0, INFINITY) == 1.0f);
-    CHECK(entry({-1, 0.5f, 0.5f}, {2, 0, 0}, 0, INFINITY) == 0.5f);  // t in units of the direction
+    // Entries are widened by a few ulps of the distance (never later than the exact one).
+    const auto near = [](float t) { return doctest::Approx(t).epsilon(1e-5); };
+    CHECK(entry({-1, 0.5f, 0.5f}, {1, 0, 0}, 0, INFINITY) == near(1.0f));
+    CHECK(entry({-1, 0.5f, 0.5f}, {1, 0, 0}, 0, INFINITY) <= 1.0f);
+    CHECK(entry({-1, 0.5f, 0.5f}, {2, 0, 0}, 0, INFINITY) == near(0.5f));  // t in units of the direction
     CHECK(entry({0.5f, 0.5f, 0.5f}, {1, 0, 0}, 0, 5) == 0.0f);       // starts inside
     CHECK(entry({0.5f, 0.5f, 0.5f}, {1, 0, 0}, 0.25f, 5) == 0.25f);  // from tmin
     CHECK(std::isinf(entry({-1, 0.5f, 0.5f}, {1, 0, 0}, 0, 0.5f)));  // ends before the box
     CHECK(std::isinf(entry({-1, 2, 0.5f}, {1, 0, 0}, 0, INFINITY))); // parallel, outside the slab
-    CHECK(entry({-1, 1, 0.5f}, {1, 0, 0}, 0, INFINITY) == 1.0f);     // parallel, on the slab's face
+    CHECK(entry({-1, 1, 0.5f}, {1, 0, 0}, 0, INFINITY) == near(1.0f));  // parallel, on the slab's face
+    CHECK_FALSE(std::isinf(entry({-1, 0.5f, 0.5f}, {1, 0, 0}, 0, 0.9999995f)));  // ends a hair before: kept
     CHECK(std::isinf(entry({2, 0.5f, 0.5f}, {1, 0, 0}, 0, INFINITY))); // moving away
 }

@@ -330,6 +330,7 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
             results.bytesSent = exchange->stats().bytesSent + exchange->stats().regionBytes;
             results.raysReceived = exchange->stats().raysReceived;
             results.exchangeRounds = exchange->stats().hops;
+            results.visitMicroseconds = exchange->stats().visitMicroseconds;
         }
         results.duration = std::chrono::duration<float>(std::chrono::steady_clock::now() - start).count();
         std::lock_guard lock(resultsMutex_);
@@ -439,6 +440,7 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
                                                                      {"ripple.raysReceived", &results_.raysReceived},
                                                                      {"ripple.raysTraced", &results_.raysTraced},
                                                                      {"ripple.exchangeRounds", &results_.exchangeRounds},
+                                                                     {"ripple.visitMicroseconds", &results_.visitMicroseconds},
                                                                      {"ripple.sceneBytes", &results_.sceneBytes},
                                                                      {"ripple.flaggedRays", &results_.flaggedRays},
                                                                      {"ripple.realCollisions", &results_.realCollisions},

@@ -33,7 +33,7 @@ public:
     // "ripple.blasReused" (UINT64, of the latest scene build); "ripple.raysSent", "ripple.bytesSent" (UINT64,
     // rays and bytes this rank passed on in the last frame), "ripple.raysReceived" (UINT64, other ranks' rays
     // it traced), "ripple.raysTraced" (UINT64, its own closest-hit and shadow rays), "ripple.exchangeRounds"
-    // (UINT64, the exchange's hops or rounds) and "ripple.sceneBytes" (UINT64, its scene's GPU memory);
+    // (UINT64, the exchange's hops or rounds), "ripple.visitMicroseconds" (UINT64, time tracing others' rays) and "ripple.sceneBytes" (UINT64, its scene's GPU memory);
     // of the last frame on this rank: "ripple.flaggedRays" (UINT64, traversals and volume marches that ran out
     // of their step budget), "ripple.realCollisions", "ripple.nullCollisions" (UINT64, delta tracking in
     // volumes) and "ripple.ratioCollisions" (UINT64, ratio tracking of shadow rays).
@@ -80,6 +80,7 @@ private:
         uint64_t raysReceived = 0;             // other ranks' rays traced here
         uint64_t raysTraced = 0;               // this rank's own closest-hit and shadow rays
         uint64_t exchangeRounds = 0;           // ring hops or bounds rounds (core::ExchangeStats::hops)
+        uint64_t visitMicroseconds = 0;        // spent tracing other ranks' rays
         uint64_t sceneBytes = 0;               // GPU memory of this rank's part of the scene
         uint64_t flaggedRays = 0;              // core::FrameStats of the last frame
         uint64_t realCollisions = 0;
