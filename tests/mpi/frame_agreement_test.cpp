@@ -45,6 +45,7 @@ TEST_CASE("ranks that disagree on frame, renderer or camera are told what differ
     const Scene scene = floorScene(s);
     ANARIFrame frame = s.frame(scene.world, scene.camera, scene.renderer, {16, 16}, ANARI_FLOAT32_VEC4);
     std::string expected;
+    bool exchangeDiffers = false;
     SUBCASE("channels") {
         if (odd) {
             const ANARIDataType depth = ANARI_FLOAT32;
@@ -82,6 +83,15 @@ TEST_CASE("ranks that disagree on frame, renderer or camera are told what differ
         }
         expected = "rank 1's camera differs from rank 0's";
     }
+    SUBCASE("the ray exchange (a device parameter)") {
+        if (odd) {
+            s.set(s.device, "rayExchange", "ring");
+            s.commit(s.device);
+            exchangeDiffers = true;
+        }
+        expected = "rank 1 uses rayExchange 'ring', rank 0 'bounds': every rank must set the same device parameter "
+                   "rayExchange";
+    }
     SUBCASE("whether a rank can render at all") {
         if (odd) {
             s.setObject(frame, "camera", ANARI_CAMERA, nullptr);
@@ -91,6 +101,10 @@ TEST_CASE("ranks that disagree on frame, renderer or camera are told what differ
     }
     CHECK_FALSE(rendered(s, frame));
     CHECK_MESSAGE(s.log.count({"cannot render (data-parallel): ", expected.c_str()}) == 1, s.log.dump());
+    if (exchangeDiffers) {
+        s.set(s.device, "rayExchange", "bounds");
+        s.commit(s.device);
+    }
 
     // Agreeing again, the ranks render together.
     s.log.clear();
@@ -98,4 +112,11 @@ TEST_CASE("ranks that disagree on frame, renderer or camera are told what differ
                                 ANARI_FLOAT32_VEC4);
     CHECK(rendered(s, agreed));
     CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+}
+
+TEST_CASE("ranks that set an unknown ray exchange are told its name and the allowed ones") {
+    RenderSession s;
+    s.set(s.device, "rayExchange", "broadcast");
+    s.commit(s.device);
+    CHECK_MESSAGE(s.log.count({"rayExchange", "'broadcast'", "bounds", "ring"}) == 1, s.log.dump());
 }
