@@ -76,6 +76,34 @@ std::vector<std::vector<uint8_t>> packVisitors(const Items& items, const std::ve
     return outgoing;
 }
 
+// Sends each rank the rays listed for it (tmax = tmaxOf(slot)) and returns every sender's rays, as
+// visitors in sender order (homeRank: the sender; id: the slot there; the rest as a fresh Item).
+template <class Item, class Items, class TMax>
+std::vector<Item> sendVisitors(const Communicator& communicator, const Items& items,
+                               const std::vector<std::vector<uint32_t>>& destinations, TMax tmaxOf,
+                               core::ExchangeStats& stats) {
+    const std::vector<std::vector<uint8_t>> outgoing = packVisitors(items, destinations, tmaxOf);
+    for (size_t r = 0; r < destinations.size(); ++r) {
+        stats.raysSent += destinations[r].size();
+        stats.bytesSent += outgoing[r].size();
+    }
+    ++stats.hops;
+    const std::vector<std::vector<uint8_t>> received = communicator.alltoallv(outgoing);
+    std::vector<Item> visitors;
+    for (size_t s = 0; s < received.size(); ++s) {
+        checkWhole(received[s], kVisitorBytes, int(s), "rays");
+        for (size_t at = 0; at < received[s].size(); at += kVisitorBytes) {
+            Item visitor{};
+            visitor.ray = read<gpu::Ray>(received[s], at);
+            visitor.homeRank = uint32_t(s);
+            visitor.id = read<uint32_t>(received[s], at + sizeof(gpu::Ray));
+            visitors.push_back(visitor);
+        }
+    }
+    stats.raysReceived += visitors.size();
+    return visitors;
+}
+
 }  // namespace
 
 float regionEntry(const gpu::Ray& ray, float tmax, std::span<const bvh::Aabb> boxes) {
@@ -149,28 +177,10 @@ float BoundsExchange::entryInto(const gpu::Ray& ray, float tmax, size_t rank) co
 void BoundsExchange::visitClosest(std::vector<core::WireRay>& rays,
                                   const std::vector<std::vector<uint32_t>>& destinations, core::RankTracer& tracer) {
     const int ranks = communicator_.size();
-    const std::vector<std::vector<uint8_t>> outgoing =
-        packVisitors(rays, destinations, [&](uint32_t slot) { return bestT(rays[slot]); });
-    for (int r = 0; r < ranks; ++r) {
-        stats_.raysSent += destinations[size_t(r)].size();
-        stats_.bytesSent += outgoing[size_t(r)].size();
-    }
-    ++stats_.hops;
-    const std::vector<std::vector<uint8_t>> received = communicator_.alltoallv(outgoing);
-
-    // Every sender's visitors in one batch, traced here.
-    std::vector<core::WireRay> visitors;
-    for (int s = 0; s < ranks; ++s) {
-        checkWhole(received[size_t(s)], kVisitorBytes, s, "rays");
-        for (size_t at = 0; at < received[size_t(s)].size(); at += kVisitorBytes) {
-            core::WireRay visitor{};
-            visitor.ray = read<gpu::Ray>(received[size_t(s)], at);
-            visitor.homeRank = uint32_t(s);
-            visitor.id = read<uint32_t>(received[size_t(s)], at + sizeof(gpu::Ray));
-            visitors.push_back(visitor);  // record: a miss, so the ray's own tmax (the best t) bounds it
-        }
-    }
-    stats_.raysReceived += visitors.size();
+    // Every sender's visitors in one batch, traced here; their record is a miss, so the ray's own tmax
+    // (the best t at home) bounds the trace.
+    std::vector<core::WireRay> visitors = sendVisitors<core::WireRay>(
+        communicator_, rays, destinations, [&](uint32_t slot) { return bestT(rays[slot]); }, stats_);
     const auto start = std::chrono::steady_clock::now();
     tracer.traceClosest(visitors);
     stats_.visitMicroseconds += microsecondsSince(start);
@@ -258,29 +268,9 @@ void BoundsExchange::exchangeShadow(std::vector<core::WireShadowRay>& rays, core
                 std::isfinite(entryInto(rays[i].ray, rays[i].ray.direction.w, size_t(r))))
                 destinations[size_t(r)].push_back(uint32_t(i));
     }
-    const std::vector<std::vector<uint8_t>> outgoing =
-        packVisitors(rays, destinations, [&](uint32_t slot) { return rays[slot].ray.direction.w; });
-    for (int r = 0; r < ranks; ++r) {
-        stats_.raysSent += destinations[size_t(r)].size();
-        stats_.bytesSent += outgoing[size_t(r)].size();
-    }
-    ++stats_.hops;
-    const std::vector<std::vector<uint8_t>> received = communicator_.alltoallv(outgoing);
-
-    std::vector<core::WireShadowRay> visitors;
-    for (int s = 0; s < ranks; ++s) {
-        checkWhole(received[size_t(s)], kVisitorBytes, s, "shadow rays");
-        for (size_t at = 0; at < received[size_t(s)].size(); at += kVisitorBytes) {
-            core::WireShadowRay visitor{};
-            visitor.ray = read<gpu::Ray>(received[size_t(s)], at);
-            visitor.homeRank = uint32_t(s);
-            visitor.id = read<uint32_t>(received[size_t(s)], at + sizeof(gpu::Ray));
-            visitor.occlusion = gpu::HIT_MISS;
-            visitor.transmittance = 1.0f;
-            visitors.push_back(visitor);
-        }
-    }
-    stats_.raysReceived += visitors.size();
+    // Unoccluded (HIT_MISS) and undimmed (transmittance 1) as they arrive.
+    std::vector<core::WireShadowRay> visitors = sendVisitors<core::WireShadowRay>(
+        communicator_, rays, destinations, [&](uint32_t slot) { return rays[slot].ray.direction.w; }, stats_);
     const auto start = std::chrono::steady_clock::now();
     tracer.traceShadow(visitors);
     stats_.visitMicroseconds += microsecondsSince(start);
