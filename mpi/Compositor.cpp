@@ -2,7 +2,8 @@
 // of two uint64 (pixels with fragments, fragments), the part's words of the bit mask, a uint16 count per
 // marked pixel (padded to 8 bytes), then the 20-byte fragments (padded to 8 bytes). Part boundaries are
 // multiples of 64 pixels (bar the image's end), so a part's mask is whole words of its region's mask. The
-// last message, each rank's blended region to rank 0, is the mask and one fragment per marked pixel.
+// last message, each rank's blended region to rank 0, is the mask and one fragment per marked pixel; rank 0
+// blends its own region straight into the image.
 #include "mpi/Compositor.h"
 
 #include <algorithm>
@@ -159,7 +160,8 @@ PartView ownPart(const DeepRegion& region, uint64_t begin, uint64_t end, Cursor&
 }
 
 // Walks the pixels of a part that any source marks, in order: onWord(w, mask) for each word of the merged
-// mask, then onPixel(fragments, n) with each marked pixel's fragments from every source, in source order.
+// mask, then onPixel(p, fragments, n) with each marked pixel (p: its index in the part) and its fragments
+// from every source, in source order.
 template <class OnWord, class OnPixel>
 void walkParts(const std::vector<PartView>& sources, uint64_t count, OnWord onWord, OnPixel onPixel) {
     struct Source {
@@ -193,7 +195,7 @@ void walkParts(const std::vector<PartView>& sources, uint64_t count, OnWord onWo
                 n += k;
             }
             if (n > UINT16_MAX) throw std::runtime_error("Compositor: more than 65535 fragments in one pixel");
-            onPixel(pixel.data(), n);
+            onPixel(w * kPixelsPerWord + uint64_t(bit), pixel.data(), n);
         }
     }
 }
@@ -209,7 +211,7 @@ void mergeParts(const std::vector<PartView>& sources, uint64_t first, uint64_t c
     growTo(out.fragments, fragmentBound);
     out.marked = out.fragmentCount = 0;
     walkParts(sources, count, [&](uint64_t w, uint64_t mask) { out.words[w] = mask; },
-              [&](const Fragment* pixel, size_t n) {
+              [&](uint64_t, const Fragment* pixel, size_t n) {
                   out.counts[out.marked++] = uint16_t(n);
                   std::copy(pixel, pixel + n, out.fragments.begin() + long(out.fragmentCount));
                   out.fragmentCount += n;
@@ -246,12 +248,28 @@ uint64_t blendParts(const std::vector<PartView>& sources, uint64_t count, std::v
     growTo(out, bytes);
     uint8_t* fragment = out.data() + words * 8;
     walkParts(sources, count, [&](uint64_t w, uint64_t mask) { std::memcpy(out.data() + w * 8, &mask, 8); },
-              [&](Fragment* pixel, size_t n) {
+              [&](uint64_t, Fragment* pixel, size_t n) {
                   const Fragment blended = blend(pixel, n);
                   std::memcpy(fragment, &blended, sizeof(Fragment));
                   fragment += sizeof(Fragment);
               });
     return bytes;
+}
+
+// The last round on rank 0: its part blended straight into the image (`rgba` and `depth` at the part's
+// first pixel), background (0, +infinity) where no source marks a pixel.
+void blendInto(const std::vector<PartView>& sources, uint64_t count, float* rgba, float* depth) {
+    walkParts(sources, count,
+              [&](uint64_t w, uint64_t) {
+                  const uint64_t first = w * kPixelsPerWord, last = std::min(count, first + kPixelsPerWord);
+                  std::fill(rgba + first * 4, rgba + last * 4, 0.0f);
+                  std::fill(depth + first, depth + last, INFINITY);
+              },
+              [&](uint64_t p, Fragment* pixel, size_t n) {
+                  const Fragment blended = blend(pixel, n);
+                  std::memcpy(rgba + p * 4, blended.rgba, 16);
+                  depth[p] = blended.depth;
+              });
 }
 
 uint64_t markedIn(const uint8_t* words, uint64_t count) {
@@ -405,8 +423,14 @@ void Compositor::composite(std::span<const float> rgba, std::span<const float> d
                 receivedOffsets_[r + 1] != receivedOffsets_[r])
                 throw std::runtime_error("Compositor: rank " + std::to_string(r) + " sent to a rank outside its group");
         stride *= k;
-        if (stride == rankCount) {  // the last round: blend straight into the message to rank 0
-            blendedBytes = blendParts(sources, keepEnd - keepBegin, send_);
+        if (stride == rankCount) {  // the last round: blend into the message to rank 0 (on it, the image)
+            if (rank == 0) {
+                rgba_.resize(pixels * 4);
+                depth_.resize(pixels);
+                blendInto(sources, keepEnd - keepBegin, rgba_.data() + keepBegin * 4, depth_.data() + keepBegin);
+            } else {
+                blendedBytes = blendParts(sources, keepEnd - keepBegin, send_);
+            }
             break;
         }
         mergeParts(sources, keepBegin, keepEnd - keepBegin, merged_);
@@ -417,10 +441,9 @@ void Compositor::composite(std::span<const float> rgba, std::span<const float> d
     ranks_.gatherToRoot(std::span(send_).first(blendedBytes), received_, receivedOffsets_);
     if (rank != 0) return;
 
-    // Every pixel lies in one rank's region and is written once: blended, or background (0, +infinity).
-    rgba_.resize(pixels * 4);
-    depth_.resize(pixels);
-    for (uint32_t r = 0; r < rankCount; ++r) {
+    // Every pixel lies in one rank's region and is written once: blended, or background (0, +infinity);
+    // rank 0's own region already is.
+    for (uint32_t r = 1; r < rankCount; ++r) {
         const Span region = finalRegion(r, pixels, rounds_);
         const uint8_t* bytes = received_.data() + receivedOffsets_[r];
         const uint64_t length = receivedOffsets_[r + 1] - receivedOffsets_[r], regionWords = wordsFor(region.count);
