@@ -16,7 +16,6 @@ namespace ripple::mpi {
 
 namespace {
 
-constexpr uint32_t kStatusFlags = ~0xFFu;  // HIT_FLAG_* bits above the low byte
 constexpr size_t kVisitorBytes = sizeof(gpu::Ray) + sizeof(uint32_t);
 constexpr size_t kHitAnswerBytes = sizeof(uint32_t) + sizeof(gpu::SurfaceRecord);
 constexpr size_t kShadowAnswerBytes = 3 * sizeof(uint32_t);
@@ -203,13 +202,8 @@ void BoundsExchange::visitClosest(std::vector<core::WireRay>& rays,
             gpu::SurfaceRecord& carried = rays[slot].record;
             const bool closer = (found.status & 0xFFu) == gpu::HIT_FOUND &&
                                 ((carried.status & 0xFFu) != gpu::HIT_FOUND || found.position.w < carried.position.w);
-            if (closer) {
-                const uint32_t flags = carried.status & kStatusFlags;  // an unfinished traversal anywhere stays flagged
-                carried = found;
-                carried.status |= flags;
-            } else {
-                carried.status |= found.status & kStatusFlags;
-            }
+            if (closer) core::takeCloserHit(carried, found);
+            else carried.status |= found.status & core::kHitStatusFlags;
         }
     }
 }
@@ -288,10 +282,8 @@ void BoundsExchange::exchangeShadow(std::vector<core::WireShadowRay>& rays, core
         checkWhole(returned[size_t(s)], kShadowAnswerBytes, s, "shadow answers");
         for (size_t at = 0; at < returned[size_t(s)].size(); at += kShadowAnswerBytes) {
             const uint32_t slot = checkedSlot(read<uint32_t>(returned[size_t(s)], at), rays.size(), s);
-            const auto found = read<uint32_t>(returned[size_t(s)], at + 4);
             core::WireShadowRay& carried = rays[slot];
-            // Occluded by any rank is occluded, even where another rank could not finish its traversal.
-            carried.occlusion = (found & 0xFFu) == gpu::HIT_FOUND ? gpu::HIT_FOUND : carried.occlusion | (found & kStatusFlags);
+            carried.occlusion = core::mergeOcclusion(carried.occlusion, read<uint32_t>(returned[size_t(s)], at + 4));
             carried.transmittance *= read<float>(returned[size_t(s)], at + 8);
         }
     }

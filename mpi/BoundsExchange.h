@@ -29,9 +29,6 @@ public:
     void resetStats() override { stats_ = {}; }
 
     const Communicator& communicator() const { return communicator_; }
-    // Every rank's boxes as shared by the last shareRegions (this rank's own included), each grown by a
-    // margin that covers float rounding in the entry test; indexed by rank.
-    const std::vector<std::vector<bvh::Aabb>>& regions() const { return regions_; }
 
 private:
     // regionEntry into rank r's boxes, testing each run of kGroupSize boxes (siblings in the k-d split of
@@ -45,6 +42,8 @@ private:
                       core::RankTracer& tracer);
 
     Communicator communicator_;
+    // Every rank's boxes as shared by the last shareRegions (this rank's own included), each grown by a
+    // margin that covers float rounding in the entry test; indexed by rank.
     std::vector<std::vector<bvh::Aabb>> regions_;
     std::vector<std::vector<bvh::Aabb>> groups_;  // per rank: the union of each run of kGroupSize regions
     core::ExchangeStats stats_;

@@ -42,6 +42,22 @@ struct WireShadowRay {
 };
 static_assert(sizeof(WireShadowRay) == 48);
 
+// How a rank's answer updates what a ray carries, the same for every exchange. HIT_FLAG_* bits (above the
+// low byte) say a traversal could not finish somewhere: they stay set whatever is found elsewhere.
+inline constexpr uint32_t kHitStatusFlags = ~0xFFu;
+
+// `found` is a closer hit: it replaces the carried record, keeping the carried flags.
+inline void takeCloserHit(gpu::SurfaceRecord& carried, const gpu::SurfaceRecord& found) {
+    const uint32_t flags = carried.status & kHitStatusFlags;
+    carried = found;
+    carried.status |= flags;
+}
+
+// Occluded by any rank is occluded, even where another rank could not finish its traversal.
+inline uint32_t mergeOcclusion(uint32_t carried, uint32_t found) {
+    return (found & 0xFFu) == gpu::HIT_FOUND ? gpu::HIT_FOUND : carried | (found & kHitStatusFlags);
+}
+
 // What a rank does to rays visiting from another rank: trace them against its own part of the scene.
 class RankTracer {
 public:

@@ -11,7 +11,6 @@ namespace ripple::core {
 
 namespace {
 
-constexpr uint32_t kStatusFlags = ~0xFFu;  // HIT_FLAG_* bits above the low byte
 
 void hostReadBarrier(VkCommandBuffer cmd) {
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
@@ -96,13 +95,8 @@ void VisitorTracer::traceClosest(std::span<WireRay> rays) {
     for (size_t i = 0; i < rays.size(); ++i) {
         const gpu::SurfaceRecord& found = hostRecords_[i];
         gpu::SurfaceRecord& carried = rays[i].record;
-        if (found.status == gpu::HIT_FOUND) {
-            const uint32_t flags = carried.status & kStatusFlags;  // an unfinished traversal anywhere stays flagged
-            carried = found;
-            carried.status |= flags;
-        } else {
-            carried.status |= found.status & kStatusFlags;
-        }
+        if (found.status == gpu::HIT_FOUND) takeCloserHit(carried, found);
+        else carried.status |= found.status & kHitStatusFlags;
     }
 }
 
@@ -127,9 +121,7 @@ void VisitorTracer::traceShadow(std::span<WireShadowRay> rays) {
     occlusion_.download(hostOcclusion_.data(), count * sizeof(uint32_t));
     for (uint32_t k = 0; k < count; ++k) {
         uint32_t& carried = rays[pending_[k]].occlusion;
-        const uint32_t found = hostOcclusion_[k];
-        // Occluded by any rank is occluded, even where another rank could not finish its traversal.
-        carried = (found & 0xFFu) == gpu::HIT_FOUND ? gpu::HIT_FOUND : carried | (found & kStatusFlags);
+        carried = mergeOcclusion(carried, hostOcclusion_[k]);
     }
     if (!volumes_.transmittance) return;
     // This rank's volumes dim what is still unoccluded (the rays are still in rays_, in pending_ order).
