@@ -4,16 +4,23 @@
 #ifndef RIPPLE_SAMPLER_GLSL
 #define RIPPLE_SAMPLER_GLSL
 
-// Absent attributes read as (0, 0, 0, 1), ANARI's rule for missing components.
+// An instance's uniform attribute replaces the geometry's. Absent attributes read as (0, 0, 0, 1), ANARI's
+// rule for missing components.
 vec4 samplerInput(SceneDesc scene, SurfacePoint s, uint which) {
     if (which == TEXTURE_INPUT_TEXCOORD) return vec4(s.texcoord, 0.0, 1.0);
     if (which == TEXTURE_INPUT_COLOR) return s.hasColor ? s.color : vec4(0.0, 0.0, 0.0, 1.0);
     if (which == TEXTURE_INPUT_PRIMITIVE_ID) return vec4(float(s.primitiveId), 0.0, 0.0, 1.0);
     if (which == TEXTURE_INPUT_WORLD_POSITION) return vec4(s.position, 1.0);
     if (which == TEXTURE_INPUT_WORLD_NORMAL) return vec4(s.shadingNormal, 0.0);
+    uint a = min(which - TEXTURE_INPUT_ATTRIBUTE0, 3u);
+    InstanceShading inst = InstanceShadingRef(scene.instanceShading).instances[s.instance];
+    if ((inst.attributeMask & (INSTANCE_ATTRIBUTE_0 << a)) != 0u) return attributeAt(scene, inst.attributeOffset, 1u + a);
     GeometryRecord geom = GeometriesRef(scene.geometries).geometries[s.geometry];
-    uint offset = geom.attributeOffset[min(which - TEXTURE_INPUT_ATTRIBUTE0, 3u)];
-    if (geom.kind != GEOMETRY_TRIANGLES || offset == NO_ATTRIBUTE) return vec4(0.0, 0.0, 0.0, 1.0);
+    uint offset = geom.attributeOffset[a];
+    if (offset == NO_ATTRIBUTE) return vec4(0.0, 0.0, 0.0, 1.0);
+    uint rate = (geom.attributeRates >> (2u * a)) & 3u;
+    if (rate == ATTRIBUTE_RATE_UNIFORM) return attributeAt(scene, offset, 0u);
+    if (rate == ATTRIBUTE_RATE_PRIMITIVE) return attributeAt(scene, offset, s.primitiveId);
     return interpolate(scene, offset, s.vertices, s.bary);
 }
 

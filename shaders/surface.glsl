@@ -34,10 +34,14 @@ struct SurfacePoint {
     uint material;
     bool frontFace;        // the ray arrived on the side the object-space normal points to
     vec3 tangent;          // world space, along increasing texcoord u (normal maps); (0,0,0) where unknown
-    // Where samplers find the other attributes (texture.glsl reads them only when a sampler asks).
+    // Where samplers find the other attributes (sampler.glsl reads them only when a sampler asks).
+    uint instance;         // index into SceneDesc.instanceShading (its uniform attributes)
     uint geometry;         // index into SceneDesc.geometries
-    uvec3 vertices;        // a triangle's vertex indices; unused for other shapes
-    vec3 bary;             // a triangle's barycentrics; (0,0,0) for other shapes
+    // Per-vertex attribute entries and their weights: a triangle's vertices and barycentrics; a cylinder's
+    // or cone's two ends (entries 2p and 2p + 1 of its per-primitive pairs) and the axial fraction; a
+    // sphere's own entry. Zero weights for iso-surfaces.
+    uvec3 vertices;
+    vec3 bary;
     uint primitiveId;      // as the application numbered its primitives (quads, not their triangles)
 };
 
@@ -103,6 +107,7 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
     uint slot = UintsRef(scene.primSlots).values[geom.slotOffset + hit.primId];
     SurfacePoint s;
     s.material = inst.material;
+    s.instance = hit.instanceId;
     s.geometry = inst.geometry;
     s.vertices = uvec3(0u);
     s.bary = vec3(0.0);
@@ -160,6 +165,8 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
             vec4 sphere = SpheresRef(scene.spheres).spheres[slot].centerRadius;
             objectNormal = safeNormalize(rayPoint - sphere.xyz, vec3(0.0, 0.0, 1.0));
             objectPoint = sphere.xyz + sphere.w * objectNormal;
+            s.vertices = uvec3(hit.primId);
+            s.bary = vec3(1.0, 0.0, 0.0);
         } else if (hasFeature(FEATURE_CONES) && geom.kind == GEOMETRY_CONES) {
             coneSurface(ConesRef(scene.cones).cones[slot], rayPoint, hit, objectPoint, objectNormal);
         } else if (hasFeature(FEATURE_CYLINDERS)) {
@@ -176,11 +183,21 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
                 objectPoint = onAxis + cyl.p0Radius.w * objectNormal;
             }
         }
+        if (geom.kind != GEOMETRY_SPHERES) {
+            // Both segment shapes report the axial fraction in hit.u (0 at the first end, 1 at the second).
+            s.vertices = uvec3(2u * hit.primId, 2u * hit.primId + 1u, 2u * hit.primId + 1u);
+            s.bary = vec3(1.0 - hit.u, hit.u, 0.0);
+        }
         objectShadingNormal = objectNormal;
         if (geom.colorOffset != NO_ATTRIBUTE) {
             s.hasColor = true;
             s.color = attributeAt(scene, geom.colorOffset, hit.primId);
         }
+    }
+    if ((inst.attributeMask & INSTANCE_ATTRIBUTE_COLOR) != 0u) {
+        // The instance's uniform colour replaces the geometry's on this instance.
+        s.hasColor = true;
+        s.color = attributeAt(scene, inst.attributeOffset, 0u);
     }
     s.position = transformPoint(inst.objectToWorld, objectPoint);
     vec3 ng = safeNormalize(transformNormal(inst.worldToObject, objectNormal), -normalize(ray.direction.xyz));

@@ -75,14 +75,23 @@ const std::vector<Param> kGeometryCommon = joined({kName, {
     {"vertex.color", ANARI_ARRAY1D, "per-vertex colour (any numeric or sRGB type, up to 4 components)"},
     {"primitive.color", ANARI_ARRAY1D, "per-primitive colour"},
     {"color", ANARI_FLOAT32_VEC4, "uniform colour, when no per-vertex or per-primitive colour is given"},
+    {"vertex.attribute0", ANARI_ARRAY1D, "per-vertex values samplers and materials read (up to 4 components); "
+                                         "on meshes also the texture coordinates normal maps take their frame from"},
+    {"vertex.attribute1", ANARI_ARRAY1D, "per-vertex values samplers and materials read (up to 4 components)"},
+    {"vertex.attribute2", ANARI_ARRAY1D, "per-vertex values samplers and materials read (up to 4 components)"},
+    {"vertex.attribute3", ANARI_ARRAY1D, "per-vertex values samplers and materials read (up to 4 components)"},
+    {"primitive.attribute0", ANARI_ARRAY1D, "per-primitive attribute0, when vertex.attribute0 is unset"},
+    {"primitive.attribute1", ANARI_ARRAY1D, "per-primitive attribute1, when vertex.attribute1 is unset"},
+    {"primitive.attribute2", ANARI_ARRAY1D, "per-primitive attribute2, when vertex.attribute2 is unset"},
+    {"primitive.attribute3", ANARI_ARRAY1D, "per-primitive attribute3, when vertex.attribute3 is unset"},
+    {"attribute0", ANARI_FLOAT32_VEC4, "uniform attribute0, when neither array is given"},
+    {"attribute1", ANARI_FLOAT32_VEC4, "uniform attribute1, when neither array is given"},
+    {"attribute2", ANARI_FLOAT32_VEC4, "uniform attribute2, when neither array is given"},
+    {"attribute3", ANARI_FLOAT32_VEC4, "uniform attribute3, when neither array is given"},
 }});
 
 const std::vector<Param> kMeshExtras = {
     {"vertex.normal", ANARI_ARRAY1D, "shading normals (FLOAT32_VEC3)"},
-    {"vertex.attribute0", ANARI_ARRAY1D, "texture coordinates: samplers' default input, normal maps' frame"},
-    {"vertex.attribute1", ANARI_ARRAY1D, "per-vertex values samplers can read (up to 4 components)"},
-    {"vertex.attribute2", ANARI_ARRAY1D, "per-vertex values samplers can read (up to 4 components)"},
-    {"vertex.attribute3", ANARI_ARRAY1D, "per-vertex values samplers can read (up to 4 components)"},
 };
 
 const std::vector<Param> kViewCommon = joined({kName, {
@@ -291,6 +300,11 @@ const std::vector<Entry>& table() {
              {"group", ANARI_GROUP, "the group placed", nullptr, nullptr, true},
              {"transform", ANARI_FLOAT32_MAT4, "object to world, column-major", kIdentity},
              {"id", ANARI_UINT32, "instance id for the instanceId channel; ~0u when unset"},
+             {"color", ANARI_FLOAT32_VEC4, "uniform colour; replaces the geometries' colour on this instance"},
+             {"attribute0", ANARI_FLOAT32_VEC4, "uniform attribute0; replaces the geometries' on this instance"},
+             {"attribute1", ANARI_FLOAT32_VEC4, "uniform attribute1; replaces the geometries' on this instance"},
+             {"attribute2", ANARI_FLOAT32_VEC4, "uniform attribute2; replaces the geometries' on this instance"},
+             {"attribute3", ANARI_FLOAT32_VEC4, "uniform attribute3; replaces the geometries' on this instance"},
          }})},
         {ANARI_RENDERER, "default", "wavefront path tracer",
          joined({kName, {

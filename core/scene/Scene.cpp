@@ -17,6 +17,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 namespace ripple::core {
 
@@ -98,6 +99,35 @@ uint32_t appendAttribute(const std::vector<T>& values, uint64_t expected, const 
     return offset;
 }
 
+// Appends a geometry's attribute0..3 and sets the record's offsets and rates. Per-vertex values of a
+// segment shape (`ends` given: a primitive's two vertex indices) are stored as a pair per primitive, the
+// form the kernels interpolate along the axis.
+void appendGeometryAttributes(const GeometryAttributes& attributes, uint64_t vertices, uint64_t primitives,
+                              const std::function<glm::uvec2(uint64_t)>& ends, const std::string& owner,
+                              FlatScene& flat, gpu::GeometryRecord& record, SceneReport& report) {
+    record.attributeRates = 0;
+    for (size_t a = 0; a < attributes.size(); ++a) {
+        const GeometryAttribute& attribute = attributes[a];
+        const std::vector<glm::vec4>* stored = &attribute.values;
+        uint64_t expected = attribute.rate == GeometryAttribute::Rate::Vertex      ? vertices
+                            : attribute.rate == GeometryAttribute::Rate::Primitive ? primitives
+                                                                                   : 1;
+        std::vector<glm::vec4> pairs;
+        if (attribute.rate == GeometryAttribute::Rate::Vertex && ends && attribute.values.size() == vertices) {
+            const glm::vec4 missing(0.0f, 0.0f, 0.0f, 1.0f);
+            for (uint64_t p = 0; p < primitives; ++p) {
+                const glm::uvec2 e = ends(p);
+                pairs.push_back(e.x < vertices ? attribute.values[e.x] : missing);
+                pairs.push_back(e.y < vertices ? attribute.values[e.y] : missing);
+            }
+            stored = &pairs;
+            expected = pairs.size();
+        }
+        record.attributeOffset[a] = appendAttribute(*stored, expected, "attribute" + std::to_string(a), owner, flat, report);
+        record.attributeRates |= static_cast<uint32_t>(attribute.rate) << (2 * a);
+    }
+}
+
 void flattenTriangles(const TriangleMesh& mesh, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
                       SceneReport& report) {
     const PreparedGeometry& p = *g.prepared;
@@ -114,12 +144,13 @@ void flattenTriangles(const TriangleMesh& mesh, UsedGeometry& g, FlatScene& flat
     record.texcoordOffset = appendAttribute(mesh.texcoords, vertices, "texcoords", name, flat, report);
     record.primitiveColorOffset = appendAttribute(mesh.primitiveColors, p.inputPrimCount, "primitiveColors", name, flat, report);
     record.trianglesPerPrimitive = std::max(1u, mesh.trianglesPerPrimitive);
+    appendGeometryAttributes(mesh.attributes, vertices, p.inputPrimCount / record.trianglesPerPrimitive, {}, name,
+                             flat, record, report);
     bool perVertex = record.normalOffset != gpu::NO_ATTRIBUTE || record.colorOffset != gpu::NO_ATTRIBUTE ||
                      record.texcoordOffset != gpu::NO_ATTRIBUTE;
-    for (size_t a = 0; a < mesh.attributes.size(); ++a) {
-        record.attributeOffset[a] = appendAttribute(mesh.attributes[a], vertices, "attribute" + std::to_string(a), name, flat, report);
-        perVertex = perVertex || record.attributeOffset[a] != gpu::NO_ATTRIBUTE;
-    }
+    for (size_t a = 0; a < mesh.attributes.size(); ++a)
+        perVertex = perVertex || (record.attributeOffset[a] != gpu::NO_ATTRIBUTE &&
+                                  mesh.attributes[a].rate == GeometryAttribute::Rate::Vertex);
     if (perVertex && !mesh.indices.empty()) {
         record.indexOffset = static_cast<uint32_t>(flat.vertexIndices.size());
         for (const glm::uvec3& idx : mesh.indices) flat.vertexIndices.insert(flat.vertexIndices.end(), {idx.x, idx.y, idx.z});
@@ -133,7 +164,9 @@ void flattenSpheres(const SphereSet& set, UsedGeometry& g, FlatScene& flat, gpu:
         const uint32_t s = p.validPrims[slot];
         flat.spheres.push_back({gpu::vec4(set.centers[s], radiusOf(set.radii, s)), s, 0, 0, 0});
     }
-    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
+    const std::string name = geometryLabel(g.kind, g.index);
+    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", name, flat, report);
+    appendGeometryAttributes(set.attributes, p.inputPrimCount, p.inputPrimCount, {}, name, flat, record, report);
 }
 
 void flattenCylinders(const CylinderSet& set, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
@@ -146,7 +179,10 @@ void flattenCylinders(const CylinderSet& set, UsedGeometry& g, FlatScene& flat, 
         flat.cylinders.push_back({gpu::vec4(set.positions[idx.x], radiusOf(set.radii, c)),
                                   gpu::vec4(set.positions[idx.y], 0.0f), c, static_cast<uint32_t>(caps), 0, 0});
     }
-    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
+    const std::string name = geometryLabel(g.kind, g.index);
+    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", name, flat, report);
+    appendGeometryAttributes(set.attributes, set.positions.size(), p.inputPrimCount,
+                             [&](uint64_t c) { return cylinderIndices(set, c); }, name, flat, record, report);
 }
 
 void flattenCones(const ConeSet& set, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
@@ -161,7 +197,10 @@ void flattenCones(const ConeSet& set, UsedGeometry& g, FlatScene& flat, gpu::Geo
         flat.cones.push_back({gpu::vec4(set.positions[idx.x], radiusOf(set.radii, idx.x)),
                               gpu::vec4(set.positions[idx.y], radiusOf(set.radii, idx.y)), c, flags, 0, 0});
     }
-    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", geometryLabel(g.kind, g.index), flat, report);
+    const std::string name = geometryLabel(g.kind, g.index);
+    record.colorOffset = appendAttribute(set.colors, p.inputPrimCount, "colors", name, flat, report);
+    appendGeometryAttributes(set.attributes, set.positions.size(), p.inputPrimCount,
+                             [&](uint64_t c) { return coneIndices(set, c); }, name, flat, record, report);
 }
 
 void flattenIsosurfaces(const IsosurfaceSet& set, UsedGeometry& g, FlatScene& flat, gpu::GeometryRecord& record,
@@ -393,6 +432,24 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         s.material = materialValid ? inst.materialIndex : defaultMaterialIndex(description);
         s.objectId = inst.objectId;
         s.userInstanceId = inst.instanceId;
+        s.attributeOffset = gpu::NO_ATTRIBUTE;
+        s.attributeMask = 0;
+        const std::optional<glm::vec4> uniforms[5] = {inst.color, inst.attributes[0], inst.attributes[1],
+                                                      inst.attributes[2], inst.attributes[3]};
+        for (uint32_t u = 0; u < 5; ++u) {
+            if (!uniforms[u]) continue;
+            if (s.attributeOffset == gpu::NO_ATTRIBUTE) {
+                s.attributeOffset = static_cast<uint32_t>(flat.attributes.size());
+                flat.attributes.resize(flat.attributes.size() + 5, gpu::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+            }
+            if (!std::isfinite(uniforms[u]->x + uniforms[u]->y + uniforms[u]->z + uniforms[u]->w)) {
+                report_.messages.push_back("instance " + std::to_string(v.input) + ": a uniform attribute holds NaN or Inf; attribute ignored");
+                ++report_.attributesIgnored;
+                continue;
+            }
+            flat.attributes[s.attributeOffset + u] = toVec4(*uniforms[u]);
+            s.attributeMask |= 1u << u;
+        }
     }
     if (badMaterial)
         report_.messages.push_back(std::to_string(badMaterial) + " instance(s) name a material index beyond the " +

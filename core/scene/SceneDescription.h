@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace ripple::core {
@@ -22,6 +23,17 @@ struct GeometryIdentity {
     uint64_t key = 0;
     uint64_t version = 0;
 };
+
+// One of a geometry's ANARI attribute0..3: a value per vertex (interpolated across a triangle and along a
+// cylinder or cone; a sphere's vertex is its centre, so per vertex is per sphere), per primitive (as the
+// application numbered them: quads, not their triangles) or one for the whole geometry. Samplers and
+// materials read them (Texture::Input). A wrong length is reported and the attribute ignored.
+struct GeometryAttribute {
+    enum class Rate : uint32_t { Vertex = 0, Primitive = 1, Uniform = 2 };  // shared/scene.h ATTRIBUTE_RATE_*
+    Rate rate = Rate::Vertex;
+    std::vector<glm::vec4> values;        // empty: the geometry has no such attribute
+};
+using GeometryAttributes = std::array<GeometryAttribute, 4>;
 
 struct TriangleMesh {
     std::vector<glm::vec3> positions;
@@ -35,8 +47,7 @@ struct TriangleMesh {
     // Quads are split into two triangles by the ANARI layer; it sets this to 2 so that the primitive id a
     // frame reports is triangle / 2. 1 for plain triangle meshes.
     uint32_t trianglesPerPrimitive = 1;
-    // The ANARI vertex.attribute0..3, per vertex like colors; samplers read them (Texture::Input).
-    std::array<std::vector<glm::vec4>, 4> attributes;
+    GeometryAttributes attributes;
     GeometryIdentity identity;            // last, so positional initialisers stay short
 };
 
@@ -44,6 +55,7 @@ struct SphereSet {
     std::vector<glm::vec3> centers;
     std::vector<float> radii;             // one per center, or a single radius for all
     std::vector<glm::vec4> colors;        // empty, or one per sphere
+    GeometryAttributes attributes;
     GeometryIdentity identity;
 };
 
@@ -58,6 +70,7 @@ struct CylinderSet {
     std::vector<glm::vec4> colors;        // empty, or one per cylinder
     CapEnds caps = CapEnds::None;
     std::vector<CapEnds> segmentCaps;     // empty, or one per cylinder (replacing `caps`)
+    GeometryAttributes attributes;        // per vertex: one per position
     GeometryIdentity identity;
 };
 
@@ -73,6 +86,7 @@ struct ConeSet {
     CapEnds caps = CapEnds::None;         // cones only: a round segment has no caps
     std::vector<CapEnds> segmentCaps;     // cones only: empty, or one per cone (replacing `caps`)
     bool round = false;
+    GeometryAttributes attributes;        // per vertex: one per position
     GeometryIdentity identity;
 };
 
@@ -180,6 +194,9 @@ struct InstanceDescription {
     uint32_t materialIndex = 0;           // into SceneDescription::materials; out of range: default matte
     uint32_t objectId = 0;                // the application's id of the surface (objectId channel)
     uint32_t instanceId = 0;              // the application's id of the instance (instanceId channel)
+    // The instance's uniform "color" and attribute0..3: where set, they replace the geometry's own.
+    std::optional<glm::vec4> color;
+    std::array<std::optional<glm::vec4>, 4> attributes;
 };
 
 struct Light {

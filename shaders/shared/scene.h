@@ -19,8 +19,21 @@ RIPPLE_CONST uint CAP_SECOND = 2u;
 // ConePrim.flags: a curve segment, a sphere at each end joined by the cone tangent to both (no caps).
 RIPPLE_CONST uint CONE_ROUND = 4u;
 
-// "This attribute is absent" in the offsets of GeometryRecord.
+// "This attribute is absent" in the offsets of GeometryRecord and InstanceShading.
 RIPPLE_CONST uint NO_ATTRIBUTE = 0xFFFFFFFFu;
+
+// How a geometry's attribute0..3 is stored (2 bits each in GeometryRecord.attributeRates). Per vertex:
+// interpolated with SurfacePoint.vertices/.bary (a triangle's vertices; a cylinder's or cone's two ends,
+// stored as a pair per primitive; a sphere's own entry). Per primitive: indexed by the primitive id the
+// application numbered. Uniform: one entry for the whole geometry.
+RIPPLE_CONST uint ATTRIBUTE_RATE_VERTEX = 0u;
+RIPPLE_CONST uint ATTRIBUTE_RATE_PRIMITIVE = 1u;
+RIPPLE_CONST uint ATTRIBUTE_RATE_UNIFORM = 2u;
+
+// Bits of InstanceShading.attributeMask: which of the instance's uniform attributes are set (they replace
+// the geometry's own). At attributeOffset: color, then attribute0..3, one vec4 each.
+RIPPLE_CONST uint INSTANCE_ATTRIBUTE_COLOR = 1u;
+RIPPLE_CONST uint INSTANCE_ATTRIBUTE_0 = 2u;  // attribute1..3: the next bits
 
 // One triangle, stored by value in leaf order; v0.w holds the triangle's index in its mesh (float bits).
 struct TrianglePrim {
@@ -96,6 +109,10 @@ struct InstanceShading {
     uint material;          // index into SceneDesc.materials (always valid: bad indices get the default)
     uint objectId;          // the application's ids, for the id channels
     uint userInstanceId;
+    uint attributeOffset;   // into SceneDesc.attributes: color, attribute0..3; NO_ATTRIBUTE: none set
+    uint attributeMask;     // INSTANCE_ATTRIBUTE_* bits
+    uint pad0;
+    uint pad1;
 };
 
 // Where a geometry's shading data lives. Primitive ids are the input numbering (as in Hit.primId);
@@ -111,7 +128,11 @@ struct GeometryRecord {
     uint texcoordOffset;    // per vertex (triangles): xy
     uint primitiveColorOffset; // per triangle
     uint trianglesPerPrimitive;
-    uint attributeOffset[4];   // per vertex (triangles): attribute0..3
+    uint attributeOffset[4];   // attribute0..3, stored as attributeRates says
+    uint attributeRates;       // 2 bits per attribute: ATTRIBUTE_RATE_*
+    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 // Everything the kernels need to find the scene. All BVHs live in one node array: the TLAS first, then

@@ -229,3 +229,133 @@ TEST_CASE("material parameters named by attribute: metallic, roughness, baseColo
     CHECK(ripple::test::rmseRgb(named, render(false, 1.0f)) <= 1e-6);
     CHECK(ripple::test::rmseRgb(named, render(true, 0.0f)) > 1e-2);
 }
+
+namespace {
+
+// The emission of a physicallyBased material whose "emissive" names `attribute`, seen straight on down -z
+// through an orthographic view 2 units tall, no lights, one bounce: each pixel is the attribute's value
+// there. `place` makes the world's instance of the surface (nullptr: the surface straight in the world).
+Image renderAttribute(RenderSession& s, ANARIGeometry geometry, const char* attribute, glm::uvec2 size,
+                      ANARIInstance (*place)(RenderSession&, ANARISurface) = nullptr) {
+    ANARIMaterial material = s.keep(anariNewMaterial(s.device, "physicallyBased"));
+    s.set(material, "baseColor", glm::vec3(0.0f));
+    s.set(material, "emissive", attribute);
+    s.commit(material);
+    ANARISurface surface = s.surface(geometry, material);
+    ANARIWorld world = s.world({}, {});
+    if (place) {
+        ANARIInstance instance = place(s, surface);
+        s.setObject(world, "instance", ANARI_ARRAY1D, s.objects(ANARI_INSTANCE, {instance}));
+    } else {
+        s.setObject(world, "surface", ANARI_ARRAY1D, s.objects(ANARI_SURFACE, {surface}));
+    }
+    s.commit(world);
+    ANARICamera camera = s.orthographic(glm::vec3(0, 0, 3), glm::vec3(0, 0, -1), 2.0f);
+    Image image = s.render(s.frame(world, camera, s.renderer(1, 1, glm::vec4(0, 0, 0, 1)), size, ANARI_FLOAT32_VEC4));
+    CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+    return image;
+}
+
+// Two spheres of radius 0.5 side by side, filling the view's middle row.
+ANARIGeometry twoSpheres(RenderSession& s) {
+    ANARIGeometry geometry = s.keep(anariNewGeometry(s.device, "sphere"));
+    s.setObject(geometry, "vertex.position", ANARI_ARRAY1D,
+                s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-0.5f, 0, 0}, {0.5f, 0, 0}}));
+    s.set(geometry, "radius", 0.5f);
+    return geometry;
+}
+
+}  // namespace
+
+// The attribute rules of the spec: per vertex before per primitive before the geometry's uniform value, on
+// every geometry; an instance's uniform attribute (and colour) replaces the geometry's on that instance.
+TEST_CASE("attributes: per vertex, per primitive and uniform on spheres, quads and cylinders; instance values replace them") {
+    const glm::vec4 left(0.2f, 0.4f, 0.6f, 1.0f), right(0.9f, 0.7f, 0.1f, 1.0f);
+    SUBCASE("sphere vertex.attribute1: one value per sphere") {
+        RenderSession s;
+        ANARIGeometry geometry = twoSpheres(s);
+        s.setObject(geometry, "vertex.attribute1", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, std::vector{left, right}));
+        s.setObject(geometry, "primitive.attribute1", ANARI_ARRAY1D,  // per vertex wins
+                    s.array(ANARI_FLOAT32_VEC4, std::vector<glm::vec4>(2, glm::vec4(5.0f))));
+        s.commit(geometry);
+        const Image image = renderAttribute(s, geometry, "attribute1", {8, 8});
+        CHECK(near(glm::vec3(image.at(2, 4)), glm::vec3(left), kExact));
+        CHECK(near(glm::vec3(image.at(5, 4)), glm::vec3(right), kExact));
+    }
+    SUBCASE("sphere primitive.attribute3 with primitive.index: per sphere, not per vertex") {
+        RenderSession s;
+        ANARIGeometry geometry = twoSpheres(s);
+        s.setObject(geometry, "primitive.index", ANARI_ARRAY1D, s.array(ANARI_UINT32, std::vector<uint32_t>{1, 0}));
+        s.setObject(geometry, "primitive.attribute3", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, std::vector{left, right}));
+        s.commit(geometry);
+        const Image image = renderAttribute(s, geometry, "attribute3", {8, 8});
+        CHECK(near(glm::vec3(image.at(2, 4)), glm::vec3(right), kExact));  // sphere 1 sits on vertex 0
+        CHECK(near(glm::vec3(image.at(5, 4)), glm::vec3(left), kExact));
+    }
+    SUBCASE("quad primitive.attribute0 (one per quad, not per triangle) and a uniform attribute1") {
+        RenderSession s;
+        ANARIGeometry grid = s.keep(anariNewGeometry(s.device, "quad"));
+        s.setObject(grid, "vertex.position", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-1, -1, 0}, {0, -1, 0}, {0, 1, 0}, {-1, 1, 0},
+                                                                       {0, -1, 0}, {1, -1, 0}, {1, 1, 0}, {0, 1, 0}}));
+        s.setObject(grid, "primitive.attribute0", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC2, std::vector<glm::vec2>{{0.25f, 0.5f}, {0.75f, 0.125f}}));
+        s.set(grid, "attribute1", right);
+        s.commit(grid);
+        const Image image = renderAttribute(s, grid, "attribute0", {8, 8});
+        for (uint32_t y = 0; y < 8; ++y)
+            for (uint32_t x = 0; x < 8; ++x) {
+                INFO("pixel " << x << "," << y);
+                CHECK(near(glm::vec3(image.at(x, y)), x < 4 ? glm::vec3(0.25f, 0.5f, 0) : glm::vec3(0.75f, 0.125f, 0), kExact));
+            }
+        const Image uniform = renderAttribute(s, grid, "attribute1", {4, 4});
+        CHECK(near(glm::vec3(uniform.at(1, 2)), glm::vec3(right), kExact));
+    }
+    SUBCASE("cylinder vertex.attribute2: interpolated along the axis") {
+        RenderSession s;
+        ANARIGeometry geometry = s.keep(anariNewGeometry(s.device, "cylinder"));
+        // Indexed so that the segment runs from vertex 2 (x = -1) to vertex 0 (x = +1).
+        s.setObject(geometry, "vertex.position", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{1, 0, 0}, {0, 5, 0}, {-1, 0, 0}}));
+        s.setObject(geometry, "primitive.index", ANARI_ARRAY1D, s.array(ANARI_UINT32_VEC2, std::vector<glm::uvec2>{{2, 0}}));
+        s.setObject(geometry, "vertex.attribute2", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32, std::vector<float>{1.0f, 7.0f, 0.0f}));
+        s.set(geometry, "radius", 0.5f);
+        s.commit(geometry);
+        const Image image = renderAttribute(s, geometry, "attribute2", {16, 16});
+        // The value is the axial fraction (x + 1) / 2; over a pixel x changes by 1/8.
+        for (uint32_t x = 0; x < 16; ++x) {
+            const float expected = (float(x) + 0.5f) / 16.0f;
+            INFO("pixel " << x << " got " << image.at(x, 8).r);
+            CHECK(std::abs(image.at(x, 8).r - expected) <= 1.0f / 32.0f + kExact);
+            CHECK(image.at(x, 8).g == 0.0f);  // a FLOAT32 attribute's missing components: (v, 0, 0, 1)
+        }
+    }
+    SUBCASE("instance attribute1 and color replace the geometry's") {
+        RenderSession s;
+        ANARIGeometry geometry = twoSpheres(s);
+        s.setObject(geometry, "vertex.attribute1", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, std::vector{left, right}));
+        s.setObject(geometry, "vertex.color", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, std::vector{left, right}));
+        s.commit(geometry);
+        auto placed = [](RenderSession& session, ANARISurface surface) {
+            ANARIGroup group = session.keep(anariNewGroup(session.device));
+            session.setObject(group, "surface", ANARI_ARRAY1D, session.objects(ANARI_SURFACE, {surface}));
+            session.commit(group);
+            ANARIInstance instance = session.keep(anariNewInstance(session.device, "transform"));
+            session.setObject(instance, "group", ANARI_GROUP, group);
+            session.set(instance, "attribute1", glm::vec4(0.3f, 0.0f, 0.8f, 1.0f));
+            session.set(instance, "color", glm::vec4(0.0f, 0.6f, 0.1f, 1.0f));
+            session.commit(instance);
+            return instance;
+        };
+        for (const char* attribute : {"attribute1", "color"}) {
+            CAPTURE(attribute);
+            const glm::vec3 expected = std::string(attribute) == "color" ? glm::vec3(0.0f, 0.6f, 0.1f) : glm::vec3(0.3f, 0.0f, 0.8f);
+            const Image image = renderAttribute(s, geometry, attribute, {8, 8}, +placed);
+            CHECK(near(glm::vec3(image.at(2, 4)), expected, kExact));
+            CHECK(near(glm::vec3(image.at(5, 4)), expected, kExact));
+            // Without the instance, the geometry's own values.
+            const Image plain = renderAttribute(s, geometry, attribute, {8, 8});
+            CHECK(near(glm::vec3(plain.at(2, 4)), glm::vec3(left), kExact));
+        }
+    }
+}

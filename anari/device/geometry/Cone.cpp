@@ -41,6 +41,7 @@ private:
             cones.positions.resize(coneCount * 2);
             cones.radii.resize(coneCount * 2);
         }
+        cones.attributes = pullAttributes(cones.positions.size(), coneCount);
         return cones;
     }
 };

@@ -56,6 +56,7 @@ private:
         if (curve.colors.empty() && !vertexColors.empty())
             for (const glm::uvec2& s : curve.indices) curve.colors.push_back(0.5f * (vertexColors[s.x] + vertexColors[s.y]));
         if (curve.colors.empty()) curve.colors = pullUniformColor(segments);
+        curve.attributes = pullAttributes(vertexCount, segments);
         return curve;
     }
 };

@@ -42,6 +42,7 @@ private:
         cylinders.positions = std::move(segments->positions);
         cylinders.indices = std::move(segments->indices);
         if (cylinders.indices.empty()) cylinders.positions.resize(cylinderCount * 2);
+        cylinders.attributes = pullAttributes(cylinders.positions.size(), cylinderCount);
         return cylinders;
     }
 };

@@ -151,6 +151,26 @@ std::vector<glm::vec4> Geometry::pullUniformColor(size_t count) {
     return uniform ? std::vector<glm::vec4>(count, *uniform) : std::vector<glm::vec4>{};
 }
 
+core::GeometryAttributes Geometry::pullAttributes(size_t vertexCount, size_t primitiveCount) {
+    using Rate = core::GeometryAttribute::Rate;
+    core::GeometryAttributes attributes;
+    for (size_t a = 0; a < attributes.size(); ++a) {
+        const std::string n = std::to_string(a);
+        core::GeometryAttribute& attribute = attributes[a];
+        attribute = {Rate::Vertex, pullVectors("vertex.attribute" + n, vertexCount)};
+        if (attribute.values.empty()) attribute = {Rate::Primitive, pullVectors("primitive.attribute" + n, primitiveCount)};
+        if (attribute.values.empty()) {
+            if (const std::optional<glm::vec4> uniform = getOptional<glm::vec4>("attribute" + n))
+                attribute = {Rate::Uniform, {*uniform}};
+        } else {
+            // The fallbacks, legitimately set beside the array that wins: not unused parameters.
+            (void)findParameter("primitive.attribute" + n);
+            (void)findParameter("attribute" + n);
+        }
+    }
+    return attributes;
+}
+
 std::optional<Geometry::Segments> Geometry::pullSegments() {
     std::optional<std::vector<glm::vec3>> positions = pullPositions();
     if (!positions) return std::nullopt;
@@ -227,10 +247,10 @@ Geometry::Shape Geometry::buildPolygonMesh(int corners) {
 
     for (const glm::vec4& n : pullVectors("vertex.normal", vertexCount)) mesh.normals.emplace_back(n);
     mesh.colors = pullVectors("vertex.color", vertexCount);
-    for (size_t a = 0; a < mesh.attributes.size(); ++a)
-        mesh.attributes[a] = pullVectors("vertex.attribute" + std::to_string(a), vertexCount);
-    // attribute0 is also the texture coordinate: normal maps take their tangent frame from it.
-    for (const glm::vec4& t : mesh.attributes[0]) mesh.texcoords.emplace_back(t);
+    mesh.attributes = pullAttributes(vertexCount, polygonCount);
+    // A per-vertex attribute0 is also the texture coordinate: normal maps take their tangent frame from it.
+    if (mesh.attributes[0].rate == core::GeometryAttribute::Rate::Vertex)
+        for (const glm::vec4& t : mesh.attributes[0].values) mesh.texcoords.emplace_back(t);
     std::vector<glm::vec4> polygonColors = pullVectors("primitive.color", polygonCount);
     if (polygonColors.empty() && mesh.colors.empty()) polygonColors = pullUniformColor(polygonCount);
     // Core stores primitive colours per triangle: each quad's colour goes to both of its halves.

@@ -41,6 +41,9 @@ protected:
     // The uniform "color" repeated `count` times; empty when unset. It applies when neither
     // "primitive.color" nor "vertex.color" is given.
     std::vector<glm::vec4> pullUniformColor(size_t count);
+    // attribute0..3: "vertex.attributeN" (its first vertexCount elements), else "primitive.attributeN" (first
+    // primitiveCount), else the uniform "attributeN"; unset ones stay empty.
+    core::GeometryAttributes pullAttributes(size_t vertexCount, size_t primitiveCount);
     // Cylinders and cones: two vertices per primitive, consecutive or from "primitive.index".
     struct Segments {
         std::vector<glm::vec3> positions;

@@ -48,6 +48,14 @@ private:
             for (size_t i = 0; i < sphereCount; ++i) spheres.colors.push_back(vertexColors[vertexOf(i)]);
         }
         if (spheres.colors.empty()) spheres.colors = pullUniformColor(sphereCount);
+        // Core stores per-vertex attributes per sphere (a sphere's vertex is its centre).
+        spheres.attributes = pullAttributes(positions->size(), sphereCount);
+        for (core::GeometryAttribute& attribute : spheres.attributes) {
+            if (attribute.rate != core::GeometryAttribute::Rate::Vertex || attribute.values.empty()) continue;
+            std::vector<glm::vec4> perSphere(sphereCount);
+            for (size_t i = 0; i < sphereCount; ++i) perSphere[i] = attribute.values[vertexOf(i)];
+            attribute.values = std::move(perSphere);
+        }
         return spheres;
     }
 };

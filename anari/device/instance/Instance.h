@@ -4,6 +4,7 @@
 
 #include "anari/device/group/Group.h"
 
+#include <array>
 #include <optional>
 
 namespace ripple::device {
@@ -16,11 +17,17 @@ public:
     const glm::mat4& transform() const { return transform_; }
     // The application's "id" (instanceId channel), if it gave one.
     std::optional<uint32_t> id() const { return id_; }
+    // The uniform "color" and "attribute0".."attribute3", where set: on this instance they replace the
+    // values its geometries give.
+    const std::optional<glm::vec4>& color() const { return color_; }
+    const std::array<std::optional<glm::vec4>, 4>& attributes() const { return attributes_; }
 
 protected:
     Group* group_ = nullptr;  // kept alive by useChild()
     glm::mat4 transform_{1.0f};
     std::optional<uint32_t> id_;
+    std::optional<glm::vec4> color_;
+    std::array<std::optional<glm::vec4>, 4> attributes_;
 };
 
 Instance* newTransformInstance(DeviceState& state);

@@ -19,6 +19,7 @@ constexpr uint32_t kNoInstance = std::numeric_limits<uint32_t>::max();
 struct Placement {
     glm::mat4 transform{1.0f};
     uint32_t instanceId = kNoInstance;
+    const Instance* instance = nullptr;  // none for surfaces placed directly in the world
 };
 
 // Calls onSurface(surface, placement, objectId) for every renderable surface, onVolume(volume, placement,
@@ -40,7 +41,7 @@ void forEachPlaced(const World& world, OnSurface&& onSurface, OnVolume&& onVolum
         const Instance& instance = *world.instances()[i];
         if (!instance.isValid() || !instance.group() || !instance.group()->isValid()) continue;
         placeGroup(instance.group()->surfaces(), instance.group()->volumes(), instance.group()->lights(),
-                   Placement{instance.transform(), instance.id().value_or(kNoInstance)});
+                   Placement{instance.transform(), instance.id().value_or(kNoInstance), &instance});
     }
 }
 
@@ -73,6 +74,10 @@ public:
                 instance.materialIndex = materialIndex(*surface.material());
                 instance.objectId = objectId;
                 instance.instanceId = placement.instanceId;
+                if (placement.instance) {
+                    instance.color = placement.instance->color();
+                    instance.attributes = placement.instance->attributes();
+                }
                 description_.instances.push_back(instance);
             },
             [&](const Volume& volume, const Placement& placement, uint32_t objectId) {
