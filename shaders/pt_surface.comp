@@ -23,7 +23,7 @@ vec3 normalMapped(SceneDesc scene, int texture, SurfacePoint s) {
     vec3 t = s.tangent - dot(s.tangent, s.shadingNormal) * s.shadingNormal;
     if (texture == NO_TEXTURE || !(dot(t, t) > 0.0)) return s.shadingNormal;
     t = normalize(t);
-    vec3 b = cross(s.shadingNormal, t);
+    vec3 b = s.tangentSign * cross(s.shadingNormal, t);
     vec3 m = sampleTexture(scene, texture, s).xyz * 2.0 - 1.0;
     // A back-face hit sees the surface flipped: keep the map's bump on the viewer's side.
     if (!s.frontFace) b = -b;

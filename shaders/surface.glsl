@@ -34,6 +34,7 @@ struct SurfacePoint {
     uint material;
     bool frontFace;        // the ray arrived on the side the object-space normal points to
     vec3 tangent;          // world space, along increasing texcoord u (normal maps); (0,0,0) where unknown
+    float tangentSign;     // the bitangent is tangentSign * cross(shadingNormal, tangent)
     // Where samplers find the other attributes (sampler.glsl reads them only when a sampler asks).
     uint instance;         // index into SceneDesc.instanceShading (its uniform attributes)
     uint geometry;         // index into SceneDesc.geometries
@@ -116,6 +117,7 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
     s.color = vec4(1.0);
     s.texcoord = vec2(0.0);
     vec3 objectTangent = vec3(0.0);
+    s.tangentSign = 1.0;
     vec3 objectPoint = vec3(0.0);
     vec3 objectNormal = vec3(0.0, 0.0, 1.0);
     vec3 objectShadingNormal = objectNormal;
@@ -139,6 +141,11 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
             objectTangent = triangleTangent(tri, attributeAt(scene, geom.texcoordOffset, idx.x).xy,
                                             attributeAt(scene, geom.texcoordOffset, idx.y).xy,
                                             attributeAt(scene, geom.texcoordOffset, idx.z).xy);
+        }
+        if (geom.tangentOffset != NO_ATTRIBUTE) {
+            vec4 tangent = interpolate(scene, geom.tangentOffset, idx, bary);
+            objectTangent = tangent.xyz;
+            s.tangentSign = tangent.w < 0.0 ? -1.0 : 1.0;
         }
         if (geom.colorOffset != NO_ATTRIBUTE) {
             s.hasColor = true;

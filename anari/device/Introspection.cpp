@@ -92,6 +92,8 @@ const std::vector<Param> kGeometryCommon = joined({kName, {
 
 const std::vector<Param> kMeshExtras = {
     {"vertex.normal", ANARI_ARRAY1D, "shading normals (FLOAT32_VEC3)"},
+    {"vertex.tangent", ANARI_ARRAY1D, "normal maps' tangent (FLOAT32_VEC3, or VEC4 with w the handedness); "
+                                      "unset: from vertex.attribute0"},
 };
 
 const std::vector<Param> kViewCommon = joined({kName, {

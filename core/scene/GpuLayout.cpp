@@ -38,6 +38,7 @@ static_assert(offsetof(InstanceShading, geometry) == 96);
 static_assert(offsetof(InstanceShading, userInstanceId) == 108);
 static_assert(sizeof(GeometryRecord) == 64);
 static_assert(offsetof(GeometryRecord, attributeRates) == 48);
+static_assert(offsetof(GeometryRecord, tangentOffset) == 52);
 static_assert(offsetof(GeometryRecord, attributeOffset) == 32);
 static_assert(offsetof(GeometryRecord, trianglesPerPrimitive) == 28);
 static_assert(sizeof(ConePrim) == 48);

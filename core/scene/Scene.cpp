@@ -142,12 +142,13 @@ void flattenTriangles(const TriangleMesh& mesh, UsedGeometry& g, FlatScene& flat
     record.normalOffset = appendAttribute(mesh.normals, vertices, "normals", name, flat, report);
     record.colorOffset = appendAttribute(mesh.colors, vertices, "colors", name, flat, report);
     record.texcoordOffset = appendAttribute(mesh.texcoords, vertices, "texcoords", name, flat, report);
+    record.tangentOffset = appendAttribute(mesh.tangents, vertices, "tangents", name, flat, report);
     record.primitiveColorOffset = appendAttribute(mesh.primitiveColors, p.inputPrimCount, "primitiveColors", name, flat, report);
     record.trianglesPerPrimitive = std::max(1u, mesh.trianglesPerPrimitive);
     appendGeometryAttributes(mesh.attributes, vertices, p.inputPrimCount / record.trianglesPerPrimitive, {}, name,
                              flat, record, report);
     bool perVertex = record.normalOffset != gpu::NO_ATTRIBUTE || record.colorOffset != gpu::NO_ATTRIBUTE ||
-                     record.texcoordOffset != gpu::NO_ATTRIBUTE;
+                     record.texcoordOffset != gpu::NO_ATTRIBUTE || record.tangentOffset != gpu::NO_ATTRIBUTE;
     for (size_t a = 0; a < mesh.attributes.size(); ++a)
         perVertex = perVertex || (record.attributeOffset[a] != gpu::NO_ATTRIBUTE &&
                                   mesh.attributes[a].rate == GeometryAttribute::Rate::Vertex);
@@ -244,6 +245,7 @@ uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, F
     record.indexOffset = record.normalOffset = record.colorOffset = record.texcoordOffset =
         record.primitiveColorOffset = gpu::NO_ATTRIBUTE;
     for (uint32_t& offset : record.attributeOffset) offset = gpu::NO_ATTRIBUTE;
+    record.tangentOffset = gpu::NO_ATTRIBUTE;
     record.trianglesPerPrimitive = 1;
     flat.primSlots.resize(flat.primSlots.size() + p.inputPrimCount, ~0u);
     for (uint32_t slot = 0; slot < p.blas.primOrder.size(); ++slot)

@@ -43,6 +43,9 @@ struct TriangleMesh {
     std::vector<glm::vec3> normals;       // shading normals, object space
     std::vector<glm::vec4> colors;        // the ANARI "color" attribute, linear RGBA
     std::vector<glm::vec2> texcoords;     // glTF/ANARI texcoord (attribute "texcoord")
+    // Tangents for normal maps: xyz along increasing texcoord u, w the handedness (the bitangent is
+    // w * cross(normal, tangent)). Empty: derived from the texcoords, handedness +1.
+    std::vector<glm::vec4> tangents;
     std::vector<glm::vec4> primitiveColors;
     // Quads are split into two triangles by the ANARI layer; it sets this to 2 so that the primitive id a
     // frame reports is triangle / 2. 1 for plain triangle meshes.

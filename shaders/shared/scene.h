@@ -130,7 +130,7 @@ struct GeometryRecord {
     uint trianglesPerPrimitive;
     uint attributeOffset[4];   // attribute0..3, stored as attributeRates says
     uint attributeRates;       // 2 bits per attribute: ATTRIBUTE_RATE_*
-    uint pad0;
+    uint tangentOffset;        // per vertex (triangles): xyz along increasing texcoord u, w the handedness (+-1)
     uint pad1;
     uint pad2;
 };

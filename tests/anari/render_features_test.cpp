@@ -74,7 +74,7 @@ ANARISpatialField floatField(RenderSession& s, glm::uvec3 dims, const std::vecto
     return field;
 }
 
-// A committed orthographic camera (height 1 is the spec's default).
+// A committed sampler of `image` (image1D or image2D) with the given filter and outTransform.
 ANARISampler imageSampler(RenderSession& s, const char* subtype, ANARIObject image, const char* filter,
                           const glm::mat4& outTransform = glm::mat4(1.0f)) {
     ANARISampler sampler = s.keep(anariNewSampler(s.device, subtype));
@@ -240,6 +240,53 @@ TEST_CASE("physicallyBased from samplers: glTF metallic-roughness channels, norm
     s.commit(renderer);
     checkReference(s, "sampler_physically_based",
                    renderStage(s, {s.surface(uvQuad(s, {-1.2f, 0.05f}, {1.2f, 1.5f}), material)}, {}, nullptr, renderer));
+}
+
+// The normal channel shows the normal-mapped shading normal, so the tangent frame is checked exactly: from
+// attribute0 (u along +x), or from vertex.tangent, whose w is the handedness of the bitangent.
+TEST_CASE("normal map frame: vertex.tangent (VEC3, or VEC4 with handedness) replaces the frame from attribute0") {
+    const float h = std::sqrt(0.5f);
+    struct Case {
+        std::vector<glm::vec4> tangent;  // empty: unset; w = 0 marks a VEC3 array
+        glm::vec3 mapNormal;             // the normal map's one texel, tangent space
+        glm::vec3 expected;              // world space
+    };
+    const Case cases[] = {
+        {{}, {h, 0, h}, {h, 0, h}},                              // t = +x from the texcoords
+        {std::vector<glm::vec4>(4, {0, 1, 0, 0}), {h, 0, h}, {0, h, h}},    // t = +y
+        {std::vector<glm::vec4>(4, {0, 1, 0, 1}), {0, h, h}, {-h, 0, h}},   // b = cross(n, t) = -x
+        {std::vector<glm::vec4>(4, {0, 1, 0, -1}), {0, h, h}, {h, 0, h}},   // mirrored: b = +x
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.expected);
+        RenderSession s;
+        ANARIGeometry quad = uvQuad(s, {-1.5f, -1.5f}, {1.5f, 1.5f});
+        if (!c.tangent.empty()) {
+            if (c.tangent[0].w == 0.0f) {
+                std::vector<glm::vec3> xyz;
+                for (const glm::vec4& t : c.tangent) xyz.emplace_back(t);
+                s.setObject(quad, "vertex.tangent", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC3, xyz));
+            } else {
+                s.setObject(quad, "vertex.tangent", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, c.tangent));
+            }
+            s.commit(quad);
+        }
+        const std::vector<glm::vec4> texel{glm::vec4(0.5f * c.mapNormal + 0.5f, 1.0f)};
+        ANARIMaterial material = physicallyBased(s);
+        s.setObject(material, "normal", ANARI_SAMPLER, imageSampler(s, "image2D", image2D(s, ANARI_FLOAT32_VEC4, 1, 1, texel), "nearest"));
+        s.commit(material);
+        ANARIFrame frame = s.frame(s.world({s.surface(quad, material)}, {}), frontCamera(s), s.renderer(1, 1), {4, 4},
+                                   ANARI_FLOAT32_VEC4);
+        setChannel(s, frame, "channel.normal", ANARI_FLOAT32_VEC3);
+        s.commit(frame);
+        s.render(frame);
+        const auto normal = mapChannel<glm::vec3>(s, frame, "channel.normal", ANARI_FLOAT32_VEC3);
+        CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+        for (const glm::vec3& n : normal) {
+            INFO("normal " << n.x << " " << n.y << " " << n.z);
+            CHECK(glm::all(glm::lessThan(glm::abs(n - c.expected), glm::vec3(1e-5f))));
+        }
+    }
 }
 
 TEST_CASE("hdri light: a uniform environment lights a convex matte sphere to albedo times radiance") {

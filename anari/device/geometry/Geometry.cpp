@@ -247,6 +247,8 @@ Geometry::Shape Geometry::buildPolygonMesh(int corners) {
 
     for (const glm::vec4& n : pullVectors("vertex.normal", vertexCount)) mesh.normals.emplace_back(n);
     mesh.colors = pullVectors("vertex.color", vertexCount);
+    // vertex.tangent: VEC3 reads w = 1 (the fill), a VEC4's w is the handedness.
+    mesh.tangents = pullVectors("vertex.tangent", vertexCount);
     mesh.attributes = pullAttributes(vertexCount, polygonCount);
     // A per-vertex attribute0 is also the texture coordinate: normal maps take their tangent frame from it.
     if (mesh.attributes[0].rate == core::GeometryAttribute::Rate::Vertex)
