@@ -6,7 +6,8 @@
 // transparent surface with probability 1 - opacity, requests one shadow ray toward a light picked in
 // proportion to power (next-event estimation, MIS-weighted), and samples the BSDF for the next ray, with
 // Russian roulette from the third interaction on. Survivors are appended to the next queue and shadow
-// requests to the shadow queue, each by an atomic counter.
+// requests to the shadow queue, each by an atomic counter. The eyeLight renderer's quick look ends at the
+// first interaction instead (SHADING_EYE_LIGHT).
 #extension GL_GOOGLE_include_directive : require
 #include "pt_common.glsl"
 #include "rng.glsl"
@@ -160,6 +161,12 @@ void main() {
     SurfaceMaterial m = surfaceMaterial(r, scene);
     vec3 n = r.shadingNormal.xyz;
     if (dot(n, wo) <= 0.0) n = geometricNormal;  // interpolated normals can face away from the viewer
+    if (f.shading == SHADING_EYE_LIGHT) {  // the quick look ends at the first interaction (see path.h)
+        float facing = m.kind == MATERIAL_VOLUME ? 1.0 : abs(dot(n, wo));
+        radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * m.baseColor * f.ambient.rgb *
+                                                          mix(1.0, facing, f.eyeLightBlendRatio));
+        return;
+    }
     uint depth = path.depth + 1u;
     sampleOneLight(f, scene, m, position, geometricNormal, n, wo, path.throughput.rgb, path.pixel, uLight,
                    depth >= f.maxPathLength);

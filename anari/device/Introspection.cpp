@@ -320,6 +320,15 @@ const std::vector<Entry>& table() {
               &kZero},
              {"seed", ANARI_UINT32, "varies the random numbers; images with different seeds share no samples", &kSeed},
          }})},
+        {ANARI_RENDERER, "eyeLight", "quick look: the first surface or volume collision lit from the eye, no bounces",
+         joined({kName, {
+             {"background", ANARI_FLOAT32_VEC4, "colour seen by camera rays that miss", kOpaqueBlack},
+             {"ambientColor", ANARI_FLOAT32_VEC3, "colour of the light at the eye", kWhite},
+             {"ambientRadiance", ANARI_FLOAT32, "radiance of the light at the eye", &kOne},
+             {"eyeLightBlendRatio", ANARI_FLOAT32, "share of the light that falls off as |cos| of the view angle, in [0, 1]", &kHalf},
+             {"pixelSamples", ANARI_INT32, "samples per pixel added by each anariRenderFrame", &kOneSample},
+             {"seed", ANARI_UINT32, "varies the random numbers; images with different seeds share no samples", &kSeed},
+         }})},
         {ANARI_SURFACE, "", "a geometry with its material",
          joined({kName, {
              {"geometry", ANARI_GEOMETRY, "the geometry", nullptr, nullptr, true},

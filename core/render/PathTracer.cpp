@@ -47,6 +47,8 @@ gpu::FrameConstants frameConstants(const Camera& camera, const RenderSettings& s
     // |g| below 1e-3 is sampled as isotropic (pt_shade.comp), so it is evaluated as isotropic too.
     f.phaseAnisotropy = std::isfinite(settings.phaseAnisotropy) && std::abs(settings.phaseAnisotropy) >= 1e-3f
                             ? std::clamp(settings.phaseAnisotropy, -0.99f, 0.99f) : 0.0f;
+    f.shading = settings.shading == RenderSettings::Shading::EyeLight ? gpu::SHADING_EYE_LIGHT : gpu::SHADING_PATH_TRACED;
+    f.eyeLightBlendRatio = std::isfinite(settings.eyeLightBlendRatio) ? std::clamp(settings.eyeLightBlendRatio, 0.0f, 1.0f) : 0.5f;
     f.lightSampling = static_cast<uint32_t>(settings.lightSampling) <= gpu::LIGHT_SAMPLING_BSDF_ONLY
                           ? static_cast<uint32_t>(settings.lightSampling) : gpu::LIGHT_SAMPLING_MIS;
     return f;

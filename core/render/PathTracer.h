@@ -64,6 +64,12 @@ struct RenderSettings {
     // Henyey-Greenstein mean cosine of scattering in volumes: > 0 forward, < 0 backward, 0 isotropic.
     // Clamped to [-0.99, 0.99] (the phase function is a delta at +-1).
     float phaseAnisotropy = 0.0f;
+    // PathTraced: the path tracer. EyeLight: a quick look, no lights or bounces: the first surface (or
+    // volume collision) in its colour times ambientColor * ambientRadiance * (1 - r + r |cos|), with
+    // r = eyeLightBlendRatio in [0, 1] and the angle between the normal and the view ray, plus its emission.
+    enum class Shading : uint32_t { PathTraced = 0, EyeLight = 1 };
+    Shading shading = Shading::PathTraced;
+    float eyeLightBlendRatio = 0.5f;
 };
 
 struct PathTracerOptions {

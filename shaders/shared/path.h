@@ -109,6 +109,13 @@ RIPPLE_CONST uint OUTPUT_RGBA8_UNORM = 0u;
 RIPPLE_CONST uint OUTPUT_RGBA8_SRGB = 1u;
 RIPPLE_CONST uint OUTPUT_RGBA32_FLOAT = 2u;
 
+// FrameConstants.shading. Path traced: the renderer "default". Eye light: the renderer "eyeLight", a quick
+// look that shows the first surface or volume collision lit from the eye by ambientColor * ambientRadiance
+// (f.ambient), times 1 - r + r |cos| with r = eyeLightBlendRatio, plus its emission; no other light,
+// no further bounce.
+RIPPLE_CONST uint SHADING_PATH_TRACED = 0u;
+RIPPLE_CONST uint SHADING_EYE_LIGHT = 1u;
+
 // Constant for a render() call: camera, settings and the frame's buffers.
 struct FrameConstants {
     vec4 cameraPosition;   // w: CAMERA_* as float bits
@@ -133,6 +140,8 @@ struct FrameConstants {
     uint lightSampling;       // LIGHT_SAMPLING_*
     float phaseAnisotropy;    // Henyey-Greenstein g of scattering in volumes, in (-1, 1); 0: isotropic
     float cameraFar;          // far clip distance along forward (perspective, orthographic); INFINITY: none
+    uint shading;             // SHADING_*
+    float eyeLightBlendRatio; // SHADING_EYE_LIGHT: the share of the light that falls off with |cos|
 };
 
 // Push constants of every pt_*.comp stage; each reads the fields it needs (0 where unused).

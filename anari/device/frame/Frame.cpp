@@ -218,7 +218,10 @@ void Frame::renderFrame() {
     // it gets an implicit white ambient light of radiance 1 instead (as the SDK's test scenes and tutorials
     // expect of a device), reported once. An application that sets ambientRadiance, even to 0, gets exactly
     // what it set; any light or emitter turns the implicit light off.
-    if (!renderer_->ambientGiven() && !distribution_->anyRank(sync_.lit())) {
+    // (The eyeLight renderer's ambient light is its light at the eye, radiance 1 unless set: it needs none.)
+    // anyRank is collective: every rank calls it, whatever its renderer says.
+    const bool litAnywhere = distribution_->anyRank(sync_.lit());
+    if (!renderer_->ambientGiven() && job.settings.shading == core::RenderSettings::Shading::PathTraced && !litAnywhere) {
         job.settings.ambientRadiance = 1.0f;
         job.settings.ambientColor = glm::vec3(1.0f);
         if (!implicitAmbientReported_)

@@ -1,6 +1,7 @@
 // Renderer parameters: "background" (KHR_RENDERER_BACKGROUND_COLOR), "ambientColor" and
 // "ambientRadiance" (KHR_RENDERER_AMBIENT_LIGHT), "pixelSamples", "maxPathLength", "maxRadiance", "seed" and
-// "volumeAnisotropy".
+// "volumeAnisotropy"; "eyeLight" also reads "eyeLightBlendRatio", and its ambient light is the light at the
+// eye (radiance 1 unless set).
 #include "anari/device/renderer/Renderer.h"
 
 #include "anari/device/scene/ArrayConversion.h"
@@ -12,6 +13,16 @@ namespace ripple::device {
 
 void Renderer::commit() {
     settings_ = core::RenderSettings{};
+    const bool eyeLight = subtype() == "eyeLight";
+    if (eyeLight) {
+        settings_.shading = core::RenderSettings::Shading::EyeLight;
+        settings_.ambientRadiance = 1.0f;
+        settings_.eyeLightBlendRatio = get<float>("eyeLightBlendRatio", settings_.eyeLightBlendRatio);
+        if (!(settings_.eyeLightBlendRatio >= 0.0f && settings_.eyeLightBlendRatio <= 1.0f)) {
+            reportWarning("parameter 'eyeLightBlendRatio' must be within [0, 1]; using 0.5");
+            settings_.eyeLightBlendRatio = 0.5f;
+        }
+    }
     settings_.background = get<glm::vec4>("background", settings_.background);
     if (!allFinite(settings_.background)) {
         reportWarning("parameter 'background' is not finite; using opaque black");

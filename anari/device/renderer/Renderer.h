@@ -1,5 +1,6 @@
-// ANARI renderer "default": the path tracer's settings (background, ambient light, samples per frame,
-// path length).
+// ANARI renderers: "default", the path tracer's settings (background, ambient light, samples per frame,
+// path length), and "eyeLight", a quick look at the first surfaces under a light at the eye
+// (RenderSettings::Shading).
 #pragma once
 
 #include "anari/device/object/Object.h"
@@ -9,7 +10,7 @@ namespace ripple::device {
 
 class Renderer final : public Object {
 public:
-    explicit Renderer(DeviceState& state) : Object(state, ANARI_RENDERER, "default") {}
+    Renderer(DeviceState& state, std::string subtype) : Object(state, ANARI_RENDERER, std::move(subtype)) {}
 
     void commit() override;
     const core::RenderSettings& settings() const { return settings_; }
