@@ -29,6 +29,10 @@
 #   --render-filter "A B" only these anariRenderTests scenes, e.g. "demo/cornell_box test/pbr_spheres"
 #   --cts-size N          CTS image width and height (default: the tool's own, 256)
 #   --cts-filter PATTERN  run only the CTS tests matching PATTERN (anariCts --filter syntax)
+#   --cts-renderer NAME   the renderer subtype the tested devices render the CTS with (default: the CTS's,
+#                         "default"); the ground truth keeps the reference's default renderer. Ripple's
+#                         "eyeLight" shades as helide's default renderer does (a light at the eye), so the
+#                         CTS then scores geometry, samplers and cameras rather than the lighting model
 #   --timeout S           limit for each process, in seconds (default 600); a process past it is a hang
 #   --no-render / --no-cts  leave a part out
 #   -h, --help
@@ -59,6 +63,7 @@ render_filter=""
 render_w=""; render_h=""
 cts_size=""
 cts_filter=""
+cts_renderer=""
 timeout_s=600
 do_render=1; do_cts=1
 
@@ -75,6 +80,7 @@ while [ $# -gt 0 ]; do
     --render-size) render_w=$2; render_h=$3; shift 3 ;;
     --cts-size) cts_size=$2; shift 2 ;;
     --cts-filter) cts_filter=$2; shift 2 ;;
+    --cts-renderer) cts_renderer=$2; shift 2 ;;
     --timeout) timeout_s=$2; shift 2 ;;
     --no-render) do_render=0; shift ;;
     --no-cts) do_cts=0; shift ;;
@@ -434,13 +440,13 @@ if [ $do_cts = 1 ] && [ -x "$prefix/bin/anariCts" ]; then
       pat="${id%?}?"
       logf="$wd/logs/${id//\//__}.log"
       rc=$(run_limited "$logf" "$ctsdir" "$prefix/bin/anariCts" run "$dev" --workdir "$wd" \
-        "${cts_args[@]}" --verbose --filter "$pat")
+        "${cts_args[@]}" ${cts_renderer:+-r "$cts_renderer"} --verbose --filter "$pat")
       case "$rc" in 0|1) ;; *)
         echo "$id $(verdict "$rc")" >>"$wd/crashed.txt"
         if [ $nbt -lt 10 ]; then
           nbt=$((nbt + 1))
           backtrace "$wd/logs/bt-${id//\//__}.txt" "$ctsdir" "$prefix/bin/anariCts" run "$dev" \
-            --workdir "$wd.bt" "${cts_args[@]}" --filter "$pat"
+            --workdir "$wd.bt" "${cts_args[@]}" ${cts_renderer:+-r "$cts_renderer"} --filter "$pat"
         fi ;;
       esac
     done <"$ctsdir/tests.txt"
@@ -519,6 +525,7 @@ if [ $do_cts = 1 ] && [ -x "$prefix/bin/anariCts" ]; then
   done
   printf '%-*s' $w "passed of cases run"
   for dev in $devices; do printf ' | %-29s' "${cts_rate[$dev]:--}"; done; echo
+  [ -n "$cts_renderer" ] && echo "  renderer: '$cts_renderer' for the tested devices ($reference's default for the ground truth)"
   [ -n "$cts_note" ] && echo "  note: $cts_note"
   echo "  crash = tests whose process died; (-N) = cases that got no result because of it"
   echo

@@ -48,6 +48,7 @@ struct Options {
     std::string size = "512x512";
     uint32_t spp = 16;
     std::string library = "ripple";
+    std::string renderer = "default";   // the ANARI renderer subtype
     std::string traversal;              // the device parameter "traversal"; empty: the device's default
     std::string exchange;               // the device parameter "rayExchange"; empty: the device's default
     uint32_t maxPathLength = 5;
@@ -393,14 +394,26 @@ FrameSetup makeFrame(const Options& options, const AnariWorld& scene, ANARICamer
     setup.batch = options.reporting() ? 1 : samplesPerFrame(options.spp);
     // The error map needs two frames at least (one per half-buffer).
     if (!options.errorMap.empty()) setup.batch = std::max(1u, std::min(setup.batch, options.spp / 2));
-    ANARIRenderer renderer = anariNewRenderer(s.device, "default");
-    if (!renderer) throw std::runtime_error("the device has no 'default' renderer");
+    if (const char** subtypes = anariGetObjectSubtypes(s.device, ANARI_RENDERER)) {
+        std::string known;
+        bool found = false;
+        for (const char** t = subtypes; *t; ++t) {
+            found = found || options.renderer == *t;
+            known += (known.empty() ? "" : ", ") + std::string(*t);
+        }
+        if (!found) throw std::runtime_error("--renderer: the device has no renderer '" + options.renderer + "' (it has: " + known + ")");
+    }
+    ANARIRenderer renderer = anariNewRenderer(s.device, options.renderer.c_str());
+    if (!renderer) throw std::runtime_error("the device has no '" + options.renderer + "' renderer");
     s.objects.push_back(renderer);
     anari::set(s.device, renderer, "pixelSamples", int32_t(setup.batch));
     anari::set(s.device, renderer, "maxPathLength", int32_t(options.maxPathLength));
     if (options.seed != 0) anari::set(s.device, renderer, "seed", options.seed);  // 0: the device's default
     anari::set(s.device, renderer, "background", scene.background);
-    anari::set(s.device, renderer, "ambientRadiance", options.ambient.value_or(scene.ambientRadiance));
+    // eyeLight's ambient light is the light at the eye: the scene's suggestion (meant for path tracing lit
+    // scenes, often 0) would darken it, so only an explicit --ambient sets it.
+    if (options.renderer != "eyeLight" || options.ambient)
+        anari::set(s.device, renderer, "ambientRadiance", options.ambient.value_or(scene.ambientRadiance));
     anariCommitParameters(s.device, renderer);
 
     setup.frame = anariNewFrame(s.device);
@@ -691,6 +704,10 @@ int main(int argc, char** argv) {
                    "write each pixel's estimated relMSE: .pfm or .exr (the values) or .png (a heat map of log10 from "
                    "-4, black, to 0, yellow)");
     app.add_option("--library", options.library, "ANARI library name (loads libanari_library_NAME.so)")->capture_default_str();
+    app.add_option("--renderer", options.renderer,
+                   "the ANARI renderer subtype: Ripple has default (the path tracer) and eyeLight (a quick look: "
+                   "the first surfaces lit from the eye, no lights or bounces)")
+        ->capture_default_str();
     app.add_option("--traversal", options.traversal,
                    "ray traversal back-end, the device parameter 'traversal': auto (ray queries where the device "
                    "has them), software or rayQuery (default: the device's, which RIPPLE_TRAVERSAL may set)")

@@ -146,6 +146,10 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
         arguments = "--demo volume --volume '" + writeText(dir / "v.raw", "12345678").string() + "' --dims 2,2,2 --type uint8";
         expected = "give one of a scene file, --demo or --volume";
     }
+    SUBCASE("renderer the device does not have") {
+        arguments = "--renderer raycast --size 8x8";
+        expected = "--renderer: the device has no renderer 'raycast' (it has: default, eyeLight)";
+    }
     SUBCASE("unknown transfer function") {
         arguments = "--volume '" + writeText(dir / "v.raw", "12345678").string() + "' --dims 2,2,2 --type uint8 --tf jet";
         expected = "unknown transfer function 'jet' (known: viridis, coolwarm, grayscale)";
