@@ -191,9 +191,12 @@ SurfacePoint surfaceAt(SceneDesc scene, Ray ray, Hit hit) {
             }
         }
         if (geom.kind != GEOMETRY_SPHERES) {
-            // Both segment shapes report the axial fraction in hit.u (0 at the first end, 1 at the second).
+            // Both segment shapes report the axial fraction in hit.u (0 at the first end, 1 at the second); the
+            // side of a round segment of changing radius reaches a little beyond [0, 1] before its end spheres
+            // take over, and attributes stay within the end values there.
+            float along = clamp(hit.u, 0.0, 1.0);
             s.vertices = uvec3(2u * hit.primId, 2u * hit.primId + 1u, 2u * hit.primId + 1u);
-            s.bary = vec3(1.0 - hit.u, hit.u, 0.0);
+            s.bary = vec3(1.0 - along, along, 0.0);
         }
         objectShadingNormal = objectNormal;
         if (geom.colorOffset != NO_ATTRIBUTE) {

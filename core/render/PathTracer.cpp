@@ -454,7 +454,10 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     FrameStats stats;
     // Bounces a path can take: its interactions plus pass-throughs, plus the one that resolves the last
     // shadow rays. The kernels end paths before this; the bound only guards the loop.
-    const uint32_t maxBounces = std::max(1u, settings.maxPathLength) + gpu::PATH_MAX_PASS_THROUGHS + 2;
+    // (The eyeLight quick look ends every path at its first interaction.)
+    const uint32_t pathLength =
+        settings.shading == RenderSettings::Shading::EyeLight ? 1u : std::max(1u, settings.maxPathLength);
+    const uint32_t maxBounces = pathLength + gpu::PATH_MAX_PASS_THROUGHS + 2;
     // This rank's pixels (all of them with one rank); every rank runs as many waves and bounces as the
     // busiest one, since each exchange needs all ranks.
     RayExchange& ranks = m.exchange();
@@ -468,7 +471,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
         for (uint64_t w = 0; w < waveCount; ++w) {
             const Wave* wave = w < waves.size() ? &waves[w] : nullptr;  // this rank may have fewer waves
             if (m.lengthsOnDevice)
-                m.traceWave(scene, *wave, sampleIndex, std::max(1u, settings.maxPathLength) + 1, maxBounces, stats);
+                m.traceWave(scene, *wave, sampleIndex, pathLength + 1, maxBounces, stats);
             else
                 m.traceWaveAcrossRanks(scene, wave, sampleIndex, maxBounces, stats);
         }

@@ -51,7 +51,7 @@ void storeRows(const glm::dmat4& m, gpu::vec4* rows) {
 }  // namespace
 
 size_t transferTableSize(const Volume& volume) {
-    return std::max<size_t>({2, volume.colors.size(), volume.opacities.size()});
+    return std::max<size_t>({kMinTransferEntries, volume.colors.size(), volume.opacities.size()});
 }
 
 VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {

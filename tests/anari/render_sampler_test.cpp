@@ -310,25 +310,60 @@ TEST_CASE("attributes: per vertex, per primitive and uniform on spheres, quads a
         const Image uniform = renderAttribute(s, grid, "attribute1", {4, 4});
         CHECK(near(glm::vec3(uniform.at(1, 2)), glm::vec3(right), kExact));
     }
-    SUBCASE("cylinder vertex.attribute2: interpolated along the axis") {
+    SUBCASE("sphere vertex.attribute1 with primitive.index: the vertex's value") {
+        RenderSession s;
+        ANARIGeometry geometry = twoSpheres(s);
+        s.setObject(geometry, "primitive.index", ANARI_ARRAY1D, s.array(ANARI_UINT32, std::vector<uint32_t>{1}));
+        s.setObject(geometry, "vertex.attribute1", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, std::vector{left, right}));
+        s.commit(geometry);
+        const Image image = renderAttribute(s, geometry, "attribute1", {8, 8});
+        CHECK(near(glm::vec3(image.at(5, 4)), glm::vec3(right), kExact));  // the one sphere sits on vertex 1
+        CHECK(near(glm::vec3(image.at(2, 4)), glm::vec3(0.0f), kExact));   // nothing on vertex 0
+    }
+    SUBCASE("cylinder vertex.attribute2: interpolated along the axis of each cylinder") {
         RenderSession s;
         ANARIGeometry geometry = s.keep(anariNewGeometry(s.device, "cylinder"));
-        // Indexed so that the segment runs from vertex 2 (x = -1) to vertex 0 (x = +1).
+        // Two indexed cylinders across the view: the upper one (y = 0.5) from vertex 0 at x = -1 (value 0) to
+        // vertex 1 at x = +1 (value 1), the lower one (y = -0.5) from vertex 2 at x = +1 (value 0) to vertex 3
+        // at x = -1 (value 1). Vertex 4 is unused.
         s.setObject(geometry, "vertex.position", ANARI_ARRAY1D,
-                    s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{1, 0, 0}, {0, 5, 0}, {-1, 0, 0}}));
-        s.setObject(geometry, "primitive.index", ANARI_ARRAY1D, s.array(ANARI_UINT32_VEC2, std::vector<glm::uvec2>{{2, 0}}));
+                    s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-1, 0.5f, 0}, {1, 0.5f, 0}, {1, -0.5f, 0}, {-1, -0.5f, 0}, {0, 5, 0}}));
+        s.setObject(geometry, "primitive.index", ANARI_ARRAY1D,
+                    s.array(ANARI_UINT32_VEC2, std::vector<glm::uvec2>{{0, 1}, {2, 3}}));
         s.setObject(geometry, "vertex.attribute2", ANARI_ARRAY1D,
-                    s.array(ANARI_FLOAT32, std::vector<float>{1.0f, 7.0f, 0.0f}));
-        s.set(geometry, "radius", 0.5f);
+                    s.array(ANARI_FLOAT32, std::vector<float>{0.0f, 1.0f, 0.0f, 1.0f, 7.0f}));
+        s.set(geometry, "radius", 0.4f);
         s.commit(geometry);
         const Image image = renderAttribute(s, geometry, "attribute2", {16, 16});
-        // The value is the axial fraction (x + 1) / 2; over a pixel x changes by 1/8.
+        // Over a pixel x changes by 1/8, the value by 1/16. Rows 12 and 3 cross the cylinders' axes.
         for (uint32_t x = 0; x < 16; ++x) {
-            const float expected = (float(x) + 0.5f) / 16.0f;
-            INFO("pixel " << x << " got " << image.at(x, 8).r);
-            CHECK(std::abs(image.at(x, 8).r - expected) <= 1.0f / 32.0f + kExact);
-            CHECK(image.at(x, 8).g == 0.0f);  // a FLOAT32 attribute's missing components: (v, 0, 0, 1)
+            const float along = (float(x) + 0.5f) / 16.0f;
+            INFO("pixel " << x << " got " << image.at(x, 12).r << " and " << image.at(x, 3).r);
+            CHECK(std::abs(image.at(x, 12).r - along) <= 1.0f / 32.0f + kExact);
+            CHECK(std::abs(image.at(x, 3).r - (1.0f - along)) <= 1.0f / 32.0f + kExact);
+            CHECK(image.at(x, 12).g == 0.0f);  // a FLOAT32 attribute's missing components: (v, 0, 0, 1)
         }
+    }
+    SUBCASE("curve vertex.attribute0: piecewise linear over its segments, primitive.attribute1 per segment") {
+        RenderSession s;
+        ANARIGeometry geometry = s.keep(anariNewGeometry(s.device, "curve"));
+        s.setObject(geometry, "vertex.position", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{-1, 0, 0}, {0, 0, 0}, {1, 0, 0}}));
+        s.setObject(geometry, "vertex.attribute0", ANARI_ARRAY1D,
+                    s.array(ANARI_FLOAT32, std::vector<float>{0.0f, 0.25f, 1.0f}));
+        s.setObject(geometry, "primitive.attribute1", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, std::vector{left, right}));
+        s.set(geometry, "radius", 0.3f);
+        s.commit(geometry);
+        const Image image = renderAttribute(s, geometry, "attribute0", {16, 16});
+        for (uint32_t x = 0; x < 16; ++x) {
+            const float px = -1.0f + (float(x) + 0.5f) / 8.0f;
+            const float expected = px < 0.0f ? 0.25f * (px + 1.0f) : 0.25f + 0.75f * px;
+            INFO("pixel " << x << " got " << image.at(x, 8).r << " expected " << expected);
+            CHECK(std::abs(image.at(x, 8).r - expected) <= 0.75f / 16.0f + kExact);
+        }
+        const Image perSegment = renderAttribute(s, geometry, "attribute1", {16, 16});
+        CHECK(near(glm::vec3(perSegment.at(4, 8)), glm::vec3(left), kExact));
+        CHECK(near(glm::vec3(perSegment.at(11, 8)), glm::vec3(right), kExact));
     }
     SUBCASE("instance attribute1 and color replace the geometry's") {
         RenderSession s;
