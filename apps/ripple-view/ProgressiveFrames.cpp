@@ -23,6 +23,20 @@ bool deviceHasExtension(ANARIDevice device, const char* name) {
     return false;
 }
 
+bool deviceHasRenderer(ANARIDevice device, const char* subtype) {
+    const char** subtypes = anariGetObjectSubtypes(device, ANARI_RENDERER);
+    for (const char** t = subtypes; t && *t; ++t)
+        if (std::strcmp(*t, subtype) == 0) return true;
+    return false;
+}
+
+// The quick look's light is at the eye (its ambientRadiance, default 1): the scene's ambient fill is not set.
+void setQuickLook(ANARIDevice device, ANARIRenderer renderer, const ViewerSettings& settings) {
+    anari::set(device, renderer, "pixelSamples", settings.pixelSamples);
+    anari::set(device, renderer, "background", settings.background);
+    anariCommitParameters(device, renderer);
+}
+
 void setRenderer(ANARIDevice device, ANARIRenderer renderer, const ViewerSettings& settings) {
     anari::set(device, renderer, "pixelSamples", settings.pixelSamples);
     anari::set(device, renderer, "maxPathLength", settings.maxPathLength);
@@ -42,6 +56,10 @@ ProgressiveFrames::ProgressiveFrames(Session& s, const AnariWorld& scene, const 
     renderer_ = anariNewRenderer(device_, "default");
     if (!renderer_) throw std::runtime_error("the device has no 'default' renderer");
     setRenderer(device_, renderer_, settings);
+    if (deviceHasRenderer(device_, "eyeLight")) {
+        quickLook_ = anariNewRenderer(device_, "eyeLight");
+        if (quickLook_) setQuickLook(device_, quickLook_, settings);
+    }
     const bool accumulation = deviceHasExtension(device_, "ANARI_KHR_FRAME_ACCUMULATION");
     for (ANARIFrame* frame : {&full_, &reduced_}) {
         *frame = anariNewFrame(device_);
@@ -51,7 +69,7 @@ ProgressiveFrames::ProgressiveFrames(Session& s, const AnariWorld& scene, const 
         anariSetParameter(device_, *frame, "channel.color", ANARI_DATA_TYPE, &colorType);
         if (accumulation) anari::set(device_, *frame, "accumulation", true);
         anari::setObject(device_, *frame, "world", ANARI_WORLD, scene.world);
-        anari::setObject(device_, *frame, "renderer", ANARI_RENDERER, renderer_);
+        anari::setObject(device_, *frame, "renderer", ANARI_RENDERER, movingRenderer(frame == &reduced_));
         anari::setObject(device_, *frame, "camera", ANARI_CAMERA, camera_);
         anariCommitParameters(device_, *frame);
     }
@@ -59,7 +77,8 @@ ProgressiveFrames::ProgressiveFrames(Session& s, const AnariWorld& scene, const 
 
 ProgressiveFrames::~ProgressiveFrames() {
     if (inFlight_) anariFrameReady(device_, inFlight_, ANARI_WAIT);
-    for (ANARIObject o : {ANARIObject(reduced_), ANARIObject(full_), ANARIObject(renderer_), ANARIObject(camera_)})
+    for (ANARIObject o : {ANARIObject(reduced_), ANARIObject(full_), ANARIObject(quickLook_), ANARIObject(renderer_),
+                          ANARIObject(camera_)})
         if (o) anariRelease(device_, o);
 }
 
@@ -114,11 +133,21 @@ void ProgressiveFrames::applyPending() {
         fullStale_ = true;
     }
     if (pendingSettings_) {
+        const bool quickLookChanged = pendingSettings_->quickLookWhileMoving != settings_.quickLookWhileMoving;
         settings_ = *pendingSettings_;
         setRenderer(device_, renderer_, settings_);
+        if (quickLook_) setQuickLook(device_, quickLook_, settings_);
+        if (quickLookChanged) {
+            anari::setObject(device_, reduced_, "renderer", ANARI_RENDERER, movingRenderer(true));
+            anariCommitParameters(device_, reduced_);
+        }
         pendingSettings_.reset();
         fullStale_ = true;
     }
+}
+
+ANARIRenderer ProgressiveFrames::movingRenderer(bool reducedFrame) const {
+    return reducedFrame && quickLook_ && settings_.quickLookWhileMoving ? quickLook_ : renderer_;
 }
 
 bool ProgressiveFrames::startPass(bool moving, uint32_t maxSamples) {

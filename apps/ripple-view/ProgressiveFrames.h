@@ -1,6 +1,8 @@
 // The viewer's ANARI side: one world rendered progressively into two frames sharing a camera and a renderer,
 // the full-size one while the view is still and a reduced one while it moves, one pass in flight at a time
 // (anariRenderFrame, then anariFrameReady polled with ANARI_NO_WAIT), so the window never waits for the device.
+// The reduced frame renders with the device's quick-look renderer ("eyeLight") where it has one and the
+// settings ask for it.
 // Changes wait until no pass is in flight and restart the accumulation (the device sees a new commit).
 #pragma once
 
@@ -25,6 +27,9 @@ struct ViewerSettings {
     int32_t maxPathLength = 5;
     glm::vec4 background{0.0f, 0.0f, 0.0f, 1.0f};
     float ambientRadiance = 0.0f;
+    // While the view moves, render with the device's "eyeLight" renderer (a quick look: first surfaces lit
+    // from the eye), where the device has one; the path tracer takes over when the view is still.
+    bool quickLookWhileMoving = true;
     bool operator==(const ViewerSettings&) const = default;
 };
 
@@ -66,6 +71,8 @@ public:
     // Whether a pass ended since the last call (wait: blocks until it does); its image is then in latest().
     bool poll(bool wait = false);
     bool busy() const { return inFlight_ != nullptr; }
+    // Whether the device has the quick-look renderer that quickLookWhileMoving selects.
+    bool hasQuickLook() const { return quickLook_ != nullptr; }
 
     const PassResult& latest() const { return latest_; }
     // The full frame's estimate from all its passes so far (latest().estimate may be half a second old).
@@ -76,11 +83,14 @@ public:
 
 private:
     void applyPending();
+    // The renderer of the reduced frame (reducedFrame) or of the full one.
+    ANARIRenderer movingRenderer(bool reducedFrame) const;
     void readPass(ANARIFrame frame, bool reduced);
 
     ANARIDevice device_;
     ANARICamera camera_ = nullptr;
     ANARIRenderer renderer_ = nullptr;
+    ANARIRenderer quickLook_ = nullptr;  // "eyeLight", when the device has it
     ANARIFrame full_ = nullptr, reduced_ = nullptr;
     bool orthographic_ = false;
     glm::uvec2 size_;

@@ -24,6 +24,8 @@ void rendererPanel(ViewerUiState& ui, PanelRequests& out) {
         int maxSamples = int(ui.maxSamples);
         if (ImGui::InputInt("stop at spp (0: never)", &maxSamples, 64)) ui.maxSamples = uint32_t(std::max(maxSamples, 0));
         ImGui::Checkbox("reduce while moving", &ui.reduceWhileMoving);
+        if (ui.quickLookAvailable)
+            out.settingsChanged |= ImGui::Checkbox("quick look while moving (eyeLight)", &s.quickLookWhileMoving);
         if (ui.reduceWhileMoving) ImGui::SliderInt("size divisor", &ui.movingDivisor, 2, 8);
         out.screenshot |= ImGui::Button("screenshot (P)");
     }

@@ -16,6 +16,7 @@ struct ViewerUiState {
     bool reduceWhileMoving = true;      // render at reduced size while the view moves
     int movingDivisor = 2;              // each side divided by this while it moves
     int selectedCamera = -1;            // index into the scene's cameras; -1: framed on the bounds
+    bool quickLookAvailable = false;    // the device has the "eyeLight" renderer (the panel offers it)
 };
 
 // What the user asked for in the panels this frame.

@@ -1,6 +1,6 @@
 // ripple-view: an interactive viewer of a glTF file or a built-in demo scene through any ANARI library. Passes
-// render progressively while the view is still and at half size while it moves; panels set the renderer and
-// camera. --screenshot renders a fixed number of passes, writes the image and exits.
+// render progressively while the view is still and at half size while it moves (with the device's quick-look
+// renderer, where it has one); panels set the renderer and camera. --screenshot renders a fixed number of passes, writes the image and exits.
 #include "apps/common/AnariSession.h"
 #include "apps/common/DemoScene.h"
 #include "apps/common/GltfScene.h"
@@ -37,6 +37,7 @@ struct Options {
     int32_t maxPathLength = 5;
     std::string screenshot;             // with --frames: render that many passes, write this, exit
     uint32_t frames = 16;
+    bool noQuickLook = false;           // moving passes path-traced too
     std::optional<int> camera;
     bool quiet = false;
 };
@@ -96,6 +97,7 @@ int run(const Options& options, Session& s) {
     ui.settings.maxPathLength = options.maxPathLength;
     ui.settings.background = scene.background;
     ui.settings.ambientRadiance = scene.ambientRadiance;
+    ui.settings.quickLookWhileMoving = !options.noQuickLook;
     ui.selectedCamera = options.camera.value_or(scene.cameras.empty() ? -1 : 0);
     if (ui.selectedCamera >= int(scene.cameras.size()))
         throw std::runtime_error("--camera " + std::to_string(ui.selectedCamera) + ": the scene has " +
@@ -106,6 +108,7 @@ int run(const Options& options, Session& s) {
     OrbitCamera camera;
     camera.reset(ui.selectedCamera >= 0 ? scene.cameras[size_t(ui.selectedCamera)] : frameBounds(lo, hi, aspect()), lo, hi);
     ProgressiveFrames frames(s, scene, camera.view(), renderSize, ui.settings);
+    ui.quickLookAvailable = frames.hasQuickLook();
 
     using Clock = std::chrono::steady_clock;
     Clock::time_point lastChange = Clock::now() - std::chrono::seconds(1);
@@ -234,6 +237,9 @@ int main(int argc, char** argv) {
                    "render --frames full-size passes, write the image (.png, .jpg, .pfm, .exr) and exit");
     app.add_option("--frames", options.frames, "passes before --screenshot is written")
         ->check(CLI::Range(1u, 1000000u))->needs(screenshot)->capture_default_str();
+    app.add_flag("--no-quick-look", options.noQuickLook,
+                 "path-trace while the view moves too (by default moving passes use the device's 'eyeLight' "
+                 "renderer, a quick look lit from the eye, where the device has one)");
     app.add_flag("-q,--quiet", options.quiet, "no warnings");
     CLI11_PARSE(app, argc, argv);
 
