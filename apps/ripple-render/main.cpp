@@ -12,6 +12,7 @@
 #include "apps/common/ImageSize.h"
 #include "apps/common/OutputImage.h"
 #include "apps/common/ScenePartition.h"
+#include "apps/common/ViewState.h"
 #include "apps/common/VolumeFile.h"
 #include "apps/ripple-render/Convergence.h"
 #include "apps/ripple-render/ErrorPlot.h"
@@ -55,6 +56,9 @@ struct Options {
     uint32_t seed = 0;                  // the renderer's "seed": a reference must not share the image's samples
     std::optional<int> camera;
     std::optional<float> ambient;
+    std::string view;                   // a view-state file (ripple-view's): camera, renderer settings, size
+    std::optional<CameraView> viewCamera;     // from --view
+    std::optional<glm::vec4> viewBackground;  // from --view
     std::string environment;            // equirectangular .hdr/.exr/.pfm/.png image: an hdri light
     float environmentIntensity = 1.0f;  // its "scale"
     float environmentRotation = 0.0f;   // degrees about the up axis (+Y)
@@ -370,7 +374,9 @@ ANARICamera makeCamera(const Options& options, const AnariWorld& scene, glm::uve
     const float aspect = float(size.x) / float(size.y);
     CameraView view;
     const int cameraIndex = options.camera.value_or(scene.cameras.empty() ? -1 : 0);
-    if (cameraIndex >= 0) {
+    if (options.viewCamera) {
+        view = *options.viewCamera;
+    } else if (cameraIndex >= 0) {
         if (size_t(cameraIndex) >= scene.cameras.size())
             throw std::runtime_error("--camera " + std::to_string(cameraIndex) + ": the scene has " +
                                      std::to_string(scene.cameras.size()) + " cameras");
@@ -409,7 +415,7 @@ FrameSetup makeFrame(const Options& options, const AnariWorld& scene, ANARICamer
     anari::set(s.device, renderer, "pixelSamples", int32_t(setup.batch));
     anari::set(s.device, renderer, "maxPathLength", int32_t(options.maxPathLength));
     if (options.seed != 0) anari::set(s.device, renderer, "seed", options.seed);  // 0: the device's default
-    anari::set(s.device, renderer, "background", scene.background);
+    anari::set(s.device, renderer, "background", options.viewBackground.value_or(scene.background));
     // eyeLight's ambient light is the light at the eye: the scene's suggestion (meant for path tracing lit
     // scenes, often 0) would darken it, so only an explicit --ambient sets it.
     if (options.renderer != "eyeLight" || options.ambient)
@@ -666,7 +672,22 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
             {"--exchange", optionHash(options.exchange), false},
             {"--library", optionHash(options.library), false},
             {"--reference", optionHash(options.reference), false},
-            {"--report", optionHash(options.report), false}};
+            {"--report", optionHash(options.report), false},
+            {"--view", optionHash(options.view), false}};
+}
+
+// --view: the file's camera replaces the scene's, and its renderer settings and size apply where the command
+// line does not set them (the file's pixelSamples is the viewer's pass size: --spp counts here).
+void applyViewState(Options& options, const CLI::App& app) {
+    if (options.view.empty()) return;
+    if (options.camera) throw std::runtime_error("give one of --camera and --view");
+    const ViewState state = readViewState(options.view);
+    options.viewCamera = state.camera;
+    options.viewBackground = state.background;
+    if (state.size && app.count("--size") == 0) options.size = std::to_string(state.size->x) + "x" + std::to_string(state.size->y);
+    if (state.maxPathLength && app.count("--max-path-length") == 0) options.maxPathLength = uint32_t(*state.maxPathLength);
+    if (state.ambientRadiance && app.count("--ambient") == 0) options.ambient = *state.ambientRadiance;
+    if (state.renderer && app.count("--renderer") == 0) options.renderer = *state.renderer;
 }
 
 }  // namespace
@@ -725,6 +746,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--camera", options.camera, "scene camera index; -1 frames the scene bounds (default: camera 0 if any)")
         ->check(CLI::Range(-1, 1 << 20));
+    app.add_option("--view", options.view,
+                   "a view-state file (ripple-view writes them with V): its camera, renderer settings and size, "
+                   "where the command line does not set them");
     app.add_option("--ambient", options.ambient, "ambient radiance (default: what the scene suggests; 0 with --environment)")
         ->check(CLI::NonNegativeNumber);
     app.add_option("--environment", options.environment,
@@ -791,6 +815,7 @@ int main(int argc, char** argv) {
     ripple::apps::Session session;
     try {
         ripple::apps::TimeBudget budget(options.seconds, processStart);
+        ripple::apps::applyViewState(options, app);
         return ripple::apps::render(options, ranks, session, budget);
     } catch (const std::exception& e) {
         // Other ranks may wait for this one in a collective call (the device's release among them): end

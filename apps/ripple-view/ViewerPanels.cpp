@@ -28,6 +28,8 @@ void rendererPanel(ViewerUiState& ui, PanelRequests& out) {
             out.settingsChanged |= ImGui::Checkbox("quick look while moving (eyeLight)", &s.quickLookWhileMoving);
         if (ui.reduceWhileMoving) ImGui::SliderInt("size divisor", &ui.movingDivisor, 2, 8);
         out.screenshot |= ImGui::Button("screenshot (P)");
+        ImGui::SameLine();
+        out.saveView |= ImGui::Button("save view (V)");
     }
     ImGui::End();
 }
@@ -66,7 +68,7 @@ void cameraPanel(ViewerUiState& ui, CameraView& view, const std::vector<CameraVi
         ImGui::Text("position  %.3f %.3f %.3f", view.position.x, view.position.y, view.position.z);
         ImGui::Text("direction %.3f %.3f %.3f", view.direction.x, view.direction.y, view.direction.z);
         ImGui::TextUnformatted("left drag: orbit, right/middle drag: pan,\nwheel: zoom, WASD/QE: fly (shift: faster),\n"
-                               "F: frame the scene, P: screenshot");
+                               "F: frame the scene, P: screenshot, V: save the view");
     }
     ImGui::End();
 }

@@ -25,6 +25,7 @@ struct PanelRequests {
     bool viewChanged = false;           // the field of view, or a camera chosen
     bool frameScene = false;
     bool screenshot = false;
+    bool saveView = false;              // write the view-state file (as the V key does)
 };
 
 // Draws the panels; `view` and `ui` are edited in place.

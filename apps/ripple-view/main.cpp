@@ -6,6 +6,7 @@
 #include "apps/common/GltfScene.h"
 #include "apps/common/ImageSize.h"
 #include "apps/common/OutputImage.h"
+#include "apps/common/ViewState.h"
 #include "apps/ripple-view/OrbitCamera.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
 #include "apps/ripple-view/ViewerPanels.h"
@@ -38,6 +39,9 @@ struct Options {
     std::string screenshot;             // with --frames: render that many passes, write this, exit
     uint32_t frames = 16;
     bool noQuickLook = false;           // moving passes path-traced too
+    std::string view;                   // view-state file: read at start when it exists, written by V
+    bool sizeGiven = false;             // --size on the command line (else the view file's size, if any)
+    bool samplesGiven = false, pathLengthGiven = false;
     std::optional<int> camera;
     bool quiet = false;
 };
@@ -66,9 +70,30 @@ void writeScreenshot(const std::filesystem::path& file, const PassResult& pass, 
     std::fflush(stdout);
 }
 
+// Where V writes the view: --view, else ripple-view.json in the working folder.
+std::filesystem::path viewFileOf(const Options& options) {
+    return options.view.empty() ? std::filesystem::path("ripple-view.json") : std::filesystem::path(options.view);
+}
+
+void saveView(const std::filesystem::path& file, const CameraView& view, const ViewerSettings& settings, glm::uvec2 size) {
+    ViewState state;
+    state.camera = view;
+    state.renderer = "default";
+    state.pixelSamples = settings.pixelSamples;
+    state.maxPathLength = settings.maxPathLength;
+    state.ambientRadiance = settings.ambientRadiance;
+    state.background = settings.background;
+    state.size = size;
+    writeViewState(file, state);
+    std::printf("wrote view %s (ripple-render --view %s renders it)\n", file.c_str(), file.c_str());
+    std::fflush(stdout);
+}
+
 int run(const Options& options, Session& s) {
     // Everything that can fail without a window is checked first.
-    const glm::uvec2 size = parseImageSize(options.size);
+    std::optional<ViewState> savedView;
+    if (!options.view.empty() && std::filesystem::exists(options.view)) savedView = readViewState(options.view);
+    const glm::uvec2 size = savedView && savedView->size && !options.sizeGiven ? *savedView->size : parseImageSize(options.size);
     if (!options.scene.empty() && !options.demo.empty())
         throw std::runtime_error("give either a scene file or --demo, not both");
     const std::string demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
@@ -98,6 +123,12 @@ int run(const Options& options, Session& s) {
     ui.settings.background = scene.background;
     ui.settings.ambientRadiance = scene.ambientRadiance;
     ui.settings.quickLookWhileMoving = !options.noQuickLook;
+    if (savedView) {  // the file's settings, where the command line does not give them
+        if (savedView->pixelSamples && !options.samplesGiven) ui.settings.pixelSamples = *savedView->pixelSamples;
+        if (savedView->maxPathLength && !options.pathLengthGiven) ui.settings.maxPathLength = *savedView->maxPathLength;
+        if (savedView->ambientRadiance) ui.settings.ambientRadiance = *savedView->ambientRadiance;
+        if (savedView->background) ui.settings.background = *savedView->background;
+    }
     ui.selectedCamera = options.camera.value_or(scene.cameras.empty() ? -1 : 0);
     if (ui.selectedCamera >= int(scene.cameras.size()))
         throw std::runtime_error("--camera " + std::to_string(ui.selectedCamera) + ": the scene has " +
@@ -106,7 +137,10 @@ int run(const Options& options, Session& s) {
     glm::uvec2 renderSize = headless ? size : glm::max(window.framebufferSize(), glm::uvec2(1));
     const auto aspect = [&] { return float(renderSize.x) / float(renderSize.y); };
     OrbitCamera camera;
-    camera.reset(ui.selectedCamera >= 0 ? scene.cameras[size_t(ui.selectedCamera)] : frameBounds(lo, hi, aspect()), lo, hi);
+    camera.reset(savedView                ? savedView->camera
+                 : ui.selectedCamera >= 0 ? scene.cameras[size_t(ui.selectedCamera)]
+                                          : frameBounds(lo, hi, aspect()),
+                 lo, hi);
     ProgressiveFrames frames(s, scene, camera.view(), renderSize, ui.settings);
     ui.quickLookAvailable = frames.hasQuickLook();
 
@@ -153,6 +187,7 @@ int run(const Options& options, Session& s) {
                 }
                 frameScene = ImGui::IsKeyPressed(GLFW_KEY_F, false);
                 if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) screenshotRequest = nextScreenshotName();
+                if (ImGui::IsKeyPressed(GLFW_KEY_V, false)) saveView(viewFileOf(options), camera.view(), ui.settings, renderSize);
             }
             CameraView& view = camera.view();
             const PanelRequests requests = drawPanels(ui, view, scene.cameras, frames.latest(), frames.fullSamples(),
@@ -171,6 +206,7 @@ int run(const Options& options, Session& s) {
             }
             if (requests.settingsChanged) frames.setSettings(ui.settings);
             if (requests.screenshot) screenshotRequest = nextScreenshotName();
+            if (requests.saveView) saveView(viewFileOf(options), camera.view(), ui.settings, renderSize);
             if (const glm::uvec2 fb = window.framebufferSize(); fb.x > 0 && fb.y > 0 && fb != renderSize) {
                 renderSize = fb;
                 frames.setSize(renderSize);
@@ -220,7 +256,8 @@ int main(int argc, char** argv) {
     ripple::apps::Options options;
     CLI::App app{"ripple-view: view a glTF 2.0 file or a built-in demo scene interactively through an ANARI library.\n"
                  "Mouse: left drag orbits, right or middle drag pans, the wheel zooms. Keys: W/A/S/D/Q/E fly (shift: "
-                 "faster), F frames the scene, P writes a screenshot (ripple-view-NNN.png)."};
+                 "faster), F frames the scene, P writes a screenshot (ripple-view-NNN.png), V saves the view (camera, "
+                 "settings, size) for ripple-render --view."};
     app.add_option("scene", options.scene, "glTF 2.0 file (.gltf or .glb); without one a demo scene is shown");
     std::string demoNames;
     for (const std::string& n : ripple::apps::demoSceneNames()) demoNames += (demoNames.empty() ? "" : ", ") + n;
@@ -240,8 +277,14 @@ int main(int argc, char** argv) {
     app.add_flag("--no-quick-look", options.noQuickLook,
                  "path-trace while the view moves too (by default moving passes use the device's 'eyeLight' "
                  "renderer, a quick look lit from the eye, where the device has one)");
+    app.add_option("--view", options.view,
+                   "view-state file: read at start when it exists (camera, settings, size where the command line "
+                   "does not set them); V writes it (default: ripple-view.json)");
     app.add_flag("-q,--quiet", options.quiet, "no warnings");
     CLI11_PARSE(app, argc, argv);
+    options.sizeGiven = app.count("--size") > 0;
+    options.samplesGiven = app.count("--spp") > 0;
+    options.pathLengthGiven = app.count("--max-path-length") > 0;
 
     ripple::apps::Session session;  // outlives the viewer's objects, which are released first
     try {

@@ -1,6 +1,6 @@
 // ripple-view as a user runs it: without a display it says what to do instead and exits with 1; under a
 // virtual X server (xvfb-run) --screenshot renders the Cornell demo and writes the image ripple-render
-// writes for the same scene, size and samples.
+// writes for the same scene, size and samples, also from a view-state file both read.
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 
@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 using namespace ripple::test;
@@ -103,4 +104,48 @@ TEST_CASE("xvfb: ripple-view --screenshot renders the Cornell demo as ripple-ren
         return std::stod(output.substr(at + 17));
     };
     CHECK(estimateIn(view.output) == doctest::Approx(estimateIn(render.output)).epsilon(0.01));
+}
+
+// A view-state file (what V writes) read by both programs: the same camera, settings and size give the same
+// image, pixel for pixel (the random numbers are keyed by pixel and sample).
+TEST_CASE("xvfb: a view file renders the same image in ripple-view and ripple-render") {
+    TempFolder dir;
+    const auto viewFile = dir / "view.json", viewed = dir / "view.png", rendered = dir / "render.png";
+    {
+        std::ofstream out(viewFile);
+        out << R"({"ripple-view-state": 1,
+                   "camera": {"type": "perspective", "position": [0.3, 0.2, 3.2], "direction": [-0.1, -0.05, -1],
+                              "up": [0, 1, 0], "fovy": 0.6},
+                   "renderer": {"subtype": "default", "pixelSamples": 1, "maxPathLength": 3, "ambientRadiance": 0.3,
+                                "background": [0.2, 0.1, 0.05, 1]},
+                   "size": [48, 32]})";
+    }
+    const ProgramRun view = runView("--demo cornell --view '" + viewFile.string() + "' --frames 4 --screenshot '" +
+                                        viewed.string() + "'",
+                                    "xvfb-run -a");
+    REQUIRE_MESSAGE(view.exitCode == 0, view.output);
+    CHECK_MESSAGE(contains(view.output, "(48x32, 4 spp"), view.output);
+    const ProgramRun render = runProgram(RIPPLE_RENDER_PATH, "--demo cornell --view '" + viewFile.string() +
+                                                                 "' --spp 4 --quiet -o '" + rendered.string() + "'",
+                                         "RIPPLE_VK_VALIDATION=1");
+    REQUIRE_MESSAGE(render.exitCode == 0, render.output);
+    const Image a(viewed), b(rendered);
+    REQUIRE(a.pixels != nullptr);
+    REQUIRE(b.pixels != nullptr);
+    REQUIRE(a.width == 48);
+    REQUIRE(b.width == 48);
+    REQUIRE(a.height == b.height);
+    int differing = 0;
+    for (int i = 0; i < a.width * a.height * 4; ++i) differing += a.pixels[i] != b.pixels[i] ? 1 : 0;
+    CHECK(differing == 0);
+    // Not the default view: the Cornell demo's own camera gives another image.
+    const auto plain = dir / "plain.png";
+    const ProgramRun other = runProgram(RIPPLE_RENDER_PATH, "--demo cornell --size 48x32 --spp 4 --quiet -o '" + plain.string() + "'",
+                                        "RIPPLE_VK_VALIDATION=1");
+    REQUIRE_MESSAGE(other.exitCode == 0, other.output);
+    const Image c(plain);
+    REQUIRE(c.pixels != nullptr);
+    int different = 0;
+    for (int i = 0; i < c.width * c.height * 4; ++i) different += c.pixels[i] != b.pixels[i] ? 1 : 0;
+    CHECK(different > c.width * c.height);
 }
