@@ -146,6 +146,18 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
         arguments = "--demo volume --volume '" + writeText(dir / "v.raw", "12345678").string() + "' --dims 2,2,2 --type uint8";
         expected = "give one of a scene file, --demo or --volume";
     }
+    SUBCASE("view file that does not exist") {
+        arguments = "--view '" + (dir / "absent.json").string() + "' --size 8x8";
+        expected = "absent.json: cannot open the view file";
+    }
+    SUBCASE("view file and --camera together") {
+        arguments = "--view '" + writeText(dir / "v.json", "{}").string() + "' --camera 0 --size 8x8";
+        expected = "give one of --camera and --view";
+    }
+    SUBCASE("malformed view file") {
+        arguments = "--view '" + writeText(dir / "v.json", R"({"ripple-view-state": 1, "camera": []})").string() + "' --size 8x8";
+        expected = "v.json: \"camera\" must be an object";
+    }
     SUBCASE("renderer the device does not have") {
         arguments = "--renderer raycast --size 8x8";
         expected = "--renderer: the device has no renderer 'raycast' (it has: default, eyeLight)";
