@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -181,11 +181,44 @@ void writePfmBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
 
 void writeExrBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba) {
     checkSize(file, width, height, rgba);
-    std::vector<float> topDown(size_t(width) * height * 4);
-    for (uint32_t y = 0; y < height; ++y)
-        std::copy_n(rgba + size_t(height - 1 - y) * width * 4, size_t(width) * 4, topDown.begin() + ptrdiff_t(size_t(y) * width * 4));
+    writeExrChannelsBottomUp(file, width, height,
+                             {{"R", rgba, 4}, {"G", rgba + 1, 4}, {"B", rgba + 2, 4}, {"A", rgba + 3, 4}});
+}
+
+void writeExrChannelsBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height,
+                              std::vector<ExrChannel> channels) {
+    if (channels.empty()) throw std::runtime_error(file.string() + ": an EXR image needs a channel");
+    for (const ExrChannel& c : channels) checkSize(file, width, height, c.values);
+    std::sort(channels.begin(), channels.end(), [](const ExrChannel& a, const ExrChannel& b) { return a.name < b.name; });
+    const size_t pixels = size_t(width) * height;
+    // Planar, rows top first, as tinyexr takes them.
+    std::vector<std::vector<float>> planes(channels.size(), std::vector<float>(pixels));
+    std::vector<unsigned char*> planePointers;
+    std::vector<EXRChannelInfo> infos(channels.size());
+    std::vector<int> pixelTypes(channels.size(), TINYEXR_PIXELTYPE_FLOAT), requestedTypes(channels.size());
+    for (size_t c = 0; c < channels.size(); ++c) {
+        for (uint32_t y = 0; y < height; ++y)
+            for (uint32_t x = 0; x < width; ++x)
+                planes[c][size_t(y) * width + x] = channels[c].values[(size_t(height - 1 - y) * width + x) * channels[c].stride];
+        planePointers.push_back(reinterpret_cast<unsigned char*>(planes[c].data()));
+        std::snprintf(infos[c].name, sizeof infos[c].name, "%s", channels[c].name.c_str());
+        requestedTypes[c] = channels[c].half ? TINYEXR_PIXELTYPE_HALF : TINYEXR_PIXELTYPE_FLOAT;
+    }
+    EXRHeader header;
+    InitEXRHeader(&header);
+    header.num_channels = int(channels.size());
+    header.channels = infos.data();
+    header.pixel_types = pixelTypes.data();
+    header.requested_pixel_types = requestedTypes.data();
+    header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+    EXRImage image;
+    InitEXRImage(&image);
+    image.num_channels = int(channels.size());
+    image.images = planePointers.data();
+    image.width = int(width);
+    image.height = int(height);
     const char* error = nullptr;
-    if (SaveEXR(topDown.data(), int(width), int(height), 4, 0, file.c_str(), &error) != TINYEXR_SUCCESS) {
+    if (SaveEXRImageToFile(&image, &header, file.c_str(), &error) != TINYEXR_SUCCESS) {
         const std::string message = error ? error : "tinyexr could not write it";
         if (error) FreeEXRErrorMessage(error);
         throw std::runtime_error(file.string() + ": cannot write the EXR image: " + message);

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace ripple::apps {
@@ -21,6 +22,18 @@ void writePfmBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
 // Writes width x height float RGBA pixels, bottom row first, as an OpenEXR file (tinyexr) of 32-bit float
 // channels R, G, B, A, rows top to bottom as EXR stores them: linear HDR, bit-exact.
 void writeExrBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba);
+
+// One channel of an EXR image: its name ("R", "Z", "normal.X", ...) and its values, one every `stride` floats
+// from `values`, rows bottom first.
+struct ExrChannel {
+    std::string name;
+    const float* values = nullptr;
+    size_t stride = 1;
+    bool half = false;                  // stored as 16-bit half float (else 32-bit float)
+};
+// An EXR image of any channels (written in name order, as OpenEXR lists them).
+void writeExrChannelsBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height,
+                              std::vector<ExrChannel> channels);
 
 // Writes width x height LINEAR float RGBA pixels, bottom row first, as an 8-bit sRGB-encoded PNG (colour
 // clamped to [0, 1], alpha kept linear), as a device's UFIXED8_RGBA_SRGB channel would be.

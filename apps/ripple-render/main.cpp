@@ -57,6 +57,8 @@ struct Options {
     std::optional<int> camera;
     std::optional<float> ambient;
     std::string view;                   // a view-state file (ripple-view's): camera, renderer settings, size
+    std::vector<std::string> channels;  // --channels: depth, normal, albedo as layers of the EXR output
+    bool exrHalf = false;               // the EXR output's colour, normal and albedo as half floats
     std::optional<CameraView> viewCamera;     // from --view
     std::optional<glm::vec4> viewBackground;  // from --view
     std::string environment;            // equirectangular .hdr/.exr/.pfm/.png image: an hdri light
@@ -152,6 +154,13 @@ struct RenderPlan {
     float environmentRotation = 0.0f;   // degrees
     std::optional<VolumeData> field;    // --volume
     FieldSceneOptions fieldOptions;
+    bool depth = false, normal = false, albedo = false;  // --channels
+};
+
+// The frame channels beside the colour that --channels writes as EXR layers, mapped after the last frame
+// (rows bottom first): depth 1 float per pixel, normal and albedo 3.
+struct ExtraChannels {
+    std::vector<float> depth, normal, albedo;
 };
 
 // --volume's file read and checked, with what to draw of it; throws naming the option or the file.
@@ -242,6 +251,14 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     plan.root = ranks.rank() == 0;
     plan.size = parseImageSize(options.size);
     plan.format = outputFormatOf(options.output);
+    for (const std::string& channel : options.channels) {
+        if (channel == "depth") plan.depth = true;
+        else if (channel == "normal") plan.normal = true;
+        else if (channel == "albedo") plan.albedo = true;
+        else throw std::runtime_error("--channels: unknown channel '" + channel + "' (known: depth, normal, albedo)");
+    }
+    if ((!options.channels.empty() || options.exrHalf) && plan.format != OutputFormat::Exr)
+        throw std::runtime_error(std::string(options.exrHalf ? "--exr-half" : "--channels") + " needs an .exr output (-o)");
     plan.reportFile = options.report;
     plan.plotFile = std::filesystem::path(options.report).replace_extension(".png");
     if (!options.report.empty()) {
@@ -395,7 +412,8 @@ struct FrameSetup {
     bool accumulationExtension = false;
 };
 
-FrameSetup makeFrame(const Options& options, const AnariWorld& scene, ANARICamera camera, glm::uvec2 size, Session& s) {
+FrameSetup makeFrame(const Options& options, const RenderPlan& plan, const AnariWorld& scene, ANARICamera camera,
+                     glm::uvec2 size, Session& s) {
     FrameSetup setup;
     setup.batch = options.reporting() ? 1 : samplesPerFrame(options.spp);
     // The error map needs two frames at least (one per half-buffer).
@@ -428,6 +446,10 @@ FrameSetup makeFrame(const Options& options, const AnariWorld& scene, ANARICamer
     const ANARIDataType colorType = ANARI_FLOAT32_VEC4;  // the estimate needs the linear average
     anari::set(s.device, setup.frame, "size", size);
     anariSetParameter(s.device, setup.frame, "channel.color", ANARI_DATA_TYPE, &colorType);
+    const ANARIDataType depthType = ANARI_FLOAT32, vectorType = ANARI_FLOAT32_VEC3;
+    if (plan.depth) anariSetParameter(s.device, setup.frame, "channel.depth", ANARI_DATA_TYPE, &depthType);
+    if (plan.normal) anariSetParameter(s.device, setup.frame, "channel.normal", ANARI_DATA_TYPE, &vectorType);
+    if (plan.albedo) anariSetParameter(s.device, setup.frame, "channel.albedo", ANARI_DATA_TYPE, &vectorType);
     setup.accumulationExtension = deviceHasExtension(s.device, "ANARI_KHR_FRAME_ACCUMULATION");
     if (setup.accumulationExtension) anari::set(s.device, setup.frame, "accumulation", true);
     anari::setObject(s.device, setup.frame, "world", ANARI_WORLD, scene.world);
@@ -569,10 +591,47 @@ void writeErrorMap(const std::string& file, OutputFormat format, glm::uvec2 size
     writeOutputImage(file, format, size.x, size.y, rgba.data());
 }
 
-void writeResults(const Options& options, const RenderPlan& plan, const RenderOutcome& out, uint32_t batch,
-                  const TimeBudget& budget) {
+// The channels --channels asked for, as the frame holds them after its last render (the first surface of the
+// latest sample; depth +inf where nothing was hit).
+ExtraChannels mapExtraChannels(const RenderPlan& plan, ANARIFrame frame, ANARIDevice device) {
+    ExtraChannels extra;
+    const auto map = [&](const char* name, ANARIDataType expected, size_t components, std::vector<float>& values) {
+        uint32_t width = 0, height = 0;
+        ANARIDataType type = ANARI_UNKNOWN;
+        const void* pixels = anariMapFrame(device, frame, name, &width, &height, &type);
+        const bool ok = pixels && width == plan.size.x && height == plan.size.y && type == expected;
+        if (ok) {
+            const auto* floats = static_cast<const float*>(pixels);
+            values.assign(floats, floats + size_t(width) * height * components);
+        }
+        if (pixels) anariUnmapFrame(device, frame, name);
+        if (!ok) throw std::runtime_error(std::string("--channels: the device returned no ") + name + " channel");
+    };
+    if (plan.depth) map("channel.depth", ANARI_FLOAT32, 1, extra.depth);
+    if (plan.normal) map("channel.normal", ANARI_FLOAT32_VEC3, 3, extra.normal);
+    if (plan.albedo) map("channel.albedo", ANARI_FLOAT32_VEC3, 3, extra.albedo);
+    return extra;
+}
+
+// The EXR output with --channels or --exr-half: colour RGBA, then depth as Z, normal.X/Y/Z, albedo.R/G/B.
+void writeExrLayers(const Options& options, const RenderPlan& plan, const std::vector<float>& rgba,
+                    const ExtraChannels& extra) {
+    const bool half = options.exrHalf;
+    std::vector<ExrChannel> channels = {{"R", rgba.data(), 4, half}, {"G", rgba.data() + 1, 4, half},
+                                        {"B", rgba.data() + 2, 4, half}, {"A", rgba.data() + 3, 4, half}};
+    if (plan.depth) channels.push_back({"Z", extra.depth.data(), 1, false});  // depth keeps 32 bits
+    for (int c = 0; plan.normal && c < 3; ++c)
+        channels.push_back({std::string("normal.") + "XYZ"[c], extra.normal.data() + c, 3, half});
+    for (int c = 0; plan.albedo && c < 3; ++c)
+        channels.push_back({std::string("albedo.") + "RGB"[c], extra.albedo.data() + c, 3, half});
+    writeExrChannelsBottomUp(options.output, plan.size.x, plan.size.y, std::move(channels));
+}
+
+void writeResults(const Options& options, const RenderPlan& plan, const RenderOutcome& out, const ExtraChannels& extra,
+                  uint32_t batch, const TimeBudget& budget) {
     const std::vector<float> image = out.estimator.meanRgbaBottomUp();
-    writeOutputImage(options.output, plan.format, plan.size.x, plan.size.y, image.data());
+    if (!options.channels.empty() || options.exrHalf) writeExrLayers(options, plan, image, extra);
+    else writeOutputImage(options.output, plan.format, plan.size.x, plan.size.y, image.data());
     if (!options.report.empty()) {
         writeConvergenceCsv(plan.reportFile, out.series);
         const std::string sceneName = !options.volume.empty() ? std::filesystem::path(options.volume).filename().string()
@@ -620,7 +679,7 @@ int render(const Options& options, const mpi::Communicator& ranks, Session& s, T
     RankStats stats;
     const AnariWorld scene = buildScene(plan, ranks, s, stats);
     const ANARICamera camera = makeCamera(options, scene, plan.size, s);
-    const FrameSetup setup = makeFrame(options, scene, camera, plan.size, s);
+    const FrameSetup setup = makeFrame(options, plan, scene, camera, plan.size, s);
     RenderOutcome out = renderFrames(options, plan, setup, ranks, s, stats, budget);
     if (ranks.distributed()) out.work.sumOverRanks(ranks);
     if (options.stats) {
@@ -629,7 +688,8 @@ int render(const Options& options, const mpi::Communicator& ranks, Session& s, T
         printRankStats(ranks, stats);
     }
     if (!plan.root) return log.errors > 0 ? 1 : 0;
-    writeResults(options, plan, out, setup.batch, budget);
+    const ExtraChannels extra = mapExtraChannels(plan, setup.frame, s.device);
+    writeResults(options, plan, out, extra, setup.batch, budget);
     if (log.errors > 0) {
         std::fprintf(stderr, "[ripple-render] ERROR: the device reported %d error(s); the image may be wrong\n", log.errors);
         return 1;
@@ -649,6 +709,8 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
                                 ";" + std::to_string(options.opacity.value_or(-1.0f)) + ";" +
                                 std::to_string(options.unitDistance.value_or(-1.0f));
     for (float v : options.isovalues) volumeOptions += ";" + std::to_string(number(double(v)));
+    std::string channelList;
+    for (const std::string& channel : options.channels) channelList += channel + ",";
     const std::string scene = !options.volume.empty() ? "--volume " + options.volume
                               : options.scene.empty() ? "--demo " + options.demo
                                                       : "file " + options.scene;
@@ -673,7 +735,9 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
             {"--library", optionHash(options.library), false},
             {"--reference", optionHash(options.reference), false},
             {"--report", optionHash(options.report), false},
-            {"--view", optionHash(options.view), false}};
+            {"--view", optionHash(options.view), false},
+            {"--channels", optionHash(channelList), false},
+            {"--exr-half", uint64_t(options.exrHalf), false}};
 }
 
 // --view: the file's camera replaces the scene's, and its renderer settings and size apply where the command
@@ -746,6 +810,11 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--camera", options.camera, "scene camera index; -1 frames the scene bounds (default: camera 0 if any)")
         ->check(CLI::Range(-1, 1 << 20));
+    app.add_option("--channels", options.channels,
+                   "frame channels written beside the colour as layers of the .exr output: depth (Z), normal "
+                   "(normal.X/Y/Z, world space), albedo (albedo.R/G/B); comma-separated or repeated")
+        ->delimiter(',');
+    app.add_flag("--exr-half", options.exrHalf, "the .exr output's colour, normal and albedo as 16-bit half floats (depth stays 32-bit)");
     app.add_option("--view", options.view,
                    "a view-state file (ripple-view writes them with V): its camera, renderer settings and size, "
                    "where the command line does not set them");

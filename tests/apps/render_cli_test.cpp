@@ -9,6 +9,7 @@
 
 #include <doctest/doctest.h>
 #include <stb_image.h>
+#include <tinyexr.h>
 
 #include <dlfcn.h>
 #include <unistd.h>
@@ -20,6 +21,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 using namespace ripple::test;
@@ -158,6 +160,14 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
         arguments = "--view '" + writeText(dir / "v.json", R"({"ripple-view-state": 1, "camera": []})").string() + "' --size 8x8";
         expected = "v.json: \"camera\" must be an object";
     }
+    SUBCASE("channels without an EXR output") {
+        arguments = "--channels depth --size 8x8 -o '" + (dir / "x.png").string() + "'";
+        expected = "--channels needs an .exr output (-o)";
+    }
+    SUBCASE("unknown channel") {
+        arguments = "--channels depth,motion --size 8x8 -o '" + (dir / "x.exr").string() + "'";
+        expected = "--channels: unknown channel 'motion' (known: depth, normal, albedo)";
+    }
     SUBCASE("renderer the device does not have") {
         arguments = "--renderer raycast --size 8x8";
         expected = "--renderer: the device has no renderer 'raycast' (it has: default, eyeLight)";
@@ -174,6 +184,82 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
 }
 
 // -o x.jpg writes a JPEG (never PNG bytes under a .jpg name), of the render's size.
+namespace {
+
+// The channels of an EXR file by name (values as float, rows top first), read with tinyexr's full API.
+std::map<std::string, std::vector<float>> exrChannels(const std::filesystem::path& file, std::map<std::string, int>& types) {
+    EXRVersion version;
+    REQUIRE(ParseEXRVersionFromFile(&version, file.string().c_str()) == TINYEXR_SUCCESS);
+    EXRHeader header;
+    InitEXRHeader(&header);
+    const char* error = nullptr;
+    REQUIRE(ParseEXRHeaderFromFile(&header, &version, file.string().c_str(), &error) == TINYEXR_SUCCESS);
+    for (int c = 0; c < header.num_channels; ++c) {
+        types[header.channels[c].name] = header.pixel_types[c];
+        header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;  // halves converted on load
+    }
+    EXRImage image;
+    InitEXRImage(&image);
+    REQUIRE(LoadEXRImageFromFile(&image, &header, file.string().c_str(), &error) == TINYEXR_SUCCESS);
+    std::map<std::string, std::vector<float>> channels;
+    for (int c = 0; c < header.num_channels; ++c) {
+        const auto* values = reinterpret_cast<const float*>(image.images[c]);
+        channels[header.channels[c].name].assign(values, values + size_t(image.width) * image.height);
+    }
+    FreeEXRImage(&image);
+    FreeEXRHeader(&header);
+    return channels;
+}
+
+}  // namespace
+
+// --channels adds the frame's depth, normal and albedo as layers of the EXR beside an unchanged colour;
+// --exr-half stores colour, normal and albedo as halves (within half precision of the floats).
+TEST_CASE("ripple-render --channels: depth, normal and albedo as EXR layers; --exr-half") {
+    TempFolder dir;
+    const std::string common = "--demo cornell --size 24x16 --spp 2 --quiet -o '";
+    const auto plain = dir / "plain.exr", layered = dir / "layered.exr", half = dir / "half.exr";
+    for (const auto& [file, extra] : {std::pair{plain, std::string()}, {layered, std::string(" --channels depth,normal,albedo")},
+                                      {half, std::string(" --channels depth,normal --channels albedo --exr-half")}}) {
+        const ProgramRun run = runRender(common + file.string() + "'" + extra);
+        REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+    }
+    std::map<std::string, int> plainTypes, types, halfTypes;
+    const auto a = exrChannels(plain, plainTypes), b = exrChannels(layered, types), c = exrChannels(half, halfTypes);
+    CHECK(a.size() == 4);
+    const std::vector<std::string> names = {"A", "B", "G", "R", "Z", "albedo.B", "albedo.G", "albedo.R", "normal.X", "normal.Y", "normal.Z"};
+    for (const std::string& name : names) {
+        CAPTURE(name);
+        REQUIRE(b.count(name) == 1);
+        REQUIRE(c.count(name) == 1);
+        CHECK(types[name] == TINYEXR_PIXELTYPE_FLOAT);
+        CHECK(halfTypes[name] == (name == "Z" ? TINYEXR_PIXELTYPE_FLOAT : TINYEXR_PIXELTYPE_HALF));
+        if (a.count(name)) CHECK(a.at(name) == b.at(name));  // the colour is unchanged by the layers
+        if (name == "Z") CHECK(c.at(name) == b.at(name));  // depth stays 32-bit (+inf where nothing is hit)
+        else
+            for (size_t i = 0; i < b.at(name).size(); ++i)  // half: 11 significant bits
+                CHECK(std::abs(c.at(name)[i] - b.at(name)[i]) <= std::abs(b.at(name)[i]) / 1024.0f + 1e-7f);
+    }
+    // Where a pixel's camera ray meets a wall: a finite, positive depth, a unit normal and an albedo within
+    // [0, 1]; where it meets nothing (the box's open front, seen past its edges), depth +inf. Most of the
+    // image is the box.
+    size_t hits = 0;
+    for (size_t i = 0; i < b.at("Z").size(); ++i) {
+        INFO("pixel " << i);
+        const float depth = b.at("Z")[i];
+        if (std::isinf(depth)) continue;
+        ++hits;
+        CHECK(depth > 0.0f);
+        const float x = b.at("normal.X")[i], y = b.at("normal.Y")[i], z = b.at("normal.Z")[i];
+        CHECK(std::abs(std::sqrt(x * x + y * y + z * z) - 1.0f) < 1e-4f);
+        for (const char* albedo : {"albedo.R", "albedo.G", "albedo.B"}) {
+            CHECK(b.at(albedo)[i] >= 0.0f);
+            CHECK(b.at(albedo)[i] <= 1.0f);
+        }
+    }
+    CHECK(hits > b.at("Z").size() / 2);
+}
+
 TEST_CASE("ripple-render writes JPEG for .jpg and .jpeg") {
     TempFolder dir;
     for (const char* name : {"out.jpg", "out.JPEG"}) {
