@@ -134,6 +134,18 @@ void ProgressiveFrames::applyPending() {
     }
     if (pendingSettings_) {
         const bool quickLookChanged = pendingSettings_->quickLookWhileMoving != settings_.quickLookWhileMoving;
+        if (pendingSettings_->display != settings_.display) {
+            // One extra channel at a time: the one shown (the colour is always there).
+            for (ANARIFrame frame : {full_, reduced_}) {
+                if (settings_.display != DisplayChannel::Color)
+                    anariUnsetParameter(device_, frame, displayChannelInfo(settings_.display).parameter);
+                if (pendingSettings_->display != DisplayChannel::Color) {
+                    const DisplayChannelInfo& shown = displayChannelInfo(pendingSettings_->display);
+                    anariSetParameter(device_, frame, shown.parameter, ANARI_DATA_TYPE, &shown.type);
+                }
+                anariCommitParameters(device_, frame);
+            }
+        }
         settings_ = *pendingSettings_;
         setRenderer(device_, renderer_, settings_);
         if (quickLook_) setQuickLook(device_, quickLook_, settings_);
@@ -205,6 +217,17 @@ void ProgressiveFrames::readPass(ANARIFrame frame, bool reduced) {
     const size_t floats = size_t(width) * height * 4;
     r.rgba.assign(static_cast<const float*>(pixels), static_cast<const float*>(pixels) + floats);
     anariUnmapFrame(device_, frame, "channel.color");
+    r.display.clear();
+    if (settings_.display != DisplayChannel::Color) {
+        const DisplayChannelInfo& shown = displayChannelInfo(settings_.display);
+        uint32_t w = 0, h = 0;
+        ANARIDataType shownType = ANARI_UNKNOWN;
+        const void* values = anariMapFrame(device_, frame, shown.parameter, &w, &h, &shownType);
+        // A device without the channel shows the colour (it has reported the unknown parameter).
+        if (values && w == width && h == height && shownType == shown.type)
+            r.display = channelPicture(settings_.display, values, size_t(w) * h);
+        if (values) anariUnmapFrame(device_, frame, shown.parameter);
+    }
     if (!reduced) {  // the full frame's restart (startPass) starts the estimate over
         if (estimatorStale_ || !estimator_ || samples <= estimator_->samples() ||
             glm::uvec2(width, height) != estimator_->size()) {

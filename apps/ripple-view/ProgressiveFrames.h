@@ -9,6 +9,7 @@
 #include "apps/common/AnariScene.h"
 #include "apps/common/AnariSession.h"
 #include "apps/common/ErrorEstimate.h"
+#include "apps/ripple-view/ChannelView.h"
 
 #include <anari/anari.h>
 
@@ -30,6 +31,7 @@ struct ViewerSettings {
     // While the view moves, render with the device's "eyeLight" renderer (a quick look: first surfaces lit
     // from the eye), where the device has one; the path tracer takes over when the view is still.
     bool quickLookWhileMoving = true;
+    DisplayChannel display = DisplayChannel::Color;  // what the window shows
     bool operator==(const ViewerSettings&) const = default;
 };
 
@@ -37,6 +39,7 @@ struct ViewerSettings {
 struct PassResult {
     glm::uvec2 size{0, 0};
     std::vector<float> rgba;            // linear, bottom row first, as the color channel maps
+    std::vector<float> display;         // the picture of ViewerSettings::display, as rgba; empty: the colour
     bool reduced = false;               // rendered at reduced size while the view moved
     uint32_t samples = 0;               // per pixel accumulated in it
     double milliseconds = 0.0;          // the pass on the device ("duration"), else wall time to ready

@@ -24,6 +24,15 @@ void rendererPanel(ViewerUiState& ui, PanelRequests& out) {
         int maxSamples = int(ui.maxSamples);
         if (ImGui::InputInt("stop at spp (0: never)", &maxSamples, 64)) ui.maxSamples = uint32_t(std::max(maxSamples, 0));
         ImGui::Checkbox("reduce while moving", &ui.reduceWhileMoving);
+        const DisplayChannelInfo& shown = displayChannelInfo(s.display);
+        if (ImGui::BeginCombo("show", shown.label)) {
+            for (const DisplayChannelInfo& c : displayChannels())
+                if (ImGui::Selectable(c.label, c.channel == s.display)) {
+                    s.display = c.channel;
+                    out.settingsChanged = true;
+                }
+            ImGui::EndCombo();
+        }
         if (ui.quickLookAvailable)
             out.settingsChanged |= ImGui::Checkbox("quick look while moving (eyeLight)", &s.quickLookWhileMoving);
         if (ui.reduceWhileMoving) ImGui::SliderInt("size divisor", &ui.movingDivisor, 2, 8);

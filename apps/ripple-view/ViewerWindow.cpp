@@ -82,7 +82,8 @@ void ViewerWindow::beginFrame(double seconds) {
 }
 
 void ViewerWindow::showImage(const PassResult& pass) {
-    const std::vector<uint8_t> bytes = encodeSrgb8(pass.size.x, pass.size.y, pass.rgba.data());
+    const std::vector<float>& shown = pass.display.empty() ? pass.rgba : pass.display;
+    const std::vector<uint8_t> bytes = encodeSrgb8(pass.size.x, pass.size.y, shown.data());
     glBindTexture(GL_TEXTURE_2D, texture_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, GLsizei(pass.size.x), GLsizei(pass.size.y), 0, GL_RGBA, GL_UNSIGNED_BYTE,

@@ -32,7 +32,8 @@ public:
     void close();
     // Handles the window system's events, waiting at most `seconds` for one, and starts an ImGui frame.
     void beginFrame(double seconds);
-    // Uploads the pass's linear pixels, sRGB-encoded, as the image shown from now on.
+    // Uploads the pass's linear pixels (its picture of another channel, where it has one), sRGB-encoded, as
+    // the image shown from now on.
     void showImage(const PassResult& pass);
     // Draws the image and the panels and presents them.
     void endFrame();

@@ -1,5 +1,6 @@
 // The viewer's passes through the Ripple device, without a window: a moving pass renders with the device's
-// quick-look renderer ("eyeLight") unless the settings turn it off, and a still pass with the path tracer.
+// quick-look renderer ("eyeLight") unless the settings turn it off, and a still pass with the path tracer;
+// the picture of another channel when the settings show one.
 // Each is compared with a frame rendered directly through ANARI with that renderer, the same camera and
 // size: the random numbers are keyed by pixel and sample, so equal means bit-identical.
 #include "apps/common/AnariParams.h"
@@ -11,6 +12,7 @@
 #include <doctest/doctest.h>
 
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,9 +20,11 @@ using namespace ripple::apps;
 
 namespace {
 
-// One pass of `subtype` at `size`, as the viewer's frames are set up (FLOAT32_VEC4, accumulation on).
+// One pass of `subtype` at `size`, as the viewer's frames are set up (FLOAT32_VEC4, accumulation on): the
+// colour, or `channel` (channel.normal, FLOAT32_VEC3).
 std::vector<float> renderDirectly(Session& s, const AnariWorld& scene, const CameraView& view, glm::uvec2 size,
-                                  const char* subtype, const ViewerSettings& settings) {
+                                  const char* subtype, const ViewerSettings& settings,
+                                  const char* channel = "channel.color") {
     ANARICamera camera = newAnariCamera(s.device, view, float(size.x) / float(size.y));
     ANARIRenderer renderer = anariNewRenderer(s.device, subtype);
     anari::set(s.device, renderer, "pixelSamples", settings.pixelSamples);
@@ -34,6 +38,8 @@ std::vector<float> renderDirectly(Session& s, const AnariWorld& scene, const Cam
     const ANARIDataType colorType = ANARI_FLOAT32_VEC4;
     anari::set(s.device, frame, "size", size);
     anariSetParameter(s.device, frame, "channel.color", ANARI_DATA_TYPE, &colorType);
+    const ANARIDataType normalType = ANARI_FLOAT32_VEC3;
+    if (std::string(channel) == "channel.normal") anariSetParameter(s.device, frame, channel, ANARI_DATA_TYPE, &normalType);
     anari::set(s.device, frame, "accumulation", true);
     anari::setObject(s.device, frame, "world", ANARI_WORLD, scene.world);
     anari::setObject(s.device, frame, "renderer", ANARI_RENDERER, renderer);
@@ -43,12 +49,13 @@ std::vector<float> renderDirectly(Session& s, const AnariWorld& scene, const Cam
     anariFrameReady(s.device, frame, ANARI_WAIT);
     uint32_t width = 0, height = 0;
     ANARIDataType type = ANARI_UNKNOWN;
-    const auto* pixels = static_cast<const float*>(anariMapFrame(s.device, frame, "channel.color", &width, &height, &type));
-    std::vector<float> rgba;
-    if (pixels && type == ANARI_FLOAT32_VEC4) rgba.assign(pixels, pixels + size_t(width) * height * 4);
-    anariUnmapFrame(s.device, frame, "channel.color");
+    const auto* pixels = static_cast<const float*>(anariMapFrame(s.device, frame, channel, &width, &height, &type));
+    std::vector<float> values;
+    const size_t components = type == ANARI_FLOAT32_VEC4 ? 4 : type == ANARI_FLOAT32_VEC3 ? 3 : 0;
+    if (pixels) values.assign(pixels, pixels + size_t(width) * height * components);
+    anariUnmapFrame(s.device, frame, channel);
     for (ANARIObject o : {ANARIObject(frame), ANARIObject(renderer), ANARIObject(camera)}) anariRelease(s.device, o);
-    return rgba;
+    return values;
 }
 
 }  // namespace
@@ -85,5 +92,35 @@ TEST_CASE("viewer passes: moving ones with the quick-look renderer (unless turne
     REQUIRE(frames.poll(true));
     CHECK_FALSE(frames.latest().reduced);
     CHECK(frames.latest().rgba == renderDirectly(s, scene, view, size, "default", settings));
+    CHECK(frames.latest().display.empty());  // the colour is shown
+
+    // Showing the normal channel: the picture is 0.5 n + 0.5 of the frame's normals, the colour unchanged.
+    settings.display = DisplayChannel::Normal;
+    frames.setSettings(settings);
+    REQUIRE(frames.startPass(false));
+    REQUIRE(frames.poll(true));
+    const std::vector<float> normals = renderDirectly(s, scene, view, size, "default", settings, "channel.normal");
+    const PassResult& pass = frames.latest();
+    CHECK(pass.rgba == renderDirectly(s, scene, view, size, "default", settings));
+    REQUIRE(pass.display.size() == pass.rgba.size());
+    REQUIRE(normals.size() * 4 == pass.display.size() * 3);
+    size_t wrong = 0;
+    for (size_t i = 0; i < normals.size() / 3; ++i)
+        for (size_t c = 0; c < 3; ++c) wrong += pass.display[i * 4 + c] != 0.5f * normals[i * 3 + c] + 0.5f ? 1 : 0;
+    CHECK(wrong == 0);
     CHECK(log.errors == 0);
+}
+
+TEST_CASE("channel pictures: depth near bright, far dark, none black; ids hashed, none black") {
+    const float depth[4] = {2.0f, 4.0f, 3.0f, std::numeric_limits<float>::infinity()};
+    const std::vector<float> d = channelPicture(DisplayChannel::Depth, depth, 4);
+    CHECK(d[0] == 1.0f);                    // nearest
+    CHECK(d[4] == doctest::Approx(0.1f));   // farthest
+    CHECK(d[8] == doctest::Approx(0.55f));
+    CHECK(d[12] == 0.0f);                   // no hit
+    const uint32_t ids[3] = {7, 7, ~0u};
+    const std::vector<float> p = channelPicture(DisplayChannel::ObjectId, ids, 3);
+    CHECK(std::vector<float>(p.begin(), p.begin() + 4) == std::vector<float>(p.begin() + 4, p.begin() + 8));
+    CHECK(p[0] + p[1] + p[2] >= 0.6f);      // kept off black
+    CHECK(p[8] + p[9] + p[10] == 0.0f);
 }
