@@ -82,8 +82,11 @@ ViewState readViewState(const std::filesystem::path& file) {
     view.position = r.vector<3>(r.member(camera, "position", " in \"camera\""), "camera.position");
     view.direction = r.vector<3>(r.member(camera, "direction", " in \"camera\""), "camera.direction");
     view.up = r.vector<3>(r.member(camera, "up", " in \"camera\""), "camera.up");
-    if (!(glm::length(view.direction) > 0.0f)) r.fail("\"camera.direction\" must not be zero");
-    if (!(glm::length(glm::cross(view.direction, view.up)) > 0.0f)) r.fail("\"camera.up\" must not be zero or along the direction");
+    const float lengthSquared = glm::dot(view.direction, view.direction);
+    if (!(lengthSquared > 0.0f) || !std::isfinite(lengthSquared)) r.fail("\"camera.direction\" must not be zero or overflow");
+    const float crossSquared = glm::dot(glm::cross(view.direction, view.up), glm::cross(view.direction, view.up));
+    if (!(crossSquared > 0.0f) || !std::isfinite(glm::dot(view.up, view.up)))
+        r.fail("\"camera.up\" must not be zero, overflow or lie along the direction");
     if (view.orthographic) {
         view.height = r.number(r.member(camera, "height", " in an orthographic \"camera\""), "camera.height");
         if (!(view.height > 0.0f)) r.fail("\"camera.height\" must be positive");

@@ -34,7 +34,7 @@ struct ViewState {
 };
 
 // Throws std::runtime_error naming the file and what is wrong: unreadable, not JSON, a missing or
-// mistyped member, a non-finite or out-of-range number, a zero direction or up.
+// mistyped member, a non-finite or out-of-range number, a zero (or overflowing) direction or up.
 ViewState readViewState(const std::filesystem::path& file);
 // Throws std::runtime_error naming the file when it cannot be written.
 void writeViewState(const std::filesystem::path& file, const ViewState& state);

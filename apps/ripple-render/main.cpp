@@ -61,6 +61,7 @@ struct Options {
     bool exrHalf = false;               // the EXR output's colour, normal and albedo as half floats
     std::optional<CameraView> viewCamera;     // from --view
     std::optional<glm::vec4> viewBackground;  // from --view
+    std::optional<float> viewAmbient;         // from --view: the scene's ambient unless --ambient is given
     std::string environment;            // equirectangular .hdr/.exr/.pfm/.png image: an hdri light
     float environmentIntensity = 1.0f;  // its "scale"
     float environmentRotation = 0.0f;   // degrees about the up axis (+Y)
@@ -257,6 +258,8 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
         else if (channel == "albedo") plan.albedo = true;
         else throw std::runtime_error("--channels: unknown channel '" + channel + "' (known: depth, normal, albedo)");
     }
+    if ((plan.normal || plan.albedo) && ranks.distributed())
+        throw std::runtime_error("--channels normal and albedo are not gathered across ranks under mpirun (depth is)");
     if ((!options.channels.empty() || options.exrHalf) && plan.format != OutputFormat::Exr)
         throw std::runtime_error(std::string(options.exrHalf ? "--exr-half" : "--channels") + " needs an .exr output (-o)");
     plan.reportFile = options.report;
@@ -437,7 +440,8 @@ FrameSetup makeFrame(const Options& options, const RenderPlan& plan, const Anari
     // eyeLight's ambient light is the light at the eye: the scene's suggestion (meant for path tracing lit
     // scenes, often 0) would darken it, so only an explicit --ambient sets it.
     if (options.renderer != "eyeLight" || options.ambient)
-        anari::set(s.device, renderer, "ambientRadiance", options.ambient.value_or(scene.ambientRadiance));
+        anari::set(s.device, renderer, "ambientRadiance",
+                   options.ambient.value_or(options.viewAmbient.value_or(scene.ambientRadiance)));
     anariCommitParameters(s.device, renderer);
 
     setup.frame = anariNewFrame(s.device);
@@ -750,7 +754,7 @@ void applyViewState(Options& options, const CLI::App& app) {
     options.viewBackground = state.background;
     if (state.size && app.count("--size") == 0) options.size = std::to_string(state.size->x) + "x" + std::to_string(state.size->y);
     if (state.maxPathLength && app.count("--max-path-length") == 0) options.maxPathLength = uint32_t(*state.maxPathLength);
-    if (state.ambientRadiance && app.count("--ambient") == 0) options.ambient = *state.ambientRadiance;
+    options.viewAmbient = state.ambientRadiance;
     if (state.renderer && app.count("--renderer") == 0) options.renderer = *state.renderer;
 }
 

@@ -84,15 +84,22 @@ void saveView(const std::filesystem::path& file, const CameraView& view, const V
     state.ambientRadiance = settings.ambientRadiance;
     state.background = settings.background;
     state.size = size;
-    writeViewState(file, state);
-    std::printf("wrote view %s (ripple-render --view %s renders it)\n", file.c_str(), file.c_str());
-    std::fflush(stdout);
+    try {
+        writeViewState(file, state);
+        std::printf("wrote view %s (ripple-render --view %s renders it)\n", file.c_str(), file.c_str());
+        std::fflush(stdout);
+    } catch (const std::exception& e) {  // the session goes on
+        std::fprintf(stderr, "[ripple-view] ERROR: %s\n", e.what());
+    }
 }
 
 int run(const Options& options, Session& s) {
     // Everything that can fail without a window is checked first.
     std::optional<ViewState> savedView;
-    if (!options.view.empty() && std::filesystem::exists(options.view)) savedView = readViewState(options.view);
+    if (!options.view.empty() && std::filesystem::exists(options.view)) {
+        if (options.camera) throw std::runtime_error("give one of --camera and an existing --view file");
+        savedView = readViewState(options.view);
+    }
     const glm::uvec2 size = savedView && savedView->size && !options.sizeGiven ? *savedView->size : parseImageSize(options.size);
     if (!options.scene.empty() && !options.demo.empty())
         throw std::runtime_error("give either a scene file or --demo, not both");

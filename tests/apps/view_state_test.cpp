@@ -64,7 +64,11 @@ TEST_CASE("view state: malformed files are refused, naming the file and the memb
     }
     SUBCASE("up along the direction") {
         text = R"({"ripple-view-state": 1, "camera": {"type": "perspective", "position": [0, 0, 3], "direction": [0, 0, -1], "up": [0, 0, 2], "fovy": 0.7}})";
-        expected = "\"camera.up\" must not be zero or along the direction";
+        expected = "\"camera.up\" must not be zero, overflow or lie along the direction";
+    }
+    SUBCASE("a direction whose length overflows") {
+        text = R"({"ripple-view-state": 1, "camera": {"type": "perspective", "position": [0, 0, 3], "direction": [1e20, 0, 0], "up": [0, 1, 0], "fovy": 0.7}})";
+        expected = "\"camera.direction\" must not be zero or overflow";
     }
     SUBCASE("field of view out of range") {
         text = R"({"ripple-view-state": 1, "camera": {"type": "perspective", "position": [0, 0, 3], "direction": [0, 0, -1], "up": [0, 1, 0], "fovy": 4}})";
