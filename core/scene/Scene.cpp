@@ -444,7 +444,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
                 s.attributeOffset = static_cast<uint32_t>(flat.attributes.size());
                 flat.attributes.resize(flat.attributes.size() + 5, gpu::vec4(0.0f, 0.0f, 0.0f, 1.0f));
             }
-            if (!std::isfinite(uniforms[u]->x + uniforms[u]->y + uniforms[u]->z + uniforms[u]->w)) {
+            if (glm::any(glm::isnan(*uniforms[u])) || glm::any(glm::isinf(*uniforms[u]))) {
                 report_.messages.push_back("instance " + std::to_string(v.input) + ": a uniform attribute holds NaN or Inf; attribute ignored");
                 ++report_.attributesIgnored;
                 continue;

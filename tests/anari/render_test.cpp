@@ -569,8 +569,8 @@ TEST_CASE("every subtype the device lists is created without the unknown-subtype
             anariRelease(s.device, object);
         }
     }
-    CHECK(listed == 25);  // 14 + cone, curve, isosurface, omnidirectional + spot, ring, hdri + image1D, image3D, transform,
-                         // primitive
+    CHECK(listed == 26);  // 14 + cone, curve, isosurface, omnidirectional + spot, ring, hdri + image1D, image3D, transform,
+                         // primitive + the eyeLight renderer
     CHECK_MESSAGE(s.log.count({"unknown"}) == 0, s.log.dump());
 }
 

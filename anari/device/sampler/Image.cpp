@@ -52,8 +52,10 @@ public:
         if (filter != "linear" && filter != "nearest")
             reportWarning("parameter 'filter' has unknown value '" + filter + "'; using 'linear'");
         texture.linearFilter = filter != "nearest";
-        // image1D's is "wrapMode" (KHR_SAMPLER_IMAGE1D); image2D and image3D number theirs.
-        texture.wrapS = wrapMode(checkedWrapMode(dimensions_ == 1 ? "wrapMode" : "wrapMode1"));
+        // image1D's is "wrapMode" (KHR_SAMPLER_IMAGE1D); image2D and image3D number theirs. An image1D given
+        // "wrapMode1" instead (the SDK's own test scenes name it so) is read too.
+        const bool legacy1D = dimensions_ == 1 && !has("wrapMode") && has("wrapMode1");
+        texture.wrapS = wrapMode(checkedWrapMode(dimensions_ == 1 && !legacy1D ? "wrapMode" : "wrapMode1"));
         texture.wrapT = dimensions_ == 1 ? core::Texture::Wrap::ClampToEdge : wrapMode(checkedWrapMode("wrapMode2"));
         texture.wrapR = dimensions_ == 3 ? wrapMode(checkedWrapMode("wrapMode3")) : core::Texture::Wrap::ClampToEdge;
         texture.inTransform = get<glm::mat4>("inTransform", glm::mat4(1.0f));
