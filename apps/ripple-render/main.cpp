@@ -543,8 +543,9 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
         if (plan.root) {
             const uint32_t spp = out.estimator.samples();
             progress.update(spp, reportsRays ? raysPerSecond : 0.0f);
-            // The estimate costs a pass over the image: made only where something uses it, and once.
-            const bool estimated = options.targetError || spp >= nextReport;
+            // The estimate costs a pass over the image (about 60 ms at 512x512 here): made only where
+            // something uses it, and once. A plain render estimates once, at the end.
+            const bool estimated = options.targetError || (options.reporting() && spp >= nextReport);
             const ErrorEstimate estimate = estimated ? out.estimator.estimate() : ErrorEstimate{};
             // --time stops before a frame predicted to end past the limit, counted from the process's start:
             // the run ends within it, at most one frame early; a start-up past it leaves the first frame
