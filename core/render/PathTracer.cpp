@@ -89,7 +89,6 @@ struct PathTracer::Impl {
         const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options.workgroupSize}};
         const auto bytes = static_cast<uint32_t>(sizeof(gpu::StageParams));
         generate = vk::ComputePipeline(ctx, shaders::pt_generate, "pt_generate", bytes, constants);
-        surface = vk::ComputePipeline(ctx, shaders::pt_surface, "pt_surface", bytes, constants);
         shade = vk::ComputePipeline(ctx, shaders::pt_shade, "pt_shade", bytes, constants);
         shadowResolve = vk::ComputePipeline(ctx, shaders::pt_shadow_resolve, "pt_shadow_resolve", bytes, constants);
         accumulate = vk::ComputePipeline(ctx, shaders::pt_accumulate, "pt_accumulate", bytes, constants);

@@ -11,21 +11,11 @@
 
 namespace ripple::core {
 
-namespace {
-
-constexpr uint32_t kWorkgroupSizeConstant = 0;  // layout(local_size_x_id = 0) in traverse_rq.glsl
-
-}  // namespace
-
 RayQueryTraversal::RayQueryTraversal(const vk::Context& context, uint32_t workgroupSize)
     : context_(context), workgroupSize_(workgroupSize) {
     if (!context.supportsRayQuery())
         throw std::runtime_error("ray-query traversal needs a Vulkan device with ray queries; " + context.deviceName() +
                                  " lacks " + context.rayQueryMissing());
-    const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, workgroupSize}};
-    const auto bytes = static_cast<uint32_t>(sizeof(gpu::TraceParams));
-    closest_ = vk::ComputePipeline(context, shaders::trace_closest_rq, "trace_closest_rq", bytes, constants);
-    any_ = vk::ComputePipeline(context, shaders::trace_any_rq, "trace_any_rq", bytes, constants);
 }
 
 void RayQueryTraversal::useFeatures(uint32_t features, PipelineCache& cache) {

@@ -33,7 +33,7 @@ public:
 private:
     const vk::Context& context_;
     uint32_t workgroupSize_;
-    vk::ComputePipeline closest_;
+    vk::ComputePipeline closest_;  // built by useFeatures, which must run before dispatch
     vk::ComputePipeline any_;
 };
 

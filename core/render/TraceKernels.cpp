@@ -11,8 +11,6 @@ namespace ripple::core {
 
 namespace {
 
-constexpr uint32_t kWorkgroupSizeConstant = 0;  // layout(local_size_x_id = 0) in traverse.glsl
-
 void resetResumePool(VkCommandBuffer cmd, const vk::Buffer& pool) {
     const gpu::ResumeHeader emptyHeader{0, 0, 1, 1};
     vkCmdUpdateBuffer(cmd, pool.handle(), 0, sizeof(emptyHeader), &emptyHeader);
@@ -27,16 +25,14 @@ TraceKernels::TraceKernels(const vk::Context& context, const TraceOptions& optio
         throw std::invalid_argument("TraceOptions::stepBudget must be in [" + std::to_string(kMinStepBudget) + ", " +
                                     std::to_string(kMaxStepBudget) + "], not " + std::to_string(options_.stepBudget));
     traversal_ = resolveTraversal(context, options_.traversal);
-    if (traversal_ == Traversal::RayQuery) {
-        rayQuery_ = std::make_unique<RayQueryTraversal>(context, options_.workgroupSize);
-        return;
-    }
-    const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options_.workgroupSize}};
-    closest_ = vk::ComputePipeline(context, shaders::trace_closest, "trace_closest", sizeof(gpu::TraceParams), constants);
-    any_ = vk::ComputePipeline(context, shaders::trace_any, "trace_any", sizeof(gpu::TraceParams), constants);
+    if (traversal_ == Traversal::RayQuery) rayQuery_ = std::make_unique<RayQueryTraversal>(context, options_.workgroupSize);
+    // The pipelines are built when the first trace needs them, for the features chosen by then: building
+    // a variant that is replaced before it runs cost about 80 ms of a start-up on lavapipe
+    // (and the surface stage's 300 ms, PathTracer.cpp).
 }
 
 void TraceKernels::useFeatures(uint32_t features) {
+    featuresChosen_ = true;
     if (rayQuery_) return rayQuery_->useFeatures(features, pipelines_);
     const auto bytes = static_cast<uint32_t>(sizeof(gpu::TraceParams));
     pipelines_.select({shaders::trace_closest, "trace_closest", bytes, options_.workgroupSize, gpu::FEATURE_GEOMETRY},
@@ -57,6 +53,7 @@ void TraceKernels::dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, 
                             const vk::Buffer& rays, const vk::Buffer& results, uint32_t rayCount,
                             const DeviceRayCount* deviceCount) {
     if (rayCount == 0 && !deviceCount) return;
+    if (!featuresChosen_) useFeatures(gpu::FEATURE_ALL);
     if (rayQuery_) {  // no step budget and no resume rounds with ray queries
         rayQuery_->dispatch(cmd, scene, {&pipeline == &any_, rays.address(), results.address(), rayCount,
                                          deviceCount ? deviceCount->buffer->address() + deviceCount->countOffset : 0,

@@ -83,8 +83,9 @@ private:
 
     const vk::Context& context_;
     TraceOptions options_;
-    vk::ComputePipeline closest_;
+    vk::ComputePipeline closest_;  // software traversal; built by useFeatures
     vk::ComputePipeline any_;
+    bool featuresChosen_ = false;  // useFeatures has run (the first trace runs it for every feature if not)
     PipelineCache pipelines_;
     vk::Buffer resumePools_[2];
     Traversal traversal_ = Traversal::Software;

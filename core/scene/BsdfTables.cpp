@@ -3,6 +3,7 @@
 #include "core/scene/BsdfTables.h"
 
 #include <glm/glm.hpp>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,9 @@ glm::dvec3 visibleNormal(const glm::dvec3& v, double alpha, double u1, double u2
 std::vector<float> integrate() {
     const uint32_t n = kBsdfTableSize;
     std::vector<float> tables(2 * n * n);
-    for (uint32_t j = 0; j < n; ++j) {
+    // Rows in parallel (each entry is its own sum, so the tables do not depend on the thread count): a
+    // tenth of a second of every device's start-up on two cores.
+    tbb::parallel_for(uint32_t(0), n, [&](uint32_t j) {
         const double roughness = double(j) / double(n - 1);
         const double alpha = std::max(roughness * roughness, double(kMinAlpha));
         const double a2 = alpha * alpha;
@@ -61,7 +64,7 @@ std::vector<float> integrate() {
             tables[j * n + i] = float(e / count);
             tables[n * n + j * n + i] = float(w / count);
         }
-    }
+    });
     return tables;
 }
 
