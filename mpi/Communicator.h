@@ -62,6 +62,8 @@ public:
     // Every rank's bytes in one buffer on rank 0 (rank r's at [offsets[r], offsets[r + 1])); others get
     // nothing.
     void gatherToRoot(std::span<const uint8_t> bytes, std::vector<uint8_t>& all, std::vector<uint64_t>& offsets) const;
+    // Rank 0's `bytes` into every rank's `bytes` (the same size on every rank).
+    void broadcast(std::span<uint8_t> bytes) const;
     // Sends to rank + 1 and receives from rank - 1 (cyclically): one hop of a ring.
     std::vector<uint8_t> ringShift(std::span<const uint8_t> bytes) const;
     void barrier() const;

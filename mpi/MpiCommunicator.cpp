@@ -262,6 +262,11 @@ std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) con
     return received;
 }
 
+void Communicator::broadcast(std::span<uint8_t> bytes) const {
+    if (!distributed() || bytes.empty()) return;
+    RIPPLE_MPI_CHECK(MPI_Bcast(bytes.data(), countOf(bytes.size()), MPI_BYTE, 0, handle_->comm));
+}
+
 void Communicator::barrier() const {
     if (distributed() && mpiActive()) RIPPLE_MPI_CHECK(MPI_Barrier(handle_->comm));
 }

@@ -49,6 +49,7 @@ std::shared_ptr<const void> Communicator::copyHandle(const void*) { return nullp
 std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) const {
     return std::vector<uint8_t>(bytes.begin(), bytes.end());
 }
+void Communicator::broadcast(std::span<uint8_t>) const {}
 void Communicator::barrier() const {}
 void Communicator::barrierOrAbort(double, const std::string&) const {}
 void Communicator::abort(const std::string& message) const { throw MpiError(message); }

@@ -48,9 +48,9 @@ void setRenderer(ANARIDevice device, ANARIRenderer renderer, const ViewerSetting
 }  // namespace
 
 ProgressiveFrames::ProgressiveFrames(Session& s, const AnariWorld& scene, const CameraView& view, glm::uvec2 size,
-                                     const ViewerSettings& settings, uint32_t scale)
-    : device_(s.device), orthographic_(view.orthographic), size_(size), scale_(std::max(scale, 1u)), view_(view),
-      settings_(settings) {
+                                     const ViewerSettings& settings, uint32_t scale, bool holdsImage)
+    : device_(s.device), orthographic_(view.orthographic), size_(size), scale_(std::max(scale, 1u)),
+      holdsImage_(holdsImage), view_(view), settings_(settings) {
     const float aspect = float(size.x) / float(size.y);
     camera_ = newAnariCamera(device_, view, aspect);
     renderer_ = anariNewRenderer(device_, "default");
@@ -92,6 +92,13 @@ void ProgressiveFrames::setSize(glm::uvec2 size) {
 
 void ProgressiveFrames::setReducedScale(uint32_t scale) {
     if (std::max(scale, 1u) != scale_) pendingScale_ = std::max(scale, 1u);
+}
+
+void ProgressiveFrames::apply(const PendingChanges& changes) {
+    if (changes.view) setView(*changes.view);
+    if (changes.settings) setSettings(*changes.settings);
+    if (changes.size) setSize(*changes.size);
+    if (changes.reducedScale) setReducedScale(*changes.reducedScale);
 }
 
 // Called with no pass in flight: the device's objects are only changed between passes.
@@ -162,10 +169,16 @@ ANARIRenderer ProgressiveFrames::movingRenderer(bool reducedFrame) const {
     return reducedFrame && quickLook_ && settings_.quickLookWhileMoving ? quickLook_ : renderer_;
 }
 
-bool ProgressiveFrames::startPass(bool moving, uint32_t maxSamples) {
+bool ProgressiveFrames::passDue(bool moving, uint32_t maxSamples) const {
     if (inFlight_) return false;
+    // A new view, size or settings restart the full frame (applyPending), whatever it holds.
+    const bool restarts = fullStale_ || pendingView_ || pendingSize_ || pendingSettings_;
+    return moving || restarts || maxSamples == 0 || fullSamples_ < maxSamples;
+}
+
+bool ProgressiveFrames::startPass(bool moving, uint32_t maxSamples) {
+    if (!passDue(moving, maxSamples)) return false;
     applyPending();
-    if (!moving && !fullStale_ && maxSamples > 0 && fullSamples_ >= maxSamples) return false;
     inFlight_ = moving ? reduced_ : full_;
     if (!moving && fullStale_) {
         fullSamples_ = 0;
@@ -205,6 +218,7 @@ void ProgressiveFrames::readPass(ANARIFrame frame, bool reduced) {
         samples = (reduced ? 0 : fullSamples_) + uint32_t(settings_.pixelSamples);
     r.samples = samples;
     if (!reduced) fullSamples_ = samples;
+    if (!holdsImage_) return;
 
     uint32_t width = 0, height = 0;
     ANARIDataType type = ANARI_UNKNOWN;

@@ -50,12 +50,23 @@ struct PassResult {
     ErrorEstimate estimate;
 };
 
+// The changes the next pass takes up (setView, setSettings, setSize, setReducedScale since the last pass):
+// under mpirun rank 0 sends them to the other ranks, whose frames must render exactly what its frames render.
+struct PendingChanges {
+    std::optional<CameraView> view;
+    std::optional<ViewerSettings> settings;
+    std::optional<glm::uvec2> size;
+    std::optional<uint32_t> reducedScale;
+};
+
 class ProgressiveFrames {
 public:
     // Makes the camera, renderer and both frames on the session's device (released here, after waiting for
     // a pass in flight; the session must outlive this); `scale` divides each side of the reduced frame.
+    // holdsImage false: a data-parallel rank other than 0, which renders its part of every pass but has no
+    // image to read (latest() keeps only the pass's sample count).
     ProgressiveFrames(Session& s, const AnariWorld& scene, const CameraView& view, glm::uvec2 size,
-                      const ViewerSettings& settings, uint32_t scale = 2);
+                      const ViewerSettings& settings, uint32_t scale = 2, bool holdsImage = true);
     ~ProgressiveFrames();
     ProgressiveFrames(const ProgressiveFrames&) = delete;
     ProgressiveFrames& operator=(const ProgressiveFrames&) = delete;
@@ -68,6 +79,12 @@ public:
     // but still restart).
     void setReducedScale(uint32_t scale);
 
+    PendingChanges pending() const { return {pendingView_, pendingSettings_, pendingSize_, pendingScale_}; }
+    // Takes up another instance's pending() as if its setters had been called here.
+    void apply(const PendingChanges& changes);
+
+    // Whether startPass(moving, maxSamples) would start a pass now.
+    bool passDue(bool moving, uint32_t maxSamples = 0) const;
     // Starts a pass when none is in flight: on the reduced frame when `moving`, else on the full-size one
     // unless it already holds `maxSamples` (0: no limit). Returns whether one started.
     bool startPass(bool moving, uint32_t maxSamples = 0);
@@ -98,6 +115,7 @@ private:
     bool orthographic_ = false;
     glm::uvec2 size_;
     uint32_t scale_;
+    bool holdsImage_;
     std::optional<CameraView> pendingView_;
     std::optional<ViewerSettings> pendingSettings_;
     std::optional<glm::uvec2> pendingSize_;

@@ -27,7 +27,8 @@ void rendererPanel(ViewerUiState& ui, PanelRequests& out) {
         const DisplayChannelInfo& shown = displayChannelInfo(s.display);
         if (ImGui::BeginCombo("show", shown.label)) {
             for (const DisplayChannelInfo& c : displayChannels())
-                if (ImGui::Selectable(c.label, c.channel == s.display)) {
+                if ((!ui.onlyGatheredChannels || c.channel == DisplayChannel::Color || c.channel == DisplayChannel::Depth) &&
+                    ImGui::Selectable(c.label, c.channel == s.display)) {
                     s.display = c.channel;
                     out.settingsChanged = true;
                 }

@@ -17,6 +17,7 @@ struct ViewerUiState {
     int movingDivisor = 2;              // each side divided by this while it moves
     int selectedCamera = -1;            // index into the scene's cameras; -1: framed on the bounds
     bool quickLookAvailable = false;    // the device has the "eyeLight" renderer (the panel offers it)
+    bool onlyGatheredChannels = false;  // under mpirun: only colour and depth reach rank 0 (the panel offers those)
 };
 
 // What the user asked for in the panels this frame.

@@ -1,13 +1,17 @@
 // ripple-view: an interactive viewer of a glTF file or a built-in demo scene through any ANARI library. Passes
 // render progressively while the view is still and at half size while it moves (with the device's quick-look
 // renderer, where it has one); panels set the renderer and camera. --screenshot renders a fixed number of passes, writes the image and exits.
+// Under mpirun (data-parallel ANARI) every rank imports its share of the glTF file; rank 0 owns the window
+// and sends the others each pass's changes (PassOrders.h); the composite shows on rank 0.
 #include "apps/common/AnariSession.h"
 #include "apps/common/DemoScene.h"
 #include "apps/common/GltfScene.h"
 #include "apps/common/ImageSize.h"
 #include "apps/common/OutputImage.h"
+#include "apps/common/ScenePartition.h"
 #include "apps/common/ViewState.h"
 #include "apps/ripple-view/OrbitCamera.h"
+#include "apps/ripple-view/PassOrders.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
 #include "apps/ripple-view/ViewerPanels.h"
 #include "apps/ripple-view/ViewerWindow.h"
@@ -15,6 +19,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
+
+#include "mpi/Runtime.h"
 
 #include <CLI/CLI.hpp>
 
@@ -43,6 +49,7 @@ struct Options {
     bool sizeGiven = false;             // --size on the command line (else the view file's size, if any)
     bool samplesGiven = false, pathLengthGiven = false;
     std::optional<int> camera;
+    std::string partition = "round-robin";  // under mpirun: how the glTF file is split over the ranks
     bool quiet = false;
 };
 
@@ -93,38 +100,88 @@ void saveView(const std::filesystem::path& file, const CameraView& view, const V
     }
 }
 
-int run(const Options& options, Session& s) {
-    // Everything that can fail without a window is checked first.
+// This rank's share of the scene (all of it with one rank); lights on rank 0 alone, as ripple-render places
+// them (the device gathers every rank's lights).
+AnariWorld buildScene(const Options& options, const std::optional<GltfScene>& gltf, const mpi::Communicator& ranks,
+                      Session& s) {
+    if (!gltf) return buildDemoScene(s.device, options.demo.empty() ? "default" : options.demo);
+    const GltfScene share = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()),
+                                           parsePartitionKind(options.partition));
+    return buildAnariWorld(s.device, share, ranks.rank() == 0);
+}
+
+// Ranks other than 0 under mpirun: the same scene share and device as rank 0, no window; each pass as rank 0
+// orders it, until it says the viewer closed.
+int followRankZero(const Options& options, const mpi::Communicator& ranks, Session& s) {
+    if (!shareStart(ranks, false)) return 1;  // rank 0 said why
+    const std::optional<GltfScene> gltf = loadGltf(options.scene);
+    StatusLog log{"ripple-view", options.quiet, 0};
+    openAnariDevice(options.library, log, s);
+    const AnariWorld scene = buildScene(options, gltf, ranks, s);
+    s.objects.push_back(scene.world);
+    worldBounds(s.device, scene);  // collective: rank 0 frames the view on the union of the ranks' bounds
+    const PassOrder start = sharePassOrder(ranks, {});
+    if (start.quit) return 0;
+    if (!start.changes.view || !start.changes.settings || !start.changes.size || !start.changes.reducedScale)
+        throw std::runtime_error("rank 0's first order lacks the view, settings or size");
+    ProgressiveFrames frames(s, scene, *start.changes.view, *start.changes.size, *start.changes.settings,
+                             *start.changes.reducedScale, false);
+    for (PassOrder order = sharePassOrder(ranks, {}); !order.quit; order = sharePassOrder(ranks, {})) {
+        frames.apply(order.changes);
+        if (!frames.startPass(order.moving, order.maxSamples))
+            throw std::runtime_error("rank " + std::to_string(ranks.rank()) + " cannot start the pass rank 0 started");
+        frames.poll(true);
+    }
+    return log.errors > 0 ? 1 : 0;
+}
+
+int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
+    // Everything that can fail without a window is checked first; under mpirun the other ranks wait for its
+    // outcome (and end with rank 0 when it fails).
+    std::optional<ViewerWindow> windowHolder;
     std::optional<ViewState> savedView;
+    std::optional<GltfScene> gltf;
+    glm::uvec2 size{0, 0};
+    const bool headless = !options.screenshot.empty();
+    const std::string demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
+    try {
     if (!options.view.empty() && std::filesystem::exists(options.view)) {
         if (options.camera) throw std::runtime_error("give one of --camera and an existing --view file");
         savedView = readViewState(options.view);
     }
-    const glm::uvec2 size = savedView && savedView->size && !options.sizeGiven ? *savedView->size : parseImageSize(options.size);
+    size = savedView && savedView->size && !options.sizeGiven ? *savedView->size : parseImageSize(options.size);
     if (!options.scene.empty() && !options.demo.empty())
         throw std::runtime_error("give either a scene file or --demo, not both");
-    const std::string demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
+    if (ranks.distributed() && options.scene.empty())
+        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
     if (!demo.empty()) checkDemoSceneName(demo);
-    const bool headless = !options.screenshot.empty();
+    parsePartitionKind(options.partition);
     if (headless) {
         outputFormatOf(options.screenshot, "--screenshot");
         checkOutputWritable(options.screenshot, "--screenshot");
     }
-    std::optional<GltfScene> gltf;
     if (!options.scene.empty()) {
         gltf = loadGltf(options.scene);
         if (!options.quiet)
             for (const std::string& warning : gltf->warnings) std::fprintf(stderr, "[ripple-view] WARNING: %s\n", warning.c_str());
     }
+    windowHolder.emplace(size, options.scene.empty() ? "ripple-view: demo " + demo : "ripple-view: " + options.scene);
+    } catch (const std::exception& e) {
+        if (ranks.distributed()) shareStart(ranks, false);  // the other ranks end without a word
+        std::fprintf(stderr, "[ripple-view] ERROR: %s\n", e.what());
+        return 1;
+    }
+    if (ranks.distributed()) shareStart(ranks, true);
+    ViewerWindow& window = *windowHolder;
 
-    ViewerWindow window(size, options.scene.empty() ? "ripple-view: demo " + demo : "ripple-view: " + options.scene);
     StatusLog log{"ripple-view", options.quiet, 0};
     openAnariDevice(options.library, log, s);
-    const AnariWorld scene = gltf ? buildAnariWorld(s.device, *gltf) : buildDemoScene(s.device, demo);
+    const AnariWorld scene = buildScene(options, gltf, ranks, s);
     s.objects.push_back(scene.world);
     const auto [lo, hi] = worldBounds(s.device, scene);
 
     ViewerUiState ui;
+    ui.onlyGatheredChannels = ranks.distributed();
     ui.settings.pixelSamples = options.samplesPerPass;
     ui.settings.maxPathLength = options.maxPathLength;
     ui.settings.background = scene.background;
@@ -148,7 +205,10 @@ int run(const Options& options, Session& s) {
                  : ui.selectedCamera >= 0 ? scene.cameras[size_t(ui.selectedCamera)]
                                           : frameBounds(lo, hi, aspect()),
                  lo, hi);
-    ProgressiveFrames frames(s, scene, camera.view(), renderSize, ui.settings);
+    const uint32_t reducedScale = 2;
+    // The other ranks make their frames from the same view, size and settings.
+    sharePassOrder(ranks, {false, false, 0, {camera.view(), ui.settings, renderSize, reducedScale}});
+    ProgressiveFrames frames(s, scene, camera.view(), renderSize, ui.settings, reducedScale);
     ui.quickLookAvailable = frames.hasQuickLook();
 
     using Clock = std::chrono::steady_clock;
@@ -245,10 +305,14 @@ int run(const Options& options, Session& s) {
         frames.setReducedScale(ui.reduceWhileMoving ? uint32_t(ui.movingDivisor) : 1);
         const bool moving = !headless &&
                             now - lastChange < std::chrono::duration<double>(kSettleSeconds);
-        frames.startPass(moving, headless ? 0 : ui.maxSamples);
+        const uint32_t maxSamples = headless ? 0 : ui.maxSamples;
+        if (ranks.distributed() && frames.passDue(moving, maxSamples))
+            sharePassOrder(ranks, {false, moving, maxSamples, frames.pending()});
+        frames.startPass(moving, maxSamples);
         window.endFrame();
     }
     frames.poll(true);
+    sharePassOrder(ranks, {true, false, 0, {}});  // the other ranks end
     if (log.errors > 0) {
         std::fprintf(stderr, "[ripple-view] ERROR: the device reported %d error(s)\n", log.errors);
         return 1;
@@ -260,6 +324,8 @@ int run(const Options& options, Session& s) {
 }  // namespace ripple::apps
 
 int main(int argc, char** argv) {
+    ripple::mpi::Runtime runtime(&argc, &argv);
+    const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();  // collective: before anything can fail
     ripple::apps::Options options;
     CLI::App app{"ripple-view: view a glTF 2.0 file or a built-in demo scene interactively through an ANARI library.\n"
                  "Mouse: left drag orbits, right or middle drag pans, the wheel zooms. Keys: W/A/S/D/Q/E fly (shift: "
@@ -287,6 +353,10 @@ int main(int argc, char** argv) {
     app.add_option("--view", options.view,
                    "view-state file: read at start when it exists (camera, settings, size where the command line "
                    "does not set them); V writes it (default: ripple-view.json)");
+    app.add_option("--partition", options.partition,
+                   "under mpirun, each rank imports: round-robin (whole mesh instances dealt in turn) or spatial "
+                   "(the triangles of one k-d region per rank)")
+        ->capture_default_str();
     app.add_flag("-q,--quiet", options.quiet, "no warnings");
     CLI11_PARSE(app, argc, argv);
     options.sizeGiven = app.count("--size") > 0;
@@ -295,8 +365,11 @@ int main(int argc, char** argv) {
 
     ripple::apps::Session session;  // outlives the viewer's objects, which are released first
     try {
-        return ripple::apps::run(options, session);
+        return ranks.rank() == 0 ? ripple::apps::run(options, ranks, session)
+                                 : ripple::apps::followRankZero(options, ranks, session);
     } catch (const std::exception& e) {
+        // Under mpirun the other ranks may be inside a collective this rank never enters: end them all.
+        if (ranks.distributed()) ranks.abort("[ripple-view] ERROR (rank " + std::to_string(ranks.rank()) + "): " + e.what());
         std::fprintf(stderr, "[ripple-view] ERROR: %s\n", e.what());
         return 1;
     }

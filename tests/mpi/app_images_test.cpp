@@ -115,6 +115,23 @@ TEST_CASE("ripple-render: an emissive ceiling split over 2 ranks lights the room
     CHECK(std::abs(two - one) <= 0.03 * one);
 }
 
+// ripple-view under mpirun: rank 0 orders each pass and the other rank renders its part of it, so its
+// screenshot after 16 passes of 1 spp is ripple-render's 16 frames of 1 spp over the same 2-rank split, pixel
+// for pixel (the random numbers are keyed by pixel and sample).
+TEST_CASE("ripple-view: over 2 ranks it shows what ripple-render renders over 2 ranks") {
+    const std::filesystem::path viewed = imageFolder() / "view_cornell_2.pfm";
+    if (!std::filesystem::exists(viewed)) {
+        MESSAGE("skipped: ripple-view or xvfb-run was not found at configure time");
+        return;
+    }
+    const FloatImage view = readPfm(viewed), render = readPfm(imageFolder() / "cornell_2.pfm");
+    REQUIRE(view.width == render.width);
+    REQUIRE(view.height == render.height);
+    int differing = 0;
+    for (size_t i = 0; i < view.pixels.size(); ++i) differing += view.pixels[i] != render.pixels[i] ? 1 : 0;
+    CHECK(differing == 0);
+}
+
 // Each rank holds a z-slab of the field (sharing its boundary sample plane) and keys its own random numbers,
 // so the images agree statistically: the mean of each of the 4x4 tiles (12x12 pixels) within 5% + 0.01 of
 // the one-rank image's. Measured: the worst tile at 0.13 (2 ranks) and 0.21 (3 ranks) of that tolerance; with
