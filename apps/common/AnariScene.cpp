@@ -3,6 +3,7 @@
 #include "apps/common/AnariScene.h"
 
 #include "apps/common/AnariParams.h"
+#include "apps/common/SceneEdits.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -29,8 +30,9 @@ const char* wrapName(GltfWrap wrap) {
 
 class WorldBuilder {
 public:
-    WorldBuilder(ANARIDevice d, const GltfScene& scene, bool withLights, const std::vector<ANARILight>& extraLights)
-        : d_(d), scene_(scene), withLights_(withLights), extraLights_(extraLights), handles_(d) {}
+    WorldBuilder(ANARIDevice d, const GltfScene& scene, bool withLights, const std::vector<ANARILight>& extraLights,
+                 SceneEdits* edits)
+        : d_(d), scene_(scene), withLights_(withLights), extraLights_(extraLights), edits_(edits), handles_(d) {}
 
     AnariWorld build() {
         std::vector<ANARIGroup> groups(scene_.meshes.size(), nullptr);
@@ -46,7 +48,10 @@ public:
             instances.push_back(instance);
         }
         std::vector<ANARILight> lights = extraLights_;
-        for (const GltfLight& l : scene_.lights) lights.push_back(light(l));
+        for (size_t i = 0; i < scene_.lights.size(); ++i) {
+            const GltfLight& l = scene_.lights[i];
+            lights.push_back(light(l, l.name.empty() ? "light " + std::to_string(i) : l.name));
+        }
 
         AnariWorld out;
         out.background = glm::vec4(0.08f, 0.08f, 0.09f, 1.0f);
@@ -65,7 +70,7 @@ public:
             key.direction = glm::normalize(glm::vec3(0.4f, -1.0f, -0.6f));
             key.intensity = 2.0f;
             key.angularDiameter = kStudioSunAngularDiameter;
-            lights.push_back(light(key));
+            lights.push_back(light(key, "studio key light"));
             out.ambientRadiance = 0.4f;
             out.background = glm::vec4(0.35f, 0.35f, 0.38f, 1.0f);
         }
@@ -224,7 +229,8 @@ private:
         return materials_[key] = mat;
     }
 
-    ANARILight light(const GltfLight& l) {
+    // `label` names it in a viewer's light panel (edits_).
+    ANARILight light(const GltfLight& l, const std::string& label) {
         static const char* kinds[] = {"directional", "point", "spot"};
         ANARILight light = handles_.keep(anariNewLight(d_, kinds[int(l.kind)]), "light");
         set(d_, light, "color", l.color);
@@ -243,6 +249,11 @@ private:
             set(d_, light, "falloffAngle", l.outerConeAngle - l.innerConeAngle);
         }
         anariCommitParameters(d_, light);
+        if (edits_ && withLights_) {
+            const bool aimed = l.kind != GltfLight::Kind::Point;
+            edits_->add({light, label, kinds[int(l.kind)], l.color, l.intensity,
+                         aimed ? std::optional<glm::vec3>(l.direction) : std::nullopt, 0.0f});
+        }
         return light;
     }
 
@@ -250,6 +261,7 @@ private:
     const GltfScene& scene_;
     bool withLights_ = true;
     std::vector<ANARILight> extraLights_;
+    SceneEdits* edits_ = nullptr;
     anari::HandleList handles_;
     std::map<uint32_t, ANARIGeometry> geometries_;
     std::map<std::pair<uint32_t, bool>, ANARIArray2D> images_;
@@ -260,8 +272,8 @@ private:
 }  // namespace
 
 AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene, bool withLights,
-                           const std::vector<ANARILight>& extraLights) {
-    return WorldBuilder(device, scene, withLights, extraLights).build();
+                           const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    return WorldBuilder(device, scene, withLights, extraLights, edits).build();
 }
 
 CameraView cameraView(const GltfCamera& camera) {

@@ -13,6 +13,8 @@
 
 namespace ripple::apps {
 
+class SceneEdits;
+
 // The apparent diameter of the studio key light that lights a scene without lights: the sun's, 0.53
 // degrees, in radians (scripts/cycles_render.py gives Cycles' sun the same).
 inline constexpr float kStudioSunAngularDiameter = 0.00925f;
@@ -47,9 +49,10 @@ struct AnariWorld {
 // directional light and an ambient fill, so that it is not black. Throws std::runtime_error when the
 // device returns no object. withLights false: the world gets no lights, while the ambient fill and the
 // background are chosen as with them (a data-parallel rank whose lights another rank holds). extraLights
-// (an environment, say; the caller keeps them) count as the scene's lights.
+// (an environment, say; the caller keeps them) count as the scene's lights. edits: where given, the lights
+// this world holds are listed there (a viewer's light panel edits them).
 AnariWorld buildAnariWorld(ANARIDevice device, const GltfScene& scene, bool withLights = true,
-                           const std::vector<ANARILight>& extraLights = {});
+                           const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
 
 // The glTF camera as a CameraView (node transform applied; orthographic height is twice ymag).
 CameraView cameraView(const GltfCamera& camera);

@@ -3,6 +3,7 @@
 #include "apps/common/DemoScene.h"
 
 #include "apps/common/AnariParams.h"
+#include "apps/common/SceneEdits.h"
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 
 namespace ripple::apps {
@@ -91,8 +93,10 @@ MeshData torus(float R, float r, int segments, int sides, const glm::mat4& trans
 
 class DemoBuilder {
 public:
-    // extraLights (owned by the caller) join the scene's own lights in the world.
-    DemoBuilder(ANARIDevice d, const std::vector<ANARILight>& extraLights) : d_(d), handles_(d), lights_(extraLights) {}
+    // extraLights (owned by the caller) join the scene's own lights in the world. edits: where given, the
+    // lights, volumes and iso-surfaces made here are listed there.
+    DemoBuilder(ANARIDevice d, const std::vector<ANARILight>& extraLights, SceneEdits* edits)
+        : d_(d), handles_(d), lights_(extraLights), edits_(edits) {}
 
     ANARIMaterial matte(const glm::vec3& color) {
         ANARIMaterial m = handles_.keep(anariNewMaterial(d_, "matte"), "matte material");
@@ -150,6 +154,7 @@ public:
         set(d_, l, "irradiance", irradiance);
         anariCommitParameters(d_, l);
         lights_.push_back(l);
+        if (edits_) edits_->add({l, "sun", "directional", color, irradiance, glm::normalize(direction), 0.0f});
     }
 
     // Emits from the side cross(edge1, edge2) points to.
@@ -164,6 +169,7 @@ public:
         set(d_, l, "side", "front");
         anariCommitParameters(d_, l);
         lights_.push_back(l);
+        if (edits_) edits_->add({l, "quad light", "quad", color, radiance, std::nullopt, 0.0f});
     }
 
     // A structuredRegular field of FLOAT32 samples (x fastest) spanning [lo, hi].
@@ -179,6 +185,8 @@ public:
         set(d_, field, "origin", lo);
         set(d_, field, "spacing", (hi - lo) / glm::vec3(dims - 1u));
         anariCommitParameters(d_, field);
+        const auto [smallest, largest] = std::minmax_element(samples.begin(), samples.end());
+        fieldRanges_[field] = samples.empty() ? glm::vec2(0.0f, 1.0f) : glm::vec2(*smallest, *largest);
         return field;
     }
 
@@ -195,6 +203,8 @@ public:
         set(d_, v, "unitDistance", unitDistance);
         anariCommitParameters(d_, v);
         volumes_.push_back(v);
+        if (edits_) edits_->add(EditableVolume{v, "volume " + std::to_string(volumes_.size() - 1), colors, opacities,
+                                               {lo, hi}, unitDistance, fieldRanges_.at(field)});
     }
 
     // The surface where the field equals `isovalue`.
@@ -203,6 +213,8 @@ public:
         setObject(d_, g, "field", ANARI_SPATIAL_FIELD, field);
         set(d_, g, "isovalue", isovalue);
         surface(g, material);
+        if (edits_) edits_->add(EditableIsosurface{g, "isosurface " + std::to_string(edits_->isosurfaces.size()),
+                                                   isovalue, fieldRanges_.at(field)});
     }
 
     // Everything in one group under one identity instance, as a glTF scene's meshes are.
@@ -252,6 +264,8 @@ private:
     std::vector<ANARISurface> surfaces_;
     std::vector<ANARIVolume> volumes_;
     std::vector<ANARILight> lights_;
+    SceneEdits* edits_;
+    std::map<ANARISpatialField, glm::vec2> fieldRanges_;  // each field's smallest and largest sample
 };
 
 CameraView lookAt(const glm::vec3& from, const glm::vec3& at, float fovyDegrees) {
@@ -263,8 +277,8 @@ CameraView lookAt(const glm::vec3& from, const glm::vec3& at, float fovyDegrees)
     return view;
 }
 
-AnariWorld defaultScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
-    DemoBuilder b(d, extraLights);
+AnariWorld defaultScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    DemoBuilder b(d, extraLights, edits);
     b.mesh(tiledFloor(6.0f, 12, glm::vec3(0.75f, 0.74f, 0.70f), glm::vec3(0.50f, 0.52f, 0.55f)), b.matteFromColors());
     b.spheres({{-1.6f, 0.6f, 0.3f}}, 0.6f, b.matte(glm::vec3(0.75f, 0.14f, 0.11f)));                    // matte
     b.spheres({{0.0f, 0.75f, -0.5f}}, 0.75f, b.pbr(glm::vec3(1.0f, 0.78f, 0.34f), 1.0f, 0.12f));       // polished gold
@@ -286,8 +300,8 @@ AnariWorld defaultScene(ANARIDevice d, const std::vector<ANARILight>& extraLight
 }
 
 // The room spans x, z in [-1, 1] and y in [0, 2]; its open side faces the camera at +Z.
-AnariWorld cornellScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
-    DemoBuilder b(d, extraLights);
+AnariWorld cornellScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    DemoBuilder b(d, extraLights, edits);
     const glm::vec3 white(0.725f, 0.71f, 0.68f), red(0.63f, 0.065f, 0.05f), green(0.14f, 0.45f, 0.091f);
     MeshData room;
     room.quad({-1, 0, -1}, {0, 0, 2}, {2, 0, 0});   // floor, facing up
@@ -344,8 +358,8 @@ struct FieldPlacement {
 // looks at the whole box from the front and above.
 template <class AddField>
 AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& samples, const FieldPlacement& at,
-                      const std::vector<ANARILight>& extraLights, AddField addField) {
-    DemoBuilder b(d, at.stage ? extraLights : std::vector<ANARILight>{});  // lights live where the stage is
+                      const std::vector<ANARILight>& extraLights, SceneEdits* edits, AddField addField) {
+    DemoBuilder b(d, at.stage ? extraLights : std::vector<ANARILight>{}, edits);  // lights live where the stage is
     if (at.stage) b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
     addField(b, b.field(dims, samples, at.lo, at.hi));
     if (at.stage) b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);
@@ -359,16 +373,17 @@ AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& 
 
 // The Marschner-Lobb field (64^3 samples) over [-1, 1]^2 horizontally, standing just above the floor.
 template <class AddField>
-AnariWorld marschnerLobbScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, AddField addField) {
+AnariWorld marschnerLobbScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, SceneEdits* edits,
+                              AddField addField) {
     const glm::uvec3 dims(64);
     const glm::vec3 lo(-1.0f, 0.05f, -1.0f), hi(1.0f, 2.05f, 1.0f);
-    return fieldScene(d, dims, marschnerLobbSamples(dims), {lo, hi, lo, hi}, extraLights, addField);
+    return fieldScene(d, dims, marschnerLobbSamples(dims), {lo, hi, lo, hi}, extraLights, edits, addField);
 }
 
 // A Marschner-Lobb volume (64^3 samples) standing on a floor, under a sun and a sky: the medium scatters
 // (albedo from a warm colour map) and casts its shadow.
-AnariWorld volumeScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
-    return marschnerLobbScene(d, extraLights, [](DemoBuilder& b, ANARISpatialField field) {
+AnariWorld volumeScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    return marschnerLobbScene(d, extraLights, edits, [](DemoBuilder& b, ANARISpatialField field) {
         b.volume(field, {{0.15f, 0.2f, 0.6f}, {0.2f, 0.7f, 0.8f}, {0.95f, 0.85f, 0.4f}, {0.95f, 0.35f, 0.15f}},
                  // A thin shell around the value 0.5, where the signal's rings are.
                  {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.8f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
@@ -379,8 +394,8 @@ AnariWorld volumeScene(ANARIDevice d, const std::vector<ANARILight>& extraLights
 
 // The same field's iso-surface at 0.5 as polished gold: the rings, traced exactly through the trilinear
 // interpolant of the 64^3 samples.
-AnariWorld isosurfaceScene(ANARIDevice d, const std::vector<ANARILight>& extraLights) {
-    return marschnerLobbScene(d, extraLights, [](DemoBuilder& b, ANARISpatialField field) {
+AnariWorld isosurfaceScene(ANARIDevice d, const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    return marschnerLobbScene(d, extraLights, edits, [](DemoBuilder& b, ANARISpatialField field) {
         b.isosurface(field, 0.5f, b.pbr({1.0f, 0.78f, 0.34f}, 1.0f, 0.3f));
     });
 }
@@ -412,6 +427,11 @@ glm::vec3 colorAt(const std::vector<glm::vec3>& map, float t) {
 
 std::vector<std::string> transferFunctionNames() { return {"viridis", "coolwarm", "grayscale"}; }
 
+std::vector<glm::vec3> transferFunctionColors(const std::string& name) {
+    checkTransferFunctionName(name);
+    return colorMap(name);
+}
+
 void checkTransferFunctionName(const std::string& name) {
     const std::vector<std::string> names = transferFunctionNames();
     if (std::find(names.begin(), names.end(), name) != names.end()) return;
@@ -421,7 +441,7 @@ void checkTransferFunctionName(const std::string& name) {
 }
 
 AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const FieldSceneOptions& options,
-                           const std::vector<ANARILight>& extraLights) {
+                           const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
     if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
     const glm::uvec3 whole = data.wholeDims == glm::uvec3(0) ? data.dims : data.wholeDims;
     const glm::vec3 extent = glm::vec3(whole - 1u) * data.spacing;
@@ -433,7 +453,7 @@ AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const Fie
     const std::vector<glm::vec3> colors = colorMap(options.transferFunction.empty() ? "viridis" : options.transferFunction);
     const glm::vec2 values = options.valueRange.value_or(glm::vec2(data.minValue, data.maxValue));
     const float range = values.y - values.x;
-    return fieldScene(device, data.dims, data.values, at, extraLights, [&](DemoBuilder& b, ANARISpatialField field) {
+    return fieldScene(device, data.dims, data.values, at, extraLights, edits, [&](DemoBuilder& b, ANARISpatialField field) {
         if (!options.transferFunction.empty())
             b.volume(field, colors, {0.0f, options.opacity}, options.unitDistance.value_or(kDefaultUnitDistance),
                      values.x, values.y);
@@ -454,12 +474,13 @@ void checkDemoSceneName(const std::string& name) {
     throw std::invalid_argument("unknown demo scene '" + name + "' (known: " + known + ")");
 }
 
-AnariWorld buildDemoScene(ANARIDevice device, const std::string& name, const std::vector<ANARILight>& extraLights) {
+AnariWorld buildDemoScene(ANARIDevice device, const std::string& name, const std::vector<ANARILight>& extraLights,
+                          SceneEdits* edits) {
     checkDemoSceneName(name);
-    if (name == "cornell") return cornellScene(device, extraLights);
-    if (name == "volume") return volumeScene(device, extraLights);
-    if (name == "isosurface") return isosurfaceScene(device, extraLights);
-    return defaultScene(device, extraLights);
+    if (name == "cornell") return cornellScene(device, extraLights, edits);
+    if (name == "volume") return volumeScene(device, extraLights, edits);
+    if (name == "isosurface") return isosurfaceScene(device, extraLights, edits);
+    return defaultScene(device, extraLights, edits);
 }
 
 }  // namespace ripple::apps

@@ -21,14 +21,19 @@ void checkDemoSceneName(const std::string& name);
 
 // Builds the named demo scene on `device`; the world's cameras hold its one good view. extraLights (an
 // environment, say; the caller keeps them) join the scene's own. Throws as checkDemoSceneName does for an
-// unknown name.
-AnariWorld buildDemoScene(ANARIDevice device, const std::string& name, const std::vector<ANARILight>& extraLights = {});
+// unknown name. edits: where given, the scene's lights, volumes and iso-surfaces are listed there.
+AnariWorld buildDemoScene(ANARIDevice device, const std::string& name, const std::vector<ANARILight>& extraLights = {},
+                          SceneEdits* edits = nullptr);
 
 // The colour maps buildFieldScene takes: viridis, coolwarm, grayscale.
 std::vector<std::string> transferFunctionNames();
 
 // Throws std::invalid_argument listing the known names when `name` is not one of them.
 void checkTransferFunctionName(const std::string& name);
+
+// The named colour map's control points, evenly spaced (as a transferFunction1D's color array); throws as
+// checkTransferFunctionName does.
+std::vector<glm::vec3> transferFunctionColors(const std::string& name);
 
 // What buildFieldScene draws of a field.
 struct FieldSceneOptions {
@@ -56,6 +61,6 @@ constexpr float kDefaultUnitDistance = 0.2f;
 // frames it. A slab (data.zFirst, data.wholeDims) takes its place in the whole field's box. Throws as
 // checkTransferFunctionName does.
 AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const FieldSceneOptions& options,
-                           const std::vector<ANARILight>& extraLights = {});
+                           const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
 
 }  // namespace ripple::apps

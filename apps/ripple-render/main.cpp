@@ -11,6 +11,7 @@
 #include "apps/common/ImageIO.h"
 #include "apps/common/ImageSize.h"
 #include "apps/common/OutputImage.h"
+#include "apps/common/SceneEdits.h"
 #include "apps/common/ScenePartition.h"
 #include "apps/common/ViewState.h"
 #include "apps/common/VolumeFile.h"
@@ -309,13 +310,7 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     // Every rank reads it and makes the light, so that all build the same scene settings; only rank 0
     // places lights in its world (the device gathers them).
     if (!options.environment.empty()) {
-        plan.environment = readLinearImage(options.environment);
-        for (float value : plan.environment->rgb)
-            if (!std::isfinite(value) || value < 0.0f)
-                throw std::runtime_error("--environment " + options.environment +
-                                         ": holds a negative, NaN or Inf radiance; give a linear image of radiances");
-        if (plan.environment->width < 2 || plan.environment->height < 1)
-            throw std::runtime_error("--environment " + options.environment + ": the image is too small to be an environment");
+        plan.environment = readEnvironmentImage(options.environment);
     }
     if (!std::isfinite(options.environmentRotation))
         throw std::runtime_error("--environment-rotation must be finite");
@@ -341,29 +336,6 @@ void openDevice(const Options& options, StatusLog& log, Session& s) {
     if (!options.traversal.empty() || !options.exchange.empty()) anariCommitParameters(s.device, s.device);
 }
 
-// An "hdri" light of an equirectangular image (row 0 at the top, towards +Y): its centre column is seen
-// along -Z turned by `rotationDegrees` about +Y, so the default faces a camera looking down -Z.
-ANARILight environmentLight(Session& s, const LinearImage& image, float intensity, float rotationDegrees) {
-    ANARILight light = anariNewLight(s.device, "hdri");
-    if (!light) throw std::runtime_error("the device has no 'hdri' light: --environment needs one");
-    s.objects.push_back(light);
-    ANARIArray2D radiance = anariNewArray2D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32_VEC3, image.width, image.height);
-    if (!radiance) throw std::runtime_error("the device could not make a " + std::to_string(image.width) + "x" +
-                                            std::to_string(image.height) + " array for --environment");
-    s.objects.push_back(radiance);
-    void* texels = anariMapArray(s.device, radiance);
-    if (!texels) throw std::runtime_error("the device could not map the --environment array");
-    std::memcpy(texels, image.rgb.data(), image.rgb.size() * sizeof(float));
-    anariUnmapArray(s.device, radiance);
-    const float turn = glm::radians(rotationDegrees);
-    anari::setObject(s.device, light, "radiance", ANARI_ARRAY2D, radiance);
-    anari::set(s.device, light, "direction", glm::vec3(-std::sin(turn), 0.0f, -std::cos(turn)));
-    anari::set(s.device, light, "up", glm::vec3(0.0f, 1.0f, 0.0f));
-    anari::set(s.device, light, "scale", intensity);
-    anariCommitParameters(s.device, light);
-    return light;
-}
-
 // The scene on the device: under mpirun each rank imports only its share of the file, so that no rank holds
 // the whole scene; the lights become ANARI lights on rank 0 alone (the device gathers every rank's lights).
 AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session& s,
@@ -377,8 +349,11 @@ AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session&
     stats.triangles = gltf ? gltf->trianglesDrawn() : 0;
     // The environment is a light like the scene's, placed on rank 0 alone.
     std::vector<ANARILight> extraLights;
-    if (plan.environment) extraLights.push_back(environmentLight(s, *plan.environment, plan.environmentIntensity,
-                                                               plan.environmentRotation));
+    if (plan.environment) {
+        extraLights.push_back(newEnvironmentLight(s.device, *plan.environment, plan.environmentIntensity,
+                                                  plan.environmentRotation));
+        s.objects.push_back(extraLights.back());
+    }
     AnariWorld scene = plan.field ? buildFieldScene(s.device, *plan.field, plan.fieldOptions, extraLights)
                        : gltf     ? buildAnariWorld(s.device, *gltf, plan.root, extraLights)
                                   : buildDemoScene(s.device, plan.demo, extraLights);

@@ -94,6 +94,8 @@ void ProgressiveFrames::setReducedScale(uint32_t scale) {
     if (std::max(scale, 1u) != scale_) pendingScale_ = std::max(scale, 1u);
 }
 
+void ProgressiveFrames::editScene(std::function<void()> commit) { pendingEdits_.push_back(std::move(commit)); }
+
 void ProgressiveFrames::apply(const PendingChanges& changes) {
     if (changes.view) setView(*changes.view);
     if (changes.settings) setSettings(*changes.settings);
@@ -103,6 +105,11 @@ void ProgressiveFrames::apply(const PendingChanges& changes) {
 
 // Called with no pass in flight: the device's objects are only changed between passes.
 void ProgressiveFrames::applyPending() {
+    if (!pendingEdits_.empty()) {
+        for (const std::function<void()>& commit : pendingEdits_) commit();
+        pendingEdits_.clear();
+        fullStale_ = true;
+    }
     if (pendingScale_) {
         scale_ = *pendingScale_;
         pendingScale_.reset();
@@ -172,7 +179,7 @@ ANARIRenderer ProgressiveFrames::movingRenderer(bool reducedFrame) const {
 bool ProgressiveFrames::passDue(bool moving, uint32_t maxSamples) const {
     if (inFlight_) return false;
     // A new view, size or settings restart the full frame (applyPending), whatever it holds.
-    const bool restarts = fullStale_ || pendingView_ || pendingSize_ || pendingSettings_;
+    const bool restarts = fullStale_ || pendingView_ || pendingSize_ || pendingSettings_ || !pendingEdits_.empty();
     return moving || restarts || maxSamples == 0 || fullSamples_ < maxSamples;
 }
 

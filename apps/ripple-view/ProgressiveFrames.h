@@ -17,6 +17,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -78,6 +79,9 @@ public:
     // Each side of the reduced frame is the full size divided by `scale` (1: moving passes are full size,
     // but still restart).
     void setReducedScale(uint32_t scale);
+    // A change to the scene's objects (SceneEdits::commit calls): `commit` runs before the next pass, when
+    // none is in flight, and the accumulation restarts.
+    void editScene(std::function<void()> commit);
 
     PendingChanges pending() const { return {pendingView_, pendingSettings_, pendingSize_, pendingScale_}; }
     // Takes up another instance's pending() as if its setters had been called here.
@@ -120,6 +124,7 @@ private:
     std::optional<ViewerSettings> pendingSettings_;
     std::optional<glm::uvec2> pendingSize_;
     std::optional<uint32_t> pendingScale_;
+    std::vector<std::function<void()>> pendingEdits_;
     CameraView view_;
     ViewerSettings settings_;
     bool fullStale_ = true;             // the full frame restarts with its next pass

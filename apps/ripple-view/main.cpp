@@ -8,11 +8,13 @@
 #include "apps/common/GltfScene.h"
 #include "apps/common/ImageSize.h"
 #include "apps/common/OutputImage.h"
+#include "apps/common/SceneEdits.h"
 #include "apps/common/ScenePartition.h"
 #include "apps/common/ViewState.h"
 #include "apps/ripple-view/OrbitCamera.h"
 #include "apps/ripple-view/PassOrders.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
+#include "apps/ripple-view/ScenePanels.h"
 #include "apps/ripple-view/ViewerPanels.h"
 #include "apps/ripple-view/ViewerWindow.h"
 
@@ -50,6 +52,9 @@ struct Options {
     bool samplesGiven = false, pathLengthGiven = false;
     std::optional<int> camera;
     std::string partition = "round-robin";  // under mpirun: how the glTF file is split over the ranks
+    std::string environment;            // an equirectangular image lighting the scene (rank 0 holds the light)
+    float environmentIntensity = 1.0f;
+    float environmentRotation = 0.0f;   // degrees
     bool quiet = false;
 };
 
@@ -101,13 +106,13 @@ void saveView(const std::filesystem::path& file, const CameraView& view, const V
 }
 
 // This rank's share of the scene (all of it with one rank); lights on rank 0 alone, as ripple-render places
-// them (the device gathers every rank's lights).
+// them (the device gathers every rank's lights). `edits` (rank 0's) lists what the scene panels edit.
 AnariWorld buildScene(const Options& options, const std::optional<GltfScene>& gltf, const mpi::Communicator& ranks,
-                      Session& s) {
-    if (!gltf) return buildDemoScene(s.device, options.demo.empty() ? "default" : options.demo);
+                      Session& s, const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr) {
+    if (!gltf) return buildDemoScene(s.device, options.demo.empty() ? "default" : options.demo, extraLights, edits);
     const GltfScene share = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()),
                                            parsePartitionKind(options.partition));
-    return buildAnariWorld(s.device, share, ranks.rank() == 0);
+    return buildAnariWorld(s.device, share, ranks.rank() == 0, extraLights, edits);
 }
 
 // Ranks other than 0 under mpirun: the same scene share and device as rank 0, no window; each pass as rank 0
@@ -141,6 +146,7 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
     std::optional<ViewerWindow> windowHolder;
     std::optional<ViewState> savedView;
     std::optional<GltfScene> gltf;
+    std::optional<LinearImage> environment;
     glm::uvec2 size{0, 0};
     const bool headless = !options.screenshot.empty();
     const std::string demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
@@ -165,6 +171,12 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
         if (!options.quiet)
             for (const std::string& warning : gltf->warnings) std::fprintf(stderr, "[ripple-view] WARNING: %s\n", warning.c_str());
     }
+    if (!options.environment.empty()) {
+        if (!std::isfinite(options.environmentIntensity) || options.environmentIntensity < 0.0f ||
+            !std::isfinite(options.environmentRotation))
+            throw std::runtime_error("--environment-intensity and --environment-rotation must be finite, the intensity not negative");
+        environment = readEnvironmentImage(options.environment);
+    }
     windowHolder.emplace(size, options.scene.empty() ? "ripple-view: demo " + demo : "ripple-view: " + options.scene);
     } catch (const std::exception& e) {
         if (ranks.distributed()) shareStart(ranks, false);  // the other ranks end without a word
@@ -176,7 +188,17 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
 
     StatusLog log{"ripple-view", options.quiet, 0};
     openAnariDevice(options.library, log, s);
-    const AnariWorld scene = buildScene(options, gltf, ranks, s);
+    SceneEdits edits(s.device);  // what the Lights and Volumes panels edit
+    std::vector<ANARILight> extraLights;
+    if (environment) {
+        extraLights.push_back(newEnvironmentLight(s.device, *environment, options.environmentIntensity,
+                                                  options.environmentRotation));
+        s.objects.push_back(extraLights.back());
+        edits.add({extraLights.back(), "environment", "hdri", glm::vec3(1.0f), options.environmentIntensity,
+                   std::nullopt, options.environmentRotation});
+    }
+    AnariWorld scene = buildScene(options, gltf, ranks, s, extraLights, &edits);
+    if (environment) scene.ambientRadiance = 0.0f;  // the environment replaces the scene's ambient fill
     s.objects.push_back(scene.world);
     const auto [lo, hi] = worldBounds(s.device, scene);
 
@@ -217,6 +239,7 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
     uint32_t fullPasses = 0;
     double laterPassMilliseconds = 0.0;  // full-size passes after the first
     std::optional<std::filesystem::path> screenshotRequest;
+    SceneEditRequests editsToCommit;  // panel edits not yet handed to the frames (they wait for a pass to end)
     while (!window.closing()) {
         window.beginFrame(frames.busy() ? 0.008 : 0.05);
         const Clock::time_point now = Clock::now();
@@ -271,6 +294,10 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                 ui.selectedCamera = -1;
                 viewChanged = true;
             }
+            if (const SceneEditRequests edited = drawScenePanels(edits); !edited.empty()) {
+                editsToCommit.merge(edited);
+                lastChange = now;  // redraw at reduced size while a slider moves
+            }
             if (requests.settingsChanged) frames.setSettings(ui.settings);
             if (requests.screenshot) screenshotRequest = nextScreenshotName();
             if (requests.saveView) saveView(viewFileOf(options), camera.view(), ui.settings, renderSize);
@@ -305,6 +332,10 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
         frames.setReducedScale(ui.reduceWhileMoving ? uint32_t(ui.movingDivisor) : 1);
         const bool moving = !headless &&
                             now - lastChange < std::chrono::duration<double>(kSettleSeconds);
+        if (!editsToCommit.empty() && !frames.busy()) {
+            frames.editScene([&edits, requests = editsToCommit] { commitEdits(edits, requests); });
+            editsToCommit = {};
+        }
         const uint32_t maxSamples = headless ? 0 : ui.maxSamples;
         if (ranks.distributed() && frames.passDue(moving, maxSamples))
             sharePassOrder(ranks, {false, moving, maxSamples, frames.pending()});
@@ -353,6 +384,13 @@ int main(int argc, char** argv) {
     app.add_option("--view", options.view,
                    "view-state file: read at start when it exists (camera, settings, size where the command line "
                    "does not set them); V writes it (default: ripple-view.json)");
+    app.add_option("--environment", options.environment,
+                   "equirectangular environment image lighting the scene (.hdr, .exr, .pfm, .png; linear radiance, "
+                   "the image's top row up, +Y); replaces the scene's ambient fill");
+    app.add_option("--environment-intensity", options.environmentIntensity, "scale of the environment's radiance")
+        ->capture_default_str();
+    app.add_option("--environment-rotation", options.environmentRotation, "turn of the environment about the up axis, degrees")
+        ->capture_default_str();
     app.add_option("--partition", options.partition,
                    "under mpirun, each rank imports: round-robin (whole mesh instances dealt in turn) or spatial "
                    "(the triangles of one k-d region per rank)")

@@ -131,4 +131,8 @@ void anariRelease(ANARIDevice, ANARIObject object) {
     if (FakeObject* o = live(object, "anariRelease")) --o->appReferences;
 }
 
+void anariRetain(ANARIDevice, ANARIObject object) {
+    if (FakeObject* o = live(object, "anariRetain")) ++o->appReferences;
+}
+
 }  // extern "C"

@@ -7,6 +7,7 @@
 #include "apps/common/AnariScene.h"
 #include "apps/common/AnariSession.h"
 #include "apps/common/DemoScene.h"
+#include "apps/common/SceneEdits.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
 
 #include <doctest/doctest.h>
@@ -108,6 +109,118 @@ TEST_CASE("viewer passes: moving ones with the quick-look renderer (unless turne
     for (size_t i = 0; i < normals.size() / 3; ++i)
         for (size_t c = 0; c < 3; ++c) wrong += pass.display[i * 4 + c] != 0.5f * normals[i * 3 + c] + 0.5f ? 1 : 0;
     CHECK(wrong == 0);
+    CHECK(log.errors == 0);
+}
+
+namespace {
+
+// `passes` full-size passes from a restart; the last one's colour.
+std::vector<float> stillImage(ProgressiveFrames& frames, int passes) {
+    for (int i = 0; i < passes; ++i) {
+        REQUIRE(frames.startPass(false));
+        REQUIRE(frames.poll(true));
+    }
+    return frames.latest().rgba;
+}
+
+uint64_t realCollisions(Session& s, ANARIFrame frame) {
+    uint64_t count = 0;
+    REQUIRE(anariGetProperty(s.device, frame, "ripple.realCollisions", ANARI_UINT64, &count, sizeof count, ANARI_WAIT));
+    return count;
+}
+
+}  // namespace
+
+// The scene panels' edits (SceneEdits::commit) reach the device between passes and restart the accumulation:
+// the Cornell box's one light at twice its radiance gives every pixel twice its value, exactly (the light's
+// pick and every path's sampling do not depend on it, and the random numbers restart with the samples).
+TEST_CASE("scene edits: a light at twice its radiance doubles every pixel, exactly") {
+    Session s;
+    StatusLog log{"view test", true, 0};
+    openAnariDevice("ripple", log, s);
+    SceneEdits edits(s.device);
+    const AnariWorld scene = buildDemoScene(s.device, "cornell", {}, &edits);
+    s.objects.push_back(scene.world);
+    REQUIRE(edits.lights.size() == 1);
+    CHECK(edits.lights[0].subtype == "quad");
+    CHECK(edits.volumes.empty());
+    ViewerSettings settings;
+    settings.maxPathLength = 3;
+    ProgressiveFrames frames(s, scene, scene.cameras.at(0), {24, 24}, settings, 2);
+    const std::vector<float> before = stillImage(frames, 3);
+    edits.lights[0].intensity *= 2.0f;
+    frames.editScene([&] { edits.commit(edits.lights[0]); });
+    const std::vector<float> after = stillImage(frames, 3);
+    CHECK(frames.latest().samples == 3);  // restarted
+    REQUIRE(after.size() == before.size());
+    size_t lit = 0, wrong = 0;
+    for (size_t i = 0; i < before.size(); i += 4)
+        for (size_t c = 0; c < 3; ++c) {
+            lit += before[i + c] > 0.0f ? 1 : 0;
+            wrong += after[i + c] != 2.0f * before[i + c] ? 1 : 0;
+        }
+    CHECK(lit > before.size() / 2);
+    CHECK(wrong == 0);
+    CHECK(log.errors == 0);
+}
+
+// An iso-surface's value moved out of the field's range and back gives the first image again, bit for bit;
+// a volume's opacity cleared leaves no real collision in it.
+TEST_CASE("scene edits: an isovalue out of range and back, a volume's opacity cleared") {
+    Session s;
+    StatusLog log{"view test", true, 0};
+    openAnariDevice("ripple", log, s);
+    const glm::uvec2 size{24, 18};
+    ViewerSettings settings;
+    settings.maxPathLength = 2;
+    {
+        SceneEdits edits(s.device);
+        const AnariWorld scene = buildDemoScene(s.device, "isosurface", {}, &edits);
+        s.objects.push_back(scene.world);
+        REQUIRE(edits.isosurfaces.size() == 1);
+        CHECK(edits.isosurfaces[0].dataRange.x >= 0.0f);
+        CHECK(edits.isosurfaces[0].dataRange.y <= 1.0f);
+        ProgressiveFrames frames(s, scene, scene.cameras.at(0), size, settings, 2);
+        const std::vector<float> first = stillImage(frames, 2);
+        edits.isosurfaces[0].isovalue = 1.5f;  // above every sample: no surface
+        frames.editScene([&] { edits.commit(edits.isosurfaces[0]); });
+        const std::vector<float> none = stillImage(frames, 2);
+        edits.isosurfaces[0].isovalue = 0.5f;
+        frames.editScene([&] { edits.commit(edits.isosurfaces[0]); });
+        const std::vector<float> again = stillImage(frames, 2);
+        CHECK(none != first);
+        CHECK(again == first);
+    }
+    {
+        SceneEdits edits(s.device);
+        const AnariWorld scene = buildDemoScene(s.device, "volume", {}, &edits);
+        s.objects.push_back(scene.world);
+        REQUIRE(edits.volumes.size() == 1);
+        ProgressiveFrames frames(s, scene, scene.cameras.at(0), size, settings, 2);
+        ANARIFrame probe = anariNewFrame(s.device);  // the collision counts of a frame like the viewer's
+        const ANARIDataType colorType = ANARI_FLOAT32_VEC4;
+        anari::set(s.device, probe, "size", size);
+        anariSetParameter(s.device, probe, "channel.color", ANARI_DATA_TYPE, &colorType);
+        ANARIRenderer renderer = anariNewRenderer(s.device, "default");
+        anariCommitParameters(s.device, renderer);
+        ANARICamera camera = newAnariCamera(s.device, scene.cameras.at(0), float(size.x) / float(size.y));
+        anari::setObject(s.device, probe, "world", ANARI_WORLD, scene.world);
+        anari::setObject(s.device, probe, "renderer", ANARI_RENDERER, renderer);
+        anari::setObject(s.device, probe, "camera", ANARI_CAMERA, camera);
+        anariCommitParameters(s.device, probe);
+        const auto renderProbe = [&] {
+            anariRenderFrame(s.device, probe);
+            anariFrameReady(s.device, probe, ANARI_WAIT);
+            return realCollisions(s, probe);
+        };
+        stillImage(frames, 1);
+        CHECK(renderProbe() > 0);
+        std::fill(edits.volumes[0].opacities.begin(), edits.volumes[0].opacities.end(), 0.0f);
+        frames.editScene([&] { edits.commit(edits.volumes[0]); });
+        stillImage(frames, 1);
+        CHECK(renderProbe() == 0);
+        for (ANARIObject o : {ANARIObject(probe), ANARIObject(renderer), ANARIObject(camera)}) anariRelease(s.device, o);
+    }
     CHECK(log.errors == 0);
 }
 
