@@ -43,6 +43,8 @@ constexpr const char* kAlphaModes[] = {"opaque", "blend", "mask", nullptr};
 constexpr const char* kFilters[] = {"nearest", "linear", nullptr};
 constexpr const char* kWrapModes[] = {"clampToEdge", "repeat", "mirrorRepeat", nullptr};
 constexpr const char* kSides[] = {"front", "back", "both", nullptr};
+constexpr const char* kTraversals[] = {"auto", "software", "rayQuery", nullptr};
+constexpr const char* kExchanges[] = {"bounds", "ring", nullptr};
 constexpr const char* kAttributes[] = {"attribute0", "attribute1", "attribute2", "attribute3", "color",
                                        "primitiveId", "worldPosition", "worldNormal", nullptr};
 
@@ -113,6 +115,19 @@ const std::vector<Param> kAlpha = {
 
 const std::vector<Entry>& table() {
     static const std::vector<Entry> entries = {
+        {ANARI_DEVICE, "default", "Ripple: a wavefront path tracer on Vulkan compute, data-parallel over MPI",
+         {
+             {"statusCallback", ANARI_STATUS_CALLBACK, "receives the device's errors, warnings and messages"},
+             {"statusCallbackUserData", ANARI_VOID_POINTER, "handed to statusCallback"},
+             {"traversal", ANARI_STRING,
+              "ray traversal back-end: auto (ray queries on GPUs that have them, else software), software (Ripple's "
+              "BVH kernels) or rayQuery (VK_KHR_ray_query); RIPPLE_TRAVERSAL sets the default",
+              "auto", kTraversals},
+             {"rayExchange", ANARI_STRING,
+              "how rays cross ranks: bounds (only to the ranks whose boxes a ray enters) or ring (every rank)",
+              "bounds", kExchanges},
+             {"mpiCommunicator", ANARI_VOID_POINTER, "address of the MPI_Comm the ranks render over (default: MPI_COMM_WORLD)"},
+         }},
         {ANARI_GEOMETRY, "triangle", "triangle mesh, indexed (primitive.index UINT32_VEC3) or not",
          joined({kGeometryCommon, kMeshExtras, {{"primitive.index", ANARI_ARRAY1D, "vertex indices (UINT32_VEC3)"}}})},
         {ANARI_GEOMETRY, "quad", "quad mesh, rendered as two triangles per quad",

@@ -311,8 +311,19 @@ void setAnariCamera(ANARIDevice device, ANARICamera camera, const CameraView& vi
     set(device, camera, "direction", view.direction);
     set(device, camera, "up", view.up);
     set(device, camera, "aspect", aspect);
-    if (view.orthographic) set(device, camera, "height", view.height);
-    else set(device, camera, "fovy", view.fovy);
+    if (view.orthographic) {
+        set(device, camera, "height", view.height);
+    } else {
+        set(device, camera, "fovy", view.fovy);
+        // Only a lens is set, so that a device without depth of field is not told of a pinhole.
+        if (view.apertureRadius > 0.0f) {
+            set(device, camera, "apertureRadius", view.apertureRadius);
+            set(device, camera, "focusDistance", view.focusDistance);
+        } else {
+            anariUnsetParameter(device, camera, "apertureRadius");
+            anariUnsetParameter(device, camera, "focusDistance");
+        }
+    }
     anariCommitParameters(device, camera);
 }
 

@@ -28,6 +28,10 @@ struct CameraView {
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float fovy = 0.6981317f;            // perspective: vertical field of view, radians (40 degrees)
     float height = 1.0f;                // orthographic: height of the view
+    // Perspective: depth of field. A lens of this radius (0: a pinhole, everything sharp) focused at this
+    // distance along `direction`.
+    float apertureRadius = 0.0f;
+    float focusDistance = 1.0f;
 };
 
 // What a scene source hands the renderer: a committed world (the caller releases it), the cameras the

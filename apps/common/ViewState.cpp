@@ -93,6 +93,14 @@ ViewState readViewState(const std::filesystem::path& file) {
     } else {
         view.fovy = r.number(r.member(camera, "fovy", " in a perspective \"camera\""), "camera.fovy");
         if (!(view.fovy > 0.0f && view.fovy < 3.14159265f)) r.fail("\"camera.fovy\" must be within (0, pi) radians");
+        if (const auto v = camera.find("apertureRadius"); v != camera.end()) {
+            view.apertureRadius = r.number(*v, "camera.apertureRadius");
+            if (!(view.apertureRadius >= 0.0f)) r.fail("\"camera.apertureRadius\" must not be negative");
+        }
+        if (const auto v = camera.find("focusDistance"); v != camera.end()) {
+            view.focusDistance = r.number(*v, "camera.focusDistance");
+            if (!(view.focusDistance > 0.0f)) r.fail("\"camera.focusDistance\" must be positive");
+        }
     }
 
     if (const auto it = root.find("renderer"); it != root.end()) {
@@ -133,6 +141,10 @@ void writeViewState(const std::filesystem::path& file, const ViewState& state) {
                    {"up", array(v.up)}};
     if (v.orthographic) camera["height"] = v.height;
     else camera["fovy"] = v.fovy;
+    if (!v.orthographic && v.apertureRadius > 0.0f) {
+        camera["apertureRadius"] = v.apertureRadius;
+        camera["focusDistance"] = v.focusDistance;
+    }
     Json renderer = Json::object();
     if (state.renderer) renderer["subtype"] = *state.renderer;
     if (state.pixelSamples) renderer["pixelSamples"] = *state.pixelSamples;

@@ -14,7 +14,7 @@ struct PassOrderRecord {
     // CameraView (its name stays on rank 0: it names nothing the device sees)
     uint32_t orthographic = 0;
     float position[3] = {}, direction[3] = {}, up[3] = {};
-    float fovy = 0.0f, height = 0.0f;
+    float fovy = 0.0f, height = 0.0f, apertureRadius = 0.0f, focusDistance = 0.0f;
     // ViewerSettings
     int32_t pixelSamples = 0, maxPathLength = 0;
     float background[4] = {};
@@ -40,6 +40,8 @@ PassOrderRecord recordOf(const PassOrder& order) {
         std::memcpy(r.up, &c.view->up.x, sizeof r.up);
         r.fovy = c.view->fovy;
         r.height = c.view->height;
+        r.apertureRadius = c.view->apertureRadius;
+        r.focusDistance = c.view->focusDistance;
     }
     if (c.settings) {
         r.has |= kHasSettings;
@@ -76,6 +78,8 @@ PassOrder orderOf(const PassOrderRecord& r) {
         std::memcpy(&view.up.x, r.up, sizeof r.up);
         view.fovy = r.fovy;
         view.height = r.height;
+        view.apertureRadius = r.apertureRadius;
+        view.focusDistance = r.focusDistance;
         c.view = view;
     }
     if (r.has & kHasSettings) {

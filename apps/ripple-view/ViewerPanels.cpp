@@ -34,6 +34,15 @@ void rendererPanel(ViewerUiState& ui, PanelRequests& out) {
                 }
             ImGui::EndCombo();
         }
+        if (!ui.traversals.empty() &&
+            ImGui::BeginCombo("traversal", ui.traversal.empty() ? "the device's default" : ui.traversal.c_str())) {
+            for (const std::string& t : ui.traversals)
+                if (ImGui::Selectable(t.c_str(), t == ui.traversal)) {
+                    ui.traversal = t;
+                    out.traversalChanged = true;
+                }
+            ImGui::EndCombo();
+        }
         if (ui.quickLookAvailable)
             out.settingsChanged |= ImGui::Checkbox("quick look while moving (eyeLight)", &s.quickLookWhileMoving);
         if (ui.reduceWhileMoving) ImGui::SliderInt("size divisor", &ui.movingDivisor, 2, 8);
@@ -74,6 +83,13 @@ void cameraPanel(ViewerUiState& ui, CameraView& view, const std::vector<CameraVi
                 view.fovy = glm::radians(degrees);
                 out.viewChanged = true;
             }
+            // Depth of field: 0 is a pinhole.
+            out.viewChanged |= ImGui::SliderFloat("aperture radius", &view.apertureRadius, 0.0f, 1.0f, "%.4f",
+                                                  ImGuiSliderFlags_Logarithmic);
+            out.viewChanged |= ImGui::SliderFloat("focus distance", &view.focusDistance, 1e-3f, 1e3f, "%.3f",
+                                                  ImGuiSliderFlags_Logarithmic);
+            view.apertureRadius = std::max(view.apertureRadius, 0.0f);
+            view.focusDistance = std::max(view.focusDistance, 1e-3f);
         }
         ImGui::Text("position  %.3f %.3f %.3f", view.position.x, view.position.y, view.position.z);
         ImGui::Text("direction %.3f %.3f %.3f", view.direction.x, view.direction.y, view.direction.z);

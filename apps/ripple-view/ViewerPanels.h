@@ -18,6 +18,10 @@ struct ViewerUiState {
     int selectedCamera = -1;            // index into the scene's cameras; -1: framed on the bounds
     bool quickLookAvailable = false;    // the device has the "eyeLight" renderer (the panel offers it)
     bool onlyGatheredChannels = false;  // under mpirun: only colour and depth reach rank 0 (the panel offers those)
+    // The device parameter 'traversal''s values where the device lists them (Ripple: auto, software,
+    // rayQuery), and the one chosen (empty: the device's default).
+    std::vector<std::string> traversals;
+    std::string traversal;
 };
 
 // What the user asked for in the panels this frame.
@@ -27,6 +31,7 @@ struct PanelRequests {
     bool frameScene = false;
     bool screenshot = false;
     bool saveView = false;              // write the view-state file (as the V key does)
+    bool traversalChanged = false;      // ui.traversal: set it on the device
 };
 
 // Draws the panels; `view` and `ui` are edited in place.

@@ -204,6 +204,11 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
 
     ViewerUiState ui;
     ui.onlyGatheredChannels = ranks.distributed();
+    // The traversal back-end, where the device lists the choices (one rank: every rank would have to switch).
+    if (!ranks.distributed())
+        if (const auto* values = static_cast<const char* const*>(anariGetParameterInfo(
+                s.device, ANARI_DEVICE, "default", "traversal", ANARI_STRING, "value", ANARI_STRING_LIST)))
+            for (const char* const* v = values; *v; ++v) ui.traversals.emplace_back(*v);
     ui.settings.pixelSamples = options.samplesPerPass;
     ui.settings.maxPathLength = options.maxPathLength;
     ui.settings.background = scene.background;
@@ -299,6 +304,11 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                 lastChange = now;  // redraw at reduced size while a slider moves
             }
             if (requests.settingsChanged) frames.setSettings(ui.settings);
+            if (requests.traversalChanged)  // the device builds its scene and kernels anew for the next pass
+                frames.editScene([device = s.device, traversal = ui.traversal] {
+                    anariSetParameter(device, device, "traversal", ANARI_STRING, traversal.c_str());
+                    anariCommitParameters(device, device);
+                });
             if (requests.screenshot) screenshotRequest = nextScreenshotName();
             if (requests.saveView) saveView(viewFileOf(options), camera.view(), ui.settings, renderSize);
             if (const glm::uvec2 fb = window.framebufferSize(); fb.x > 0 && fb.y > 0 && fb != renderSize) {

@@ -261,6 +261,17 @@ TEST_CASE("introspection answers from Ripple's own tables") {
     REQUIRE(fovy);
     CHECK(*fovy == doctest::Approx(M_PI / 3.0));
     CHECK(anariGetObjectInfo(f.device, ANARI_GEOMETRY, "teapot", "parameter", ANARI_PARAMETER_LIST) == nullptr);
+
+    // The device's own parameters, with the values an application (ripple-view's renderer panel) may offer.
+    const auto* traversals = static_cast<const char* const*>(anariGetParameterInfo(
+        f.device, ANARI_DEVICE, "default", "traversal", ANARI_STRING, "value", ANARI_STRING_LIST));
+    REQUIRE(traversals);
+    std::vector<std::string> names;
+    for (const char* const* t = traversals; *t; ++t) names.emplace_back(*t);
+    CHECK(names == std::vector<std::string>{"auto", "software", "rayQuery"});
+    CHECK(listContains(const_cast<const char**>(static_cast<const char* const*>(anariGetParameterInfo(
+                           f.device, ANARI_DEVICE, "default", "rayExchange", ANARI_STRING, "value", ANARI_STRING_LIST))),
+                       "ring"));
 }
 
 TEST_CASE("the loader reports a library that does not exist, naming it") {

@@ -123,6 +123,10 @@ void anariSetParameter(ANARIDevice, ANARIObject object, const char* name, ANARID
     o->parameters[name] = p;
 }
 
+void anariUnsetParameter(ANARIDevice, ANARIObject object, const char* name) {
+    if (FakeObject* o = live(object, "anariUnsetParameter"); o && name) o->parameters.erase(name);
+}
+
 void anariCommitParameters(ANARIDevice, ANARIObject object) {
     if (FakeObject* o = live(object, "anariCommitParameters")) o->committed = true;
 }

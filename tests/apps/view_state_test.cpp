@@ -21,6 +21,8 @@ TEST_CASE("view state: written and read back, perspective and orthographic") {
         state.camera.up = {0.0f, 0.8f, 0.6f};
         state.camera.fovy = 0.75f;
         state.camera.height = 2.5f;
+        state.camera.apertureRadius = 0.0625f;  // depth of field: perspective only
+        state.camera.focusDistance = 3.5f;
         state.renderer = "eyeLight";
         state.pixelSamples = 4;
         state.maxPathLength = 7;
@@ -36,6 +38,8 @@ TEST_CASE("view state: written and read back, perspective and orthographic") {
         CHECK(back.camera.up == state.camera.up);
         if (orthographic) CHECK(back.camera.height == state.camera.height);
         else CHECK(back.camera.fovy == state.camera.fovy);
+        CHECK(back.camera.apertureRadius == (orthographic ? 0.0f : state.camera.apertureRadius));
+        CHECK(back.camera.focusDistance == (orthographic ? 1.0f : state.camera.focusDistance));
         CHECK(back.renderer == state.renderer);
         CHECK(back.pixelSamples == state.pixelSamples);
         CHECK(back.maxPathLength == state.maxPathLength);
@@ -73,6 +77,14 @@ TEST_CASE("view state: malformed files are refused, naming the file and the memb
     SUBCASE("field of view out of range") {
         text = R"({"ripple-view-state": 1, "camera": {"type": "perspective", "position": [0, 0, 3], "direction": [0, 0, -1], "up": [0, 1, 0], "fovy": 4}})";
         expected = "\"camera.fovy\" must be within (0, pi) radians";
+    }
+    SUBCASE("a negative aperture") {
+        text = R"({"ripple-view-state": 1, "camera": {"type": "perspective", "position": [0, 0, 3], "direction": [0, 0, -1], "up": [0, 1, 0], "fovy": 0.7, "apertureRadius": -0.1}})";
+        expected = "\"camera.apertureRadius\" must not be negative";
+    }
+    SUBCASE("a focus distance of zero") {
+        text = R"({"ripple-view-state": 1, "camera": {"type": "perspective", "position": [0, 0, 3], "direction": [0, 0, -1], "up": [0, 1, 0], "fovy": 0.7, "apertureRadius": 0.1, "focusDistance": 0}})";
+        expected = "\"camera.focusDistance\" must be positive";
     }
     SUBCASE("orthographic without height") {
         text = R"({"ripple-view-state": 1, "camera": {"type": "orthographic", "position": [0, 0, 3], "direction": [0, 0, -1], "up": [0, 1, 0]}})";
