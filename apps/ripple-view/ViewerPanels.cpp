@@ -48,6 +48,8 @@ void rendererPanel(ViewerUiState& ui, PanelRequests& out) {
         if (ui.reduceWhileMoving) ImGui::SliderInt("size divisor", &ui.movingDivisor, 2, 8);
         out.screenshot |= ImGui::Button("screenshot (P)");
         ImGui::SameLine();
+        out.screenshotExr |= ImGui::Button("EXR (shift+P)");
+        ImGui::SameLine();
         out.saveView |= ImGui::Button("save view (V)");
     }
     ImGui::End();

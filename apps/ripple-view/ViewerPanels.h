@@ -29,7 +29,8 @@ struct PanelRequests {
     bool settingsChanged = false;
     bool viewChanged = false;           // the field of view, or a camera chosen
     bool frameScene = false;
-    bool screenshot = false;
+    bool screenshot = false;            // PNG
+    bool screenshotExr = false;         // EXR (linear, unclipped)
     bool saveView = false;              // write the view-state file (as the V key does)
     bool traversalChanged = false;      // ui.traversal: set it on the device
 };

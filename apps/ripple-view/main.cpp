@@ -61,11 +61,12 @@ struct Options {
 // How long the view counts as moving after its last change: passes stay at reduced size until then.
 constexpr double kSettleSeconds = 0.25;
 
-// A file name for the P key that does not overwrite an earlier screenshot.
-std::filesystem::path nextScreenshotName() {
+// A file name for the P key (PNG) or shift+P (EXR: the linear, unclipped image) that does not overwrite an
+// earlier screenshot.
+std::filesystem::path nextScreenshotName(bool exr) {
     for (int i = 0;; ++i) {
         char name[32];
-        std::snprintf(name, sizeof name, "ripple-view-%03d.png", i);
+        std::snprintf(name, sizeof name, "ripple-view-%03d.%s", i, exr ? "exr" : "png");
         if (!std::filesystem::exists(name)) return name;
     }
 }
@@ -281,7 +282,9 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                     viewChanged = true;
                 }
                 frameScene = ImGui::IsKeyPressed(GLFW_KEY_F, false);
-                if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) screenshotRequest = nextScreenshotName();
+                if (ImGui::IsKeyPressed(GLFW_KEY_P, false))
+                    screenshotRequest = nextScreenshotName(ImGui::IsKeyDown(GLFW_KEY_LEFT_SHIFT) ||
+                                                           ImGui::IsKeyDown(GLFW_KEY_RIGHT_SHIFT));
                 if (ImGui::IsKeyPressed(GLFW_KEY_V, false)) saveView(viewFileOf(options), camera.view(), ui.settings, renderSize);
             }
             CameraView& view = camera.view();
@@ -309,7 +312,8 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                     anariSetParameter(device, device, "traversal", ANARI_STRING, traversal.c_str());
                     anariCommitParameters(device, device);
                 });
-            if (requests.screenshot) screenshotRequest = nextScreenshotName();
+            if (requests.screenshot) screenshotRequest = nextScreenshotName(false);
+            if (requests.screenshotExr) screenshotRequest = nextScreenshotName(true);
             if (requests.saveView) saveView(viewFileOf(options), camera.view(), ui.settings, renderSize);
             if (const glm::uvec2 fb = window.framebufferSize(); fb.x > 0 && fb.y > 0 && fb != renderSize) {
                 renderSize = fb;
@@ -370,7 +374,7 @@ int main(int argc, char** argv) {
     ripple::apps::Options options;
     CLI::App app{"ripple-view: view a glTF 2.0 file or a built-in demo scene interactively through an ANARI library.\n"
                  "Mouse: left drag orbits, right or middle drag pans, the wheel zooms. Keys: W/A/S/D/Q/E fly (shift: "
-                 "faster), F frames the scene, P writes a screenshot (ripple-view-NNN.png), V saves the view (camera, "
+                 "faster), F frames the scene, P writes a screenshot (ripple-view-NNN.png; shift+P: .exr, linear HDR), V saves the view (camera, "
                  "settings, size) for ripple-render --view."};
     app.add_option("scene", options.scene, "glTF 2.0 file (.gltf or .glb); without one a demo scene is shown");
     std::string demoNames;

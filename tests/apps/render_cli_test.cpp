@@ -9,16 +9,18 @@
 
 #include <doctest/doctest.h>
 #include <stb_image.h>
+#include <stb_image_write.h>
 #include <tinyexr.h>
 
 #include <dlfcn.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -554,6 +556,62 @@ TEST_CASE("ripple-render --environment: an hdri light scaled by --environment-in
         CHECK(missing.exitCode == 1);
         CHECK_MESSAGE(contains(missing.output, "absent.hdr: cannot open the image (no such file)"), missing.output);
     }
+}
+
+// The furnace through the command line: a closed, convex, white (baseColor 1, metallic 0) polyhedron lit
+// only by a constant Radiance .hdr environment of radiance L reflects L everywhere, however many bounces a
+// path takes (each sees the environment), so the pixels inside its silhouette average L.
+TEST_CASE("ripple-render --environment: a constant .hdr on a white diffuse sphere gives the furnace result") {
+    TempFolder dir;
+    // A UV sphere of radius 1 with flat faces (no normals: the geometric normal shades): every triangle with
+    // its own three vertices, none degenerate.
+    const int rings = 12, segments = 24;
+    std::vector<float> positions;
+    const auto point = [&](int ring, int segment) {
+        const float theta = 3.14159265f * float(ring) / float(rings), phi = 6.2831853f * float(segment) / float(segments);
+        return std::array<float, 3>{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
+    };
+    const auto triangle = [&](std::array<float, 3> a, std::array<float, 3> b, std::array<float, 3> c) {
+        for (const auto& v : {a, c, b}) positions.insert(positions.end(), v.begin(), v.end());  // outward winding
+    };
+    for (int r = 0; r < rings; ++r)
+        for (int g = 0; g < segments; ++g) {
+            if (r > 0) triangle(point(r, g), point(r, g + 1), point(r + 1, g));
+            if (r < rings - 1) triangle(point(r, g + 1), point(r + 1, g + 1), point(r + 1, g));
+        }
+    const size_t count = positions.size() / 3;
+    GltfSource sphere;
+    sphere.json = "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+                  "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,1,1,1],\"metallicFactor\":0,"
+                  "\"roughnessFactor\":1}}],"
+                  "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":0}]}],"
+                  "\"buffers\":[{\"byteLength\":" + std::to_string(positions.size() * 4) + "}],"
+                  "\"bufferViews\":[{\"buffer\":0,\"byteLength\":" + std::to_string(positions.size() * 4) + "}],"
+                  "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":" + std::to_string(count) +
+                  ",\"type\":\"VEC3\",\"min\":[-1,-1,-1],\"max\":[1,1,1]}]}";
+    sphere.bin.resize(positions.size() * 4);
+    std::memcpy(sphere.bin.data(), positions.data(), sphere.bin.size());
+    const auto scene = writeGlb(dir / "sphere.glb", sphere);
+    const float radiance = 0.5f;  // exact in RGBE
+    const std::vector<float> sky(16 * 8 * 3, radiance);
+    const auto environment = dir / "constant.hdr";
+    REQUIRE(stbi_write_hdr(environment.string().c_str(), 16, 8, 3, sky.data()) != 0);
+    const auto image = dir / "furnace.pfm";
+    std::string arguments = "'";
+    arguments.append(scene.string()).append("' --size 32x32 --spp 64 --max-path-length 8 --quiet --environment '");
+    arguments.append(environment.string()).append("' -o '").append(image.string()).append("'");
+    const ProgramRun run = runRender(arguments);
+    REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+    const ripple::apps::LinearImage furnace = ripple::apps::readLinearImage(image);
+    REQUIRE(furnace.width == 32);
+    // The framed view shows the sphere in the middle; its central 8x8 pixels lie well inside the silhouette.
+    double sum = 0.0;
+    for (uint32_t y = 12; y < 20; ++y)
+        for (uint32_t x = 12; x < 20; ++x)
+            for (size_t c = 0; c < 3; ++c) sum += furnace.rgb[(size_t(y) * furnace.width + x) * 3 + c];
+    const double mean = sum / (8.0 * 8.0 * 3.0);
+    MESSAGE("furnace: mean " << mean << " inside the sphere, environment radiance " << radiance);
+    CHECK(mean == doctest::Approx(radiance).epsilon(0.02));
 }
 
 namespace {
