@@ -15,6 +15,7 @@
 #include "apps/common/ScenePartition.h"
 #include "apps/common/ViewState.h"
 #include "apps/common/VolumeFile.h"
+#include "apps/common/VolumeOptions.h"
 #include "apps/ripple-render/Convergence.h"
 #include "apps/ripple-render/ErrorPlot.h"
 #include "apps/ripple-render/Progress.h"
@@ -76,12 +77,7 @@ struct Options {
     std::optional<double> seconds;      // --time: the whole run, start-up included, ends within this
     std::optional<double> targetError;  // stop when the estimated relMSE reaches this
     bool sppGiven = false;              // --spp on the command line: it caps --time and --target-error too
-    // --volume: a scalar field from a raw or NRRD file, drawn as a volume and/or isosurfaces.
-    std::string volume;
-    std::string dims, type, spacing;    // raw files only
-    std::string transferFunction;       // --tf; empty: viridis, unless --isovalue is given (then no volume)
-    std::optional<float> opacity, unitDistance;
-    std::vector<float> isovalues;
+    VolumeOptions field;                // --volume: a scalar field drawn as a volume and/or isosurfaces
 
     // Reporting mode: one sample per frame, so that the series has points, and a line per report point.
     bool reporting() const { return !reference.empty() || !report.empty() || seconds || targetError; }
@@ -165,63 +161,6 @@ struct ExtraChannels {
     std::vector<float> depth, normal, albedo;
 };
 
-// --volume's file read and checked, with what to draw of it; throws naming the option or the file.
-void planVolume(const Options& options, const mpi::Communicator& ranks, RenderPlan& plan) {
-    const bool rawOptions = !options.dims.empty() || !options.type.empty() || !options.spacing.empty();
-    if (options.volume.empty()) {
-        if (rawOptions || !options.transferFunction.empty() || options.opacity || options.unitDistance ||
-            !options.isovalues.empty())
-            throw std::runtime_error("--dims, --type, --spacing, --tf, --opacity, --unit-distance and --isovalue "
-                                     "need --volume FILE");
-        return;
-    }
-    if (!options.scene.empty() || !options.demo.empty())
-        throw std::runtime_error("give one of a scene file, --demo or --volume");
-    FieldSceneOptions& field = plan.fieldOptions;
-    field.isovalues = options.isovalues;
-    // With isovalues the volume is drawn only when --tf asks for it; without, the default map draws it.
-    field.transferFunction = !options.transferFunction.empty() ? options.transferFunction
-                             : options.isovalues.empty()       ? "viridis"
-                                                               : "";
-    if (!field.transferFunction.empty()) checkTransferFunctionName(field.transferFunction);
-    field.opacity = options.opacity.value_or(field.opacity);
-    field.unitDistance = options.unitDistance;
-    for (float v : options.isovalues)
-        if (!std::isfinite(v)) throw std::runtime_error("--isovalue " + std::to_string(v) + " is not a finite number");
-    // Under mpirun each rank reads only its z-slab (data-parallel ANARI: every rank's world holds its own
-    // brick, sharing a sample plane with its neighbour); rank 0's world holds the floor and the sun.
-    const VolumeSlab slab{uint32_t(ranks.rank()), uint32_t(ranks.size())};
-    field.stage = plan.root;
-    if (isNrrdFile(options.volume)) {
-        if (rawOptions)
-            throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
-                                     "the NRRD header gives them");
-        plan.field = readNrrdVolume(options.volume, slab);
-    } else {
-        if (options.dims.empty() || options.type.empty())
-            throw std::runtime_error("--volume " + options.volume + ": a raw file needs --dims X,Y,Z and --type "
-                                     "(or give an NRRD file, .nrrd or .nhdr)");
-        plan.field = readRawVolume(options.volume, {options.dims, options.type, options.spacing}, slab);
-    }
-    if (ranks.distributed()) {  // the colour map spans every rank's values
-        float lowest = plan.field->minValue, highest = plan.field->maxValue;
-        ranks.min(std::span<float>(&lowest, 1));
-        ranks.max(std::span<float>(&highest, 1));
-        plan.field->minValue = lowest;
-        plan.field->maxValue = highest;
-        field.valueRange = glm::vec2(lowest, highest);
-    }
-    if (!options.quiet && plan.root) {
-        for (float v : options.isovalues)
-            if (v < plan.field->minValue || v > plan.field->maxValue)
-                std::fprintf(stderr, "[ripple-render] WARNING: --isovalue %g is outside the field's values [%g, %g]: "
-                             "it draws nothing\n", double(v), double(plan.field->minValue), double(plan.field->maxValue));
-        if (!field.transferFunction.empty() && plan.field->minValue == plan.field->maxValue)
-            std::fprintf(stderr, "[ripple-render] WARNING: every voxel is %g: the transfer function shows nothing\n",
-                         double(plan.field->minValue));
-    }
-}
-
 // The host memory ripple-render's own buffers for a w x h image take on rank 0: the estimator's sums (RGBA doubles:
 // the previous total and the two halves), one batch's sum while a frame is added, the mean image written
 // at the end, and the reference when given (RGB floats).
@@ -301,8 +240,13 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     }
     if (!options.scene.empty() && !options.demo.empty())
         throw std::runtime_error("give either a scene file or --demo, not both");
-    planVolume(options, ranks, plan);
-    plan.demo = options.scene.empty() && options.demo.empty() && options.volume.empty() ? "default" : options.demo;
+    if (!options.field.volume.empty() && (!options.scene.empty() || !options.demo.empty()))
+        throw std::runtime_error("give one of a scene file, --demo or --volume");
+    if (std::optional<FieldPlan> field = planField(options.field, ranks, plan.root, "ripple-render", options.quiet)) {
+        plan.field = std::move(field->data);
+        plan.fieldOptions = std::move(field->scene);
+    }
+    plan.demo = options.scene.empty() && options.demo.empty() && options.field.volume.empty() ? "default" : options.demo;
     if (!plan.demo.empty()) checkDemoSceneName(plan.demo);
     if (ranks.distributed() && !plan.demo.empty())
         throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file or --volume under mpirun");
@@ -614,7 +558,7 @@ void writeResults(const Options& options, const RenderPlan& plan, const RenderOu
     else writeOutputImage(options.output, plan.format, plan.size.x, plan.size.y, image.data());
     if (!options.report.empty()) {
         writeConvergenceCsv(plan.reportFile, out.series);
-        const std::string sceneName = !options.volume.empty() ? std::filesystem::path(options.volume).filename().string()
+        const std::string sceneName = !options.field.volume.empty() ? std::filesystem::path(options.field.volume).filename().string()
                                       : options.scene.empty() ? "demo " + plan.demo
                                                               : std::filesystem::path(options.scene).filename().string();
         writeErrorPlot(plan.plotFile, out.series, sceneName + ", " + options.size + ": relMSE against render time");
@@ -685,13 +629,10 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
         std::memcpy(&bits, &value, sizeof bits);
         return bits;
     };
-    std::string volumeOptions = options.dims + ";" + options.type + ";" + options.spacing + ";" + options.transferFunction +
-                                ";" + std::to_string(options.opacity.value_or(-1.0f)) + ";" +
-                                std::to_string(options.unitDistance.value_or(-1.0f));
-    for (float v : options.isovalues) volumeOptions += ";" + std::to_string(number(double(v)));
+    const std::string volumeOptions = describeVolumeOptions(options.field);
     std::string channelList;
     for (const std::string& channel : options.channels) channelList += channel + ",";
-    const std::string scene = !options.volume.empty() ? "--volume " + options.volume
+    const std::string scene = !options.field.volume.empty() ? "--volume " + options.field.volume
                               : options.scene.empty() ? "--demo " + options.demo
                                                       : "file " + options.scene;
     return {{"command lines (some ranks could not parse theirs)", uint64_t(parseOutcome), false},
@@ -816,27 +757,7 @@ int main(int argc, char** argv) {
                    "folder the scene's buffer and image URIs may reach (default: the scene file's folder); "
                    "for trusted input only")
         ->check(CLI::ExistingDirectory);
-    app.add_option("--volume", options.volume,
-                   "scalar field file: NRRD (.nrrd, or .nhdr with a raw data file; encoding raw) or raw (needs --dims "
-                   "and --type); drawn as a volume, or as isosurfaces with --isovalue, on a floor");
-    app.add_option("--dims", options.dims, "raw --volume: samples along x, y, z as X,Y,Z or XxYxZ (x fastest)");
-    app.add_option("--type", options.type, "raw --volume: uint8, int8, uint16, int16, float32 or float64 (little-endian)");
-    app.add_option("--spacing", options.spacing, "raw --volume: distance between samples along x, y, z as SX,SY,SZ "
-                                                 "(default 1,1,1)");
-    std::string tfNames;
-    for (const std::string& n : ripple::apps::transferFunctionNames()) tfNames += (tfNames.empty() ? "" : ", ") + n;
-    app.add_option("--tf", options.transferFunction,
-                   "--volume's colour map, over the voxels' min..max with opacity rising from 0 to --opacity: " +
-                       tfNames + " (default viridis; with --isovalue the volume is drawn only when --tf is given)");
-    app.add_option("--opacity", options.opacity, "--volume: opacity at the largest value, per --unit-distance (default 0.5)")
-        ->check(CLI::Range(0.0f, 1.0f));
-    app.add_option("--unit-distance", options.unitDistance,
-                   "--volume: the distance the opacity holds for, in scene units where the field's longest side is 2 "
-                   "(default 0.2)")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--isovalue", options.isovalues,
-                   "--volume: draw the field's surface at this value (repeatable), coloured by the colour map")
-        ->allow_extra_args(false);
+    ripple::apps::addVolumeOptions(app, options.field);
     app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame");
     int parseOutcome = 0;  // 0: parsed; else the parser's exit code + 1
     std::optional<CLI::ParseError> parseError;

@@ -2,6 +2,7 @@
 #include "apps/ripple-view/PassOrders.h"
 
 #include <cstring>
+#include <stdexcept>
 #include <type_traits>
 
 namespace ripple::apps {
@@ -23,6 +24,7 @@ struct PassOrderRecord {
     int32_t display = 0;
     uint32_t size[2] = {};
     uint32_t reducedScale = 0;
+    uint64_t fieldEditBytes = 0;        // the bytes of PassOrder::fieldEdits, broadcast next
 };
 static_assert(std::is_trivially_copyable_v<PassOrderRecord>);
 
@@ -61,6 +63,7 @@ PassOrderRecord recordOf(const PassOrder& order) {
         r.has |= kHasScale;
         r.reducedScale = *c.reducedScale;
     }
+    r.fieldEditBytes = order.fieldEdits.size();
     return r;
 }
 
@@ -103,7 +106,96 @@ PassOrder sharePassOrder(const mpi::Communicator& ranks, const PassOrder& order)
     if (!ranks.distributed()) return order;
     PassOrderRecord record = recordOf(order);
     ranks.broadcast(std::span<uint8_t>(reinterpret_cast<uint8_t*>(&record), sizeof record));
-    return orderOf(record);
+    PassOrder shared = orderOf(record);
+    shared.fieldEdits = order.fieldEdits;  // rank 0's; the others' are sized here
+    shared.fieldEdits.resize(record.fieldEditBytes);
+    ranks.broadcast(shared.fieldEdits);
+    return shared;
+}
+
+namespace {
+
+class Writer {
+public:
+    template <class T>
+    void put(const T& value) {
+        const auto* bytes = reinterpret_cast<const uint8_t*>(&value);
+        out.insert(out.end(), bytes, bytes + sizeof(T));
+    }
+    template <class T>
+    void putAll(const std::vector<T>& values) {
+        put(uint64_t(values.size()));
+        for (const T& v : values) put(v);
+    }
+    std::vector<uint8_t> out;
+};
+
+class Reader {
+public:
+    explicit Reader(const std::vector<uint8_t>& bytes) : bytes_(bytes) {}
+    template <class T>
+    T get() {
+        if (bytes_.size() - at_ < sizeof(T)) throw std::runtime_error("rank 0's field edits end early");
+        T value;
+        std::memcpy(&value, bytes_.data() + at_, sizeof(T));
+        at_ += sizeof(T);
+        return value;
+    }
+    template <class T>
+    std::vector<T> getAll() {
+        const uint64_t count = get<uint64_t>();
+        if (count > (bytes_.size() - at_) / sizeof(T)) throw std::runtime_error("rank 0's field edits end early");
+        std::vector<T> values(count);
+        for (T& v : values) v = get<T>();
+        return values;
+    }
+
+private:
+    const std::vector<uint8_t>& bytes_;
+    size_t at_ = 0;
+};
+
+}  // namespace
+
+std::vector<uint8_t> encodeFieldEdits(const SceneEdits& edits, const SceneEditRequests& requests) {
+    Writer w;
+    w.put(uint64_t(requests.volumes.size()));
+    for (size_t i : requests.volumes) {
+        const EditableVolume& v = edits.volumes.at(i);
+        w.put(uint64_t(i));
+        w.putAll(v.colors);
+        w.putAll(v.opacities);
+        w.put(v.valueRange);
+        w.put(v.unitDistance);
+    }
+    w.put(uint64_t(requests.isosurfaces.size()));
+    for (size_t i : requests.isosurfaces) {
+        w.put(uint64_t(i));
+        w.put(edits.isosurfaces.at(i).isovalue);
+    }
+    return w.out;
+}
+
+SceneEditRequests decodeFieldEdits(const std::vector<uint8_t>& bytes, SceneEdits& edits) {
+    SceneEditRequests requests;
+    Reader r(bytes);
+    for (uint64_t n = r.get<uint64_t>(); n > 0; --n) {
+        const uint64_t i = r.get<uint64_t>();
+        if (i >= edits.volumes.size()) throw std::runtime_error("rank 0 edited a volume this rank does not have");
+        EditableVolume& v = edits.volumes[i];
+        v.colors = r.getAll<glm::vec3>();
+        v.opacities = r.getAll<float>();
+        v.valueRange = r.get<glm::vec2>();
+        v.unitDistance = r.get<float>();
+        requests.volumes.insert(i);
+    }
+    for (uint64_t n = r.get<uint64_t>(); n > 0; --n) {
+        const uint64_t i = r.get<uint64_t>();
+        if (i >= edits.isosurfaces.size()) throw std::runtime_error("rank 0 edited an iso-surface this rank does not have");
+        edits.isosurfaces[i].isovalue = r.get<float>();
+        requests.isosurfaces.insert(i);
+    }
+    return requests;
 }
 
 bool shareStart(const mpi::Communicator& ranks, bool started) {

@@ -11,6 +11,7 @@
 #include "apps/common/SceneEdits.h"
 #include "apps/common/ScenePartition.h"
 #include "apps/common/ViewState.h"
+#include "apps/common/VolumeOptions.h"
 #include "apps/ripple-view/OrbitCamera.h"
 #include "apps/ripple-view/PassOrders.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
@@ -52,6 +53,7 @@ struct Options {
     bool samplesGiven = false, pathLengthGiven = false;
     std::optional<int> camera;
     std::string partition = "round-robin";  // under mpirun: how the glTF file is split over the ranks
+    VolumeOptions field;                // --volume: a scalar field drawn as a volume and/or isosurfaces
     std::string environment;            // an equirectangular image lighting the scene (rank 0 holds the light)
     float environmentIntensity = 1.0f;
     float environmentRotation = 0.0f;   // degrees
@@ -108,22 +110,26 @@ void saveView(const std::filesystem::path& file, const CameraView& view, const V
 
 // This rank's share of the scene (all of it with one rank); lights on rank 0 alone, as ripple-render places
 // them (the device gathers every rank's lights). `edits` (rank 0's) lists what the scene panels edit.
-AnariWorld buildScene(const Options& options, const std::optional<GltfScene>& gltf, const mpi::Communicator& ranks,
-                      Session& s, const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr) {
-    if (!gltf) return buildDemoScene(s.device, options.demo.empty() ? "default" : options.demo, extraLights, edits);
+AnariWorld buildScene(const Options& options, const std::optional<GltfScene>& gltf, const std::optional<FieldPlan>& field,
+                      const mpi::Communicator& ranks, Session& s, const std::vector<ANARILight>& extraLights,
+                      SceneEdits& edits) {
+    if (field) return buildFieldScene(s.device, field->data, field->scene, extraLights, &edits);
+    if (!gltf) return buildDemoScene(s.device, options.demo.empty() ? "default" : options.demo, extraLights, &edits);
     const GltfScene share = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()),
                                            parsePartitionKind(options.partition));
-    return buildAnariWorld(s.device, share, ranks.rank() == 0, extraLights, edits);
+    return buildAnariWorld(s.device, share, ranks.rank() == 0, extraLights, &edits);
 }
 
 // Ranks other than 0 under mpirun: the same scene share and device as rank 0, no window; each pass as rank 0
 // orders it, until it says the viewer closed.
 int followRankZero(const Options& options, const mpi::Communicator& ranks, Session& s) {
     if (!shareStart(ranks, false)) return 1;  // rank 0 said why
-    const std::optional<GltfScene> gltf = loadGltf(options.scene);
+    const std::optional<FieldPlan> field = planField(options.field, ranks, false, "ripple-view", true);  // collective
+    const std::optional<GltfScene> gltf = options.scene.empty() ? std::nullopt : std::optional(loadGltf(options.scene));
     StatusLog log{"ripple-view", options.quiet, 0};
     openAnariDevice(options.library, log, s);
-    const AnariWorld scene = buildScene(options, gltf, ranks, s);
+    SceneEdits edits(s.device);  // this rank's slab of the volumes rank 0's panel edits
+    const AnariWorld scene = buildScene(options, gltf, field, ranks, s, {}, edits);
     s.objects.push_back(scene.world);
     worldBounds(s.device, scene);  // collective: rank 0 frames the view on the union of the ranks' bounds
     const PassOrder start = sharePassOrder(ranks, {});
@@ -133,6 +139,8 @@ int followRankZero(const Options& options, const mpi::Communicator& ranks, Sessi
     ProgressiveFrames frames(s, scene, *start.changes.view, *start.changes.size, *start.changes.settings,
                              *start.changes.reducedScale, false);
     for (PassOrder order = sharePassOrder(ranks, {}); !order.quit; order = sharePassOrder(ranks, {})) {
+        if (!order.fieldEdits.empty())
+            frames.editScene([&edits, requests = decodeFieldEdits(order.fieldEdits, edits)] { commitEdits(edits, requests); });
         frames.apply(order.changes);
         if (!frames.startPass(order.moving, order.maxSamples))
             throw std::runtime_error("rank " + std::to_string(ranks.rank()) + " cannot start the pass rank 0 started");
@@ -150,7 +158,8 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
     std::optional<LinearImage> environment;
     glm::uvec2 size{0, 0};
     const bool headless = !options.screenshot.empty();
-    const std::string demo = options.scene.empty() && options.demo.empty() ? "default" : options.demo;
+    const std::string demo =
+        options.scene.empty() && options.demo.empty() && options.field.volume.empty() ? "default" : options.demo;
     try {
     if (!options.view.empty() && std::filesystem::exists(options.view)) {
         if (options.camera) throw std::runtime_error("give one of --camera and an existing --view file");
@@ -159,8 +168,10 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
     size = savedView && savedView->size && !options.sizeGiven ? *savedView->size : parseImageSize(options.size);
     if (!options.scene.empty() && !options.demo.empty())
         throw std::runtime_error("give either a scene file or --demo, not both");
-    if (ranks.distributed() && options.scene.empty())
-        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file under mpirun");
+    if (!options.field.volume.empty() && (!options.scene.empty() || !options.demo.empty()))
+        throw std::runtime_error("give one of a scene file, --demo or --volume");
+    if (ranks.distributed() && options.scene.empty() && options.field.volume.empty())
+        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file or --volume under mpirun");
     if (!demo.empty()) checkDemoSceneName(demo);
     parsePartitionKind(options.partition);
     if (headless) {
@@ -178,7 +189,10 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
             throw std::runtime_error("--environment-intensity and --environment-rotation must be finite, the intensity not negative");
         environment = readEnvironmentImage(options.environment);
     }
-    windowHolder.emplace(size, options.scene.empty() ? "ripple-view: demo " + demo : "ripple-view: " + options.scene);
+    const std::string title = !options.field.volume.empty() ? "ripple-view: " + options.field.volume
+                              : options.scene.empty()        ? "ripple-view: demo " + demo
+                                                             : "ripple-view: " + options.scene;
+    windowHolder.emplace(size, title);
     } catch (const std::exception& e) {
         if (ranks.distributed()) shareStart(ranks, false);  // the other ranks end without a word
         std::fprintf(stderr, "[ripple-view] ERROR: %s\n", e.what());
@@ -198,7 +212,9 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
         edits.add({extraLights.back(), "environment", "hdri", glm::vec3(1.0f), options.environmentIntensity,
                    std::nullopt, options.environmentRotation});
     }
-    AnariWorld scene = buildScene(options, gltf, ranks, s, extraLights, &edits);
+    // Collective under mpirun (the colour map spans every rank's values); a bad file ends every rank.
+    const std::optional<FieldPlan> field = planField(options.field, ranks, true, "ripple-view", options.quiet);
+    AnariWorld scene = buildScene(options, gltf, field, ranks, s, extraLights, edits);
     if (environment) scene.ambientRadiance = 0.0f;  // the environment replaces the scene's ambient fill
     s.objects.push_back(scene.world);
     const auto [lo, hi] = worldBounds(s.device, scene);
@@ -346,13 +362,15 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
         frames.setReducedScale(ui.reduceWhileMoving ? uint32_t(ui.movingDivisor) : 1);
         const bool moving = !headless &&
                             now - lastChange < std::chrono::duration<double>(kSettleSeconds);
+        std::vector<uint8_t> fieldEdits;  // the other ranks' share of the edits (their volume slabs)
         if (!editsToCommit.empty() && !frames.busy()) {
             frames.editScene([&edits, requests = editsToCommit] { commitEdits(edits, requests); });
+            if (ranks.distributed()) fieldEdits = encodeFieldEdits(edits, editsToCommit);
             editsToCommit = {};
         }
         const uint32_t maxSamples = headless ? 0 : ui.maxSamples;
         if (ranks.distributed() && frames.passDue(moving, maxSamples))
-            sharePassOrder(ranks, {false, moving, maxSamples, frames.pending()});
+            sharePassOrder(ranks, {false, moving, maxSamples, frames.pending(), std::move(fieldEdits)});
         frames.startPass(moving, maxSamples);
         window.endFrame();
     }
@@ -405,6 +423,7 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--environment-rotation", options.environmentRotation, "turn of the environment about the up axis, degrees")
         ->capture_default_str();
+    ripple::apps::addVolumeOptions(app, options.field);
     app.add_option("--partition", options.partition,
                    "under mpirun, each rank imports: round-robin (whole mesh instances dealt in turn) or spatial "
                    "(the triangles of one k-d region per rank)")

@@ -132,6 +132,21 @@ TEST_CASE("ripple-view: over 2 ranks it shows what ripple-render renders over 2 
     CHECK(differing == 0);
 }
 
+// ripple-view --volume under mpirun reads the slabs as ripple-render does: the same image, pixel for pixel.
+TEST_CASE("ripple-view over 2 ranks shows a volume file's slabs as ripple-render renders them") {
+    const std::filesystem::path viewed = imageFolder() / "view_volume_2.pfm";
+    if (!std::filesystem::exists(viewed)) {
+        MESSAGE("skipped: ripple-view or xvfb-run was not found at configure time");
+        return;
+    }
+    const FloatImage view = readPfm(viewed), render = readPfm(imageFolder() / "volume_2.pfm");
+    REQUIRE(view.width == render.width);
+    REQUIRE(view.height == render.height);
+    int differing = 0;
+    for (size_t i = 0; i < view.pixels.size(); ++i) differing += view.pixels[i] != render.pixels[i] ? 1 : 0;
+    CHECK(differing == 0);
+}
+
 // Each rank holds a z-slab of the field (sharing its boundary sample plane) and keys its own random numbers,
 // so the images agree statistically: the mean of each of the 4x4 tiles (12x12 pixels) within 5% + 0.01 of
 // the one-rank image's. Measured: the worst tile at 0.13 (2 ranks) and 0.21 (3 ranks) of that tolerance; with

@@ -8,6 +8,7 @@
 #include "apps/common/AnariSession.h"
 #include "apps/common/DemoScene.h"
 #include "apps/common/SceneEdits.h"
+#include "apps/ripple-view/PassOrders.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
 
 #include <doctest/doctest.h>
@@ -221,6 +222,40 @@ TEST_CASE("scene edits: an isovalue out of range and back, a volume's opacity cl
         CHECK(renderProbe() == 0);
         for (ANARIObject o : {ANARIObject(probe), ANARIObject(renderer), ANARIObject(camera)}) anariRelease(s.device, o);
     }
+    CHECK(log.errors == 0);
+}
+
+// Under mpirun rank 0 sends its volume and iso-surface edits to the other ranks, whose records (their own
+// slabs of the same scene) take the values: here two builds of one scene stand for two ranks.
+TEST_CASE("pass orders: volume and iso-surface edits carried to another rank's records") {
+    Session s;
+    StatusLog log{"view test", true, 0};
+    openAnariDevice("ripple", log, s);
+    SceneEdits rank0(s.device), rank1(s.device);
+    for (SceneEdits* edits : {&rank0, &rank1}) s.objects.push_back(buildDemoScene(s.device, "volume", {}, edits).world);
+    REQUIRE(rank0.volumes.size() == 1);
+    EditableVolume& v = rank0.volumes[0];
+    v.colors = transferFunctionColors("coolwarm");
+    v.opacities = {0.0f, 0.25f, 1.0f};
+    v.valueRange = {0.125f, 0.75f};
+    v.unitDistance = 0.03f;
+    SceneEditRequests requests;
+    requests.volumes.insert(0);
+    const std::vector<uint8_t> bytes = encodeFieldEdits(rank0, requests);
+    const SceneEditRequests received = decodeFieldEdits(bytes, rank1);
+    CHECK(received.volumes == requests.volumes);
+    CHECK(received.isosurfaces.empty());
+    const EditableVolume& w = rank1.volumes[0];
+    CHECK(w.colors == v.colors);
+    CHECK(w.opacities == v.opacities);
+    CHECK(w.valueRange == v.valueRange);
+    CHECK(w.unitDistance == v.unitDistance);
+    CHECK(w.handle != v.handle);  // its own object
+    // An edit of a record the other rank lacks, or a cut message, is refused, not read past its end.
+    SceneEdits empty(s.device);
+    CHECK_THROWS_WITH_AS(decodeFieldEdits(bytes, empty), "rank 0 edited a volume this rank does not have", std::runtime_error);
+    const std::vector<uint8_t> cut(bytes.begin(), bytes.begin() + long(bytes.size() / 2));
+    CHECK_THROWS_WITH_AS(decodeFieldEdits(cut, rank1), "rank 0's field edits end early", std::runtime_error);
     CHECK(log.errors == 0);
 }
 
