@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 
 namespace ripple::apps {
 
@@ -30,6 +31,21 @@ std::pair<glm::vec3, glm::vec3> worldBounds(ANARIDevice device, const AnariWorld
     if (anariGetProperty(device, scene.world, "bounds", ANARI_FLOAT32_BOX3, box, sizeof box, ANARI_WAIT))
         return {glm::vec3(box[0], box[1], box[2]), glm::vec3(box[3], box[4], box[5])};
     return {scene.boundsMin, scene.boundsMax};
+}
+
+bool deviceHasExtension(ANARIDevice device, const char* name) {
+    const char** extensions = nullptr;
+    if (!anariGetProperty(device, device, "extension", ANARI_STRING_LIST, &extensions, sizeof extensions, ANARI_WAIT))
+        return false;
+    for (const char** e = extensions; e && *e; ++e)
+        if (std::string(*e) == name) return true;
+    return false;
+}
+
+std::vector<std::string> deviceSubtypes(ANARIDevice device, ANARIDataType type) {
+    std::vector<std::string> names;
+    for (const char** t = anariGetObjectSubtypes(device, type); t && *t; ++t) names.emplace_back(*t);
+    return names;
 }
 
 }  // namespace ripple::apps

@@ -44,6 +44,12 @@ struct Session {
 // std::runtime_error naming the library when either fails.
 void openAnariDevice(const std::string& library, StatusLog& log, Session& s);
 
+// Whether the device lists `name` (e.g. "ANARI_KHR_FRAME_ACCUMULATION") in its "extension" property.
+bool deviceHasExtension(ANARIDevice device, const char* name);
+
+// The subtypes of `type` the device lists (anariGetObjectSubtypes); empty when it lists none.
+std::vector<std::string> deviceSubtypes(ANARIDevice device, ANARIDataType type);
+
 // The world's bounds as the device computed them (its "bounds" property), or the scene source's own where
 // the device does not answer.
 std::pair<glm::vec3, glm::vec3> worldBounds(ANARIDevice device, const AnariWorld& scene);

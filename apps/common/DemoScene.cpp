@@ -172,8 +172,10 @@ public:
         if (edits_) edits_->add({l, "quad light", "quad", color, radiance, std::nullopt, 0.0f});
     }
 
-    // A structuredRegular field of FLOAT32 samples (x fastest) spanning [lo, hi].
-    ANARISpatialField field(glm::uvec3 dims, const std::vector<float>& samples, const glm::vec3& lo, const glm::vec3& hi) {
+    // A structuredRegular field of FLOAT32 samples (x fastest) spanning [lo, hi]. `values`: the smallest and
+    // largest sample of the whole field where these are a slab of it (the panels' ranges), else these.
+    ANARISpatialField field(glm::uvec3 dims, const std::vector<float>& samples, const glm::vec3& lo, const glm::vec3& hi,
+                            std::optional<glm::vec2> values = std::nullopt) {
         ANARIArray3D data = handles_.keep(anariNewArray3D(d_, nullptr, nullptr, nullptr, ANARI_FLOAT32, dims.x, dims.y, dims.z),
                                           "3D array");
         void* mapped = anariMapArray(d_, data);
@@ -186,14 +188,14 @@ public:
         set(d_, field, "spacing", (hi - lo) / glm::vec3(dims - 1u));
         anariCommitParameters(d_, field);
         const auto [smallest, largest] = std::minmax_element(samples.begin(), samples.end());
-        fieldRanges_[field] = samples.empty() ? glm::vec2(0.0f, 1.0f) : glm::vec2(*smallest, *largest);
+        fieldRanges_[field] = values ? *values : samples.empty() ? glm::vec2(0.0f, 1.0f) : glm::vec2(*smallest, *largest);
         return field;
     }
 
     // The field as a transferFunction1D volume over the value range [lo, hi] with the given colours and
-    // opacities.
+    // opacities (`colorMap`: the named map they are, for the panels; empty: the scene's own).
     void volume(ANARISpatialField field, const std::vector<glm::vec3>& colors, const std::vector<float>& opacities,
-                float unitDistance, float lo = 0.0f, float hi = 1.0f) {
+                float unitDistance, float lo = 0.0f, float hi = 1.0f, const std::string& colorMap = "") {
         ANARIVolume v = handles_.keep(anariNewVolume(d_, "transferFunction1D"), "volume");
         setObject(d_, v, "value", ANARI_SPATIAL_FIELD, field);
         setObject(d_, v, "color", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, colors), "array"));
@@ -203,8 +205,9 @@ public:
         set(d_, v, "unitDistance", unitDistance);
         anariCommitParameters(d_, v);
         volumes_.push_back(v);
-        if (edits_) edits_->add(EditableVolume{v, "volume " + std::to_string(volumes_.size() - 1), colors, opacities,
-                                               {lo, hi}, unitDistance, fieldRanges_.at(field)});
+        if (edits_)
+            edits_->add(EditableVolume{v, "volume " + std::to_string(edits_->volumes.size()), colors, opacities, {lo, hi},
+                                       unitDistance, fieldRanges_.at(field), {}, colorMap});
     }
 
     // The surface where the field equals `isovalue`.
@@ -352,6 +355,7 @@ std::vector<float> marschnerLobbSamples(glm::uvec3 dims) {
 struct FieldPlacement {
     glm::vec3 lo, hi, boxLo, boxHi;
     bool stage = true;
+    std::optional<glm::vec2> values;    // the whole field's smallest and largest sample (a slab's own: none)
 };
 
 // The floor, sun and sky the field demos and field files stand in; `addField` draws the field. The camera
@@ -361,7 +365,7 @@ AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& 
                       const std::vector<ANARILight>& extraLights, SceneEdits* edits, AddField addField) {
     DemoBuilder b(d, at.stage ? extraLights : std::vector<ANARILight>{}, edits);  // lights live where the stage is
     if (at.stage) b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
-    addField(b, b.field(dims, samples, at.lo, at.hi));
+    addField(b, b.field(dims, samples, at.lo, at.hi, at.values));
     if (at.stage) b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);
     const glm::vec3 centre = 0.5f * (at.boxLo + at.boxHi), target(centre.x, centre.y - 0.15f, centre.z);
     AnariWorld out = b.finish(lookAt(target + glm::vec3(0.0f, 1.5f, 4.6f), target, 40.0f), {-4.0f, 0.0f, -4.0f},
@@ -447,7 +451,7 @@ AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const Fie
     const glm::vec3 extent = glm::vec3(whole - 1u) * data.spacing;
     const float scale = 2.0f / std::max({extent.x, extent.y, extent.z});
     const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z), step = scale * data.spacing;
-    FieldPlacement at{boxLo, boxLo, boxLo, boxLo + scale * extent, options.stage};
+    FieldPlacement at{boxLo, boxLo, boxLo, boxLo + scale * extent, options.stage, glm::vec2(data.minValue, data.maxValue)};
     at.lo.z += step.z * float(data.zFirst);
     at.hi = at.lo + step * glm::vec3(data.dims - 1u);
     const std::vector<glm::vec3> colors = colorMap(options.transferFunction.empty() ? "viridis" : options.transferFunction);
@@ -456,7 +460,7 @@ AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const Fie
     return fieldScene(device, data.dims, data.values, at, extraLights, edits, [&](DemoBuilder& b, ANARISpatialField field) {
         if (!options.transferFunction.empty())
             b.volume(field, colors, {0.0f, options.opacity}, options.unitDistance.value_or(kDefaultUnitDistance),
-                     values.x, values.y);
+                     values.x, values.y, options.transferFunction);
         for (float isovalue : options.isovalues) {
             const float t = range > 0.0f ? (isovalue - values.x) / range : 0.5f;
             b.isosurface(field, isovalue, b.matte(colorAt(colors, t)));

@@ -45,16 +45,22 @@ std::string describeVolumeOptions(const VolumeOptions& options) {
     return text;
 }
 
+void checkVolumeOptions(const VolumeOptions& options) {
+    const bool rawOptions = !options.dims.empty() || !options.type.empty() || !options.spacing.empty();
+    if (options.volume.empty() && (rawOptions || !options.transferFunction.empty() || options.opacity ||
+                                   options.unitDistance || !options.isovalues.empty()))
+        throw std::runtime_error("--dims, --type, --spacing, --tf, --opacity, --unit-distance and --isovalue "
+                                 "need --volume FILE");
+    if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
+    for (float v : options.isovalues)
+        if (!std::isfinite(v)) throw std::runtime_error("--isovalue " + std::to_string(v) + " is not a finite number");
+}
+
 std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Communicator& ranks, bool root,
                                    const char* program, bool quiet) {
+    checkVolumeOptions(options);
+    if (options.volume.empty()) return std::nullopt;
     const bool rawOptions = !options.dims.empty() || !options.type.empty() || !options.spacing.empty();
-    if (options.volume.empty()) {
-        if (rawOptions || !options.transferFunction.empty() || options.opacity || options.unitDistance ||
-            !options.isovalues.empty())
-            throw std::runtime_error("--dims, --type, --spacing, --tf, --opacity, --unit-distance and --isovalue "
-                                     "need --volume FILE");
-        return std::nullopt;
-    }
     FieldPlan plan;
     FieldSceneOptions& field = plan.scene;
     field.isovalues = options.isovalues;
@@ -62,11 +68,8 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
     field.transferFunction = !options.transferFunction.empty() ? options.transferFunction
                              : options.isovalues.empty()       ? "viridis"
                                                                : "";
-    if (!field.transferFunction.empty()) checkTransferFunctionName(field.transferFunction);
     field.opacity = options.opacity.value_or(field.opacity);
     field.unitDistance = options.unitDistance;
-    for (float v : options.isovalues)
-        if (!std::isfinite(v)) throw std::runtime_error("--isovalue " + std::to_string(v) + " is not a finite number");
     // Under mpirun each rank reads only its z-slab (data-parallel ANARI: every rank's world holds its own
     // brick, sharing a sample plane with its neighbour); rank 0's world holds the floor and the sun.
     const VolumeSlab slab{uint32_t(ranks.rank()), uint32_t(ranks.size())};

@@ -34,6 +34,10 @@ struct FieldPlan {
     FieldSceneOptions scene;
 };
 
+// Checks what can be checked without reading the file: options that need --volume, the colour map's name,
+// finite isovalues. Throws naming the option.
+void checkVolumeOptions(const VolumeOptions& options);
+
 // Reads and checks --volume's file with what to draw of it; nothing when no --volume is given. Throws naming
 // the option or the file (also for the other volume options without --volume). Collective under mpirun.
 // `root` places the floor and the sun in this rank's world; it also prints the warnings (`program` names

@@ -95,16 +95,6 @@ uint32_t samplesPerFrame(uint32_t spp) {
     return spp;
 }
 
-// Whether the device lists `name` (e.g. "ANARI_KHR_FRAME_ACCUMULATION") in its "extension" property.
-bool deviceHasExtension(ANARIDevice device, const char* name) {
-    const char** extensions = nullptr;
-    if (!anariGetProperty(device, device, "extension", ANARI_STRING_LIST, &extensions, sizeof extensions, ANARI_WAIT))
-        return false;
-    for (const char** e = extensions; e && *e; ++e)
-        if (std::string(*e) == name) return true;
-    return false;
-}
-
 // Maps the color channel (FLOAT32_VEC4) after frame number `frames` (from 1) of `batch` samples and adds
 // it to the estimator. A device that reports `numSamples` says how many samples the mapped average holds;
 // one that does not is taken to accumulate when it lists ANARI_KHR_FRAME_ACCUMULATION.
@@ -340,14 +330,11 @@ FrameSetup makeFrame(const Options& options, const RenderPlan& plan, const Anari
     setup.batch = options.reporting() ? 1 : samplesPerFrame(options.spp);
     // The error map needs two frames at least (one per half-buffer).
     if (!options.errorMap.empty()) setup.batch = std::max(1u, std::min(setup.batch, options.spp / 2));
-    if (const char** subtypes = anariGetObjectSubtypes(s.device, ANARI_RENDERER)) {
+    if (const std::vector<std::string> renderers = deviceSubtypes(s.device, ANARI_RENDERER);
+        !renderers.empty() && std::find(renderers.begin(), renderers.end(), options.renderer) == renderers.end()) {
         std::string known;
-        bool found = false;
-        for (const char** t = subtypes; *t; ++t) {
-            found = found || options.renderer == *t;
-            known += (known.empty() ? "" : ", ") + std::string(*t);
-        }
-        if (!found) throw std::runtime_error("--renderer: the device has no renderer '" + options.renderer + "' (it has: " + known + ")");
+        for (const std::string& name : renderers) known += (known.empty() ? "" : ", ") + name;
+        throw std::runtime_error("--renderer: the device has no renderer '" + options.renderer + "' (it has: " + known + ")");
     }
     ANARIRenderer renderer = anariNewRenderer(s.device, options.renderer.c_str());
     if (!renderer) throw std::runtime_error("the device has no '" + options.renderer + "' renderer");

@@ -11,7 +11,7 @@ namespace {
 enum : uint32_t { kHasView = 1, kHasSettings = 2, kHasSize = 4, kHasScale = 8 };
 
 struct PassOrderRecord {
-    uint32_t quit = 0, moving = 0, maxSamples = 0, has = 0;
+    uint32_t quit = 0, moving = 0, has = 0;
     // CameraView (its name stays on rank 0: it names nothing the device sees)
     uint32_t orthographic = 0;
     float position[3] = {}, direction[3] = {}, up[3] = {};
@@ -32,7 +32,6 @@ PassOrderRecord recordOf(const PassOrder& order) {
     PassOrderRecord r;
     r.quit = order.quit;
     r.moving = order.moving;
-    r.maxSamples = order.maxSamples;
     const PendingChanges& c = order.changes;
     if (c.view) {
         r.has |= kHasView;
@@ -71,7 +70,6 @@ PassOrder orderOf(const PassOrderRecord& r) {
     PassOrder order;
     order.quit = r.quit != 0;
     order.moving = r.moving != 0;
-    order.maxSamples = r.maxSamples;
     PendingChanges& c = order.changes;
     if (r.has & kHasView) {
         CameraView view;
@@ -102,13 +100,27 @@ PassOrder orderOf(const PassOrderRecord& r) {
 
 }  // namespace
 
+std::vector<uint8_t> encodePassOrder(const PassOrder& order) {
+    const PassOrderRecord record = recordOf(order);
+    const auto* bytes = reinterpret_cast<const uint8_t*>(&record);
+    return std::vector<uint8_t>(bytes, bytes + sizeof record);
+}
+
+PassOrder decodePassOrder(const std::vector<uint8_t>& bytes) {
+    if (bytes.size() != sizeof(PassOrderRecord)) throw std::runtime_error("a pass order of the wrong size");
+    PassOrderRecord record;
+    std::memcpy(&record, bytes.data(), sizeof record);
+    PassOrder order = orderOf(record);
+    order.fieldEdits.resize(record.fieldEditBytes);  // filled by the broadcast that follows
+    return order;
+}
+
 PassOrder sharePassOrder(const mpi::Communicator& ranks, const PassOrder& order) {
     if (!ranks.distributed()) return order;
-    PassOrderRecord record = recordOf(order);
-    ranks.broadcast(std::span<uint8_t>(reinterpret_cast<uint8_t*>(&record), sizeof record));
-    PassOrder shared = orderOf(record);
-    shared.fieldEdits = order.fieldEdits;  // rank 0's; the others' are sized here
-    shared.fieldEdits.resize(record.fieldEditBytes);
+    std::vector<uint8_t> fixed = encodePassOrder(order);
+    ranks.broadcast(fixed);
+    PassOrder shared = decodePassOrder(fixed);
+    if (ranks.rank() == 0) shared.fieldEdits = order.fieldEdits;
     ranks.broadcast(shared.fieldEdits);
     return shared;
 }

@@ -14,22 +14,6 @@ namespace {
 
 glm::uvec2 reducedSize(glm::uvec2 size, uint32_t scale) { return glm::max(size / scale, glm::uvec2(1)); }
 
-bool deviceHasExtension(ANARIDevice device, const char* name) {
-    const char** extensions = nullptr;
-    if (!anariGetProperty(device, device, "extension", ANARI_STRING_LIST, &extensions, sizeof extensions, ANARI_WAIT))
-        return false;
-    for (const char** e = extensions; e && *e; ++e)
-        if (std::strcmp(*e, name) == 0) return true;
-    return false;
-}
-
-bool deviceHasRenderer(ANARIDevice device, const char* subtype) {
-    const char** subtypes = anariGetObjectSubtypes(device, ANARI_RENDERER);
-    for (const char** t = subtypes; t && *t; ++t)
-        if (std::strcmp(*t, subtype) == 0) return true;
-    return false;
-}
-
 // The quick look's light is at the eye (its ambientRadiance, default 1): the scene's ambient fill is not set.
 void setQuickLook(ANARIDevice device, ANARIRenderer renderer, const ViewerSettings& settings) {
     anari::set(device, renderer, "pixelSamples", settings.pixelSamples);
@@ -56,7 +40,8 @@ ProgressiveFrames::ProgressiveFrames(Session& s, const AnariWorld& scene, const 
     renderer_ = anariNewRenderer(device_, "default");
     if (!renderer_) throw std::runtime_error("the device has no 'default' renderer");
     setRenderer(device_, renderer_, settings);
-    if (deviceHasRenderer(device_, "eyeLight")) {
+    const std::vector<std::string> renderers = deviceSubtypes(device_, ANARI_RENDERER);
+    if (std::find(renderers.begin(), renderers.end(), "eyeLight") != renderers.end()) {
         quickLook_ = anariNewRenderer(device_, "eyeLight");
         if (quickLook_) setQuickLook(device_, quickLook_, settings);
     }
@@ -97,10 +82,11 @@ void ProgressiveFrames::setReducedScale(uint32_t scale) {
 void ProgressiveFrames::editScene(std::function<void()> commit) { pendingEdits_.push_back(std::move(commit)); }
 
 void ProgressiveFrames::apply(const PendingChanges& changes) {
-    if (changes.view) setView(*changes.view);
-    if (changes.settings) setSettings(*changes.settings);
-    if (changes.size) setSize(*changes.size);
-    if (changes.reducedScale) setReducedScale(*changes.reducedScale);
+    // As pending there, whether or not a value equals this one's current: the same changes restart both.
+    if (changes.view) pendingView_ = *changes.view;
+    if (changes.settings) pendingSettings_ = *changes.settings;
+    if (changes.size) pendingSize_ = *changes.size;
+    if (changes.reducedScale) pendingScale_ = *changes.reducedScale;
 }
 
 // Called with no pass in flight: the device's objects are only changed between passes.

@@ -84,7 +84,8 @@ public:
     void editScene(std::function<void()> commit);
 
     PendingChanges pending() const { return {pendingView_, pendingSettings_, pendingSize_, pendingScale_}; }
-    // Takes up another instance's pending() as if its setters had been called here.
+    // Takes up another instance's pending() as its own pending changes, so that the next pass here
+    // restarts where that instance's restarts.
     void apply(const PendingChanges& changes);
 
     // Whether startPass(moving, maxSamples) would start a pass now.

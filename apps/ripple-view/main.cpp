@@ -123,7 +123,7 @@ AnariWorld buildScene(const Options& options, const std::optional<GltfScene>& gl
 // Ranks other than 0 under mpirun: the same scene share and device as rank 0, no window; each pass as rank 0
 // orders it, until it says the viewer closed.
 int followRankZero(const Options& options, const mpi::Communicator& ranks, Session& s) {
-    if (!shareStart(ranks, false)) return 1;  // rank 0 said why
+    if (!shareStart(ranks, false)) return 1;  // rank 0's answer; it said why
     const std::optional<FieldPlan> field = planField(options.field, ranks, false, "ripple-view", true);  // collective
     const std::optional<GltfScene> gltf = options.scene.empty() ? std::nullopt : std::optional(loadGltf(options.scene));
     StatusLog log{"ripple-view", options.quiet, 0};
@@ -142,7 +142,8 @@ int followRankZero(const Options& options, const mpi::Communicator& ranks, Sessi
         if (!order.fieldEdits.empty())
             frames.editScene([&edits, requests = decodeFieldEdits(order.fieldEdits, edits)] { commitEdits(edits, requests); });
         frames.apply(order.changes);
-        if (!frames.startPass(order.moving, order.maxSamples))
+        // Rank 0 decided the pass is due: no sample limit here (none is in flight, so it starts).
+        if (!frames.startPass(order.moving, 0))
             throw std::runtime_error("rank " + std::to_string(ranks.rank()) + " cannot start the pass rank 0 started");
         frames.poll(true);
     }
@@ -161,38 +162,42 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
     const std::string demo =
         options.scene.empty() && options.demo.empty() && options.field.volume.empty() ? "default" : options.demo;
     try {
-    if (!options.view.empty() && std::filesystem::exists(options.view)) {
-        if (options.camera) throw std::runtime_error("give one of --camera and an existing --view file");
-        savedView = readViewState(options.view);
-    }
-    size = savedView && savedView->size && !options.sizeGiven ? *savedView->size : parseImageSize(options.size);
-    if (!options.scene.empty() && !options.demo.empty())
-        throw std::runtime_error("give either a scene file or --demo, not both");
-    if (!options.field.volume.empty() && (!options.scene.empty() || !options.demo.empty()))
-        throw std::runtime_error("give one of a scene file, --demo or --volume");
-    if (ranks.distributed() && options.scene.empty() && options.field.volume.empty())
-        throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file or --volume under mpirun");
-    if (!demo.empty()) checkDemoSceneName(demo);
-    parsePartitionKind(options.partition);
-    if (headless) {
-        outputFormatOf(options.screenshot, "--screenshot");
-        checkOutputWritable(options.screenshot, "--screenshot");
-    }
-    if (!options.scene.empty()) {
-        gltf = loadGltf(options.scene);
-        if (!options.quiet)
-            for (const std::string& warning : gltf->warnings) std::fprintf(stderr, "[ripple-view] WARNING: %s\n", warning.c_str());
-    }
-    if (!options.environment.empty()) {
-        if (!std::isfinite(options.environmentIntensity) || options.environmentIntensity < 0.0f ||
-            !std::isfinite(options.environmentRotation))
-            throw std::runtime_error("--environment-intensity and --environment-rotation must be finite, the intensity not negative");
-        environment = readEnvironmentImage(options.environment);
-    }
-    const std::string title = !options.field.volume.empty() ? "ripple-view: " + options.field.volume
-                              : options.scene.empty()        ? "ripple-view: demo " + demo
-                                                             : "ripple-view: " + options.scene;
-    windowHolder.emplace(size, title);
+        if (!options.view.empty() && std::filesystem::exists(options.view)) {
+            if (options.camera) throw std::runtime_error("give one of --camera and an existing --view file");
+            savedView = readViewState(options.view);
+        }
+        size = savedView && savedView->size && !options.sizeGiven ? *savedView->size : parseImageSize(options.size);
+        if (!options.scene.empty() && !options.demo.empty())
+            throw std::runtime_error("give either a scene file or --demo, not both");
+        if (!options.field.volume.empty() && (!options.scene.empty() || !options.demo.empty()))
+            throw std::runtime_error("give one of a scene file, --demo or --volume");
+        if (ranks.distributed() && options.scene.empty() && options.field.volume.empty())
+            throw std::runtime_error("the demo scenes are not split over ranks: give a glTF file or --volume under mpirun");
+        if (!demo.empty()) checkDemoSceneName(demo);
+        parsePartitionKind(options.partition);
+        checkVolumeOptions(options.field);  // the file itself is read on every rank after the start
+        if (headless) {
+            outputFormatOf(options.screenshot, "--screenshot");
+            checkOutputWritable(options.screenshot, "--screenshot");
+        }
+        if (!options.scene.empty()) {
+            gltf = loadGltf(options.scene);
+            if (!options.quiet)
+                for (const std::string& warning : gltf->warnings) std::fprintf(stderr, "[ripple-view] WARNING: %s\n", warning.c_str());
+            if (options.camera && *options.camera >= int(gltf->cameras.size()))
+                throw std::runtime_error("--camera " + std::to_string(*options.camera) + ": the scene has " +
+                                         std::to_string(gltf->cameras.size()) + " cameras");
+        }
+        if (!options.environment.empty()) {
+            if (!std::isfinite(options.environmentIntensity) || options.environmentIntensity < 0.0f ||
+                !std::isfinite(options.environmentRotation))
+                throw std::runtime_error("--environment-intensity and --environment-rotation must be finite, the intensity not negative");
+            environment = readEnvironmentImage(options.environment);
+        }
+        const std::string title = !options.field.volume.empty() ? "ripple-view: " + options.field.volume
+                                  : options.scene.empty()        ? "ripple-view: demo " + demo
+                                                                 : "ripple-view: " + options.scene;
+        windowHolder.emplace(size, title);
     } catch (const std::exception& e) {
         if (ranks.distributed()) shareStart(ranks, false);  // the other ranks end without a word
         std::fprintf(stderr, "[ripple-view] ERROR: %s\n", e.what());
@@ -251,7 +256,7 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                  lo, hi);
     const uint32_t reducedScale = 2;
     // The other ranks make their frames from the same view, size and settings.
-    sharePassOrder(ranks, {false, false, 0, {camera.view(), ui.settings, renderSize, reducedScale}});
+    sharePassOrder(ranks, {false, false, {camera.view(), ui.settings, renderSize, reducedScale}, {}});
     ProgressiveFrames frames(s, scene, camera.view(), renderSize, ui.settings, reducedScale);
     ui.quickLookAvailable = frames.hasQuickLook();
 
@@ -365,17 +370,19 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
         std::vector<uint8_t> fieldEdits;  // the other ranks' share of the edits (their volume slabs)
         if (!editsToCommit.empty() && !frames.busy()) {
             frames.editScene([&edits, requests = editsToCommit] { commitEdits(edits, requests); });
-            if (ranks.distributed()) fieldEdits = encodeFieldEdits(edits, editsToCommit);
+            // Lights need nothing sent: rank 0 alone holds them (the device restarts every rank's frame).
+            if (ranks.distributed() && (!editsToCommit.volumes.empty() || !editsToCommit.isosurfaces.empty()))
+                fieldEdits = encodeFieldEdits(edits, editsToCommit);
             editsToCommit = {};
         }
         const uint32_t maxSamples = headless ? 0 : ui.maxSamples;
         if (ranks.distributed() && frames.passDue(moving, maxSamples))
-            sharePassOrder(ranks, {false, moving, maxSamples, frames.pending(), std::move(fieldEdits)});
+            sharePassOrder(ranks, {false, moving, frames.pending(), std::move(fieldEdits)});
         frames.startPass(moving, maxSamples);
         window.endFrame();
     }
     frames.poll(true);
-    sharePassOrder(ranks, {true, false, 0, {}});  // the other ranks end
+    sharePassOrder(ranks, {true, false, {}, {}});  // the other ranks end
     if (log.errors > 0) {
         std::fprintf(stderr, "[ripple-view] ERROR: the device reported %d error(s)\n", log.errors);
         return 1;

@@ -115,16 +115,15 @@ TEST_CASE("ripple-render: an emissive ceiling split over 2 ranks lights the room
     CHECK(std::abs(two - one) <= 0.03 * one);
 }
 
-// ripple-view under mpirun: rank 0 orders each pass and the other rank renders its part of it, so its
-// screenshot after 16 passes of 1 spp is ripple-render's 16 frames of 1 spp over the same 2-rank split, pixel
-// for pixel (the random numbers are keyed by pixel and sample).
-TEST_CASE("ripple-view: over 2 ranks it shows what ripple-render renders over 2 ranks") {
-    const std::filesystem::path viewed = imageFolder() / "view_cornell_2.pfm";
-    if (!std::filesystem::exists(viewed)) {
-        MESSAGE("skipped: ripple-view or xvfb-run was not found at configure time");
-        return;
-    }
-    const FloatImage view = readPfm(viewed), render = readPfm(imageFolder() / "cornell_2.pfm");
+// ripple-view under mpirun (the mpi_view_* tests write these; mpi_app_images_view runs only where they
+// are added): rank 0 orders each pass and the other rank renders its part of it, so the screenshot after 16
+// passes of 1 spp is ripple-render's 16 frames of 1 spp over the same 2-rank split, pixel for pixel (the
+// random numbers are keyed by pixel and sample), for a glTF file split spatially and a volume file's slabs.
+namespace {
+
+void checkSameImage(const std::string& viewed, const std::string& rendered) {
+    REQUIRE_MESSAGE(std::filesystem::exists(imageFolder() / viewed), viewed << " was not written");
+    const FloatImage view = readPfm(imageFolder() / viewed), render = readPfm(imageFolder() / rendered);
     REQUIRE(view.width == render.width);
     REQUIRE(view.height == render.height);
     int differing = 0;
@@ -132,19 +131,14 @@ TEST_CASE("ripple-view: over 2 ranks it shows what ripple-render renders over 2 
     CHECK(differing == 0);
 }
 
-// ripple-view --volume under mpirun reads the slabs as ripple-render does: the same image, pixel for pixel.
-TEST_CASE("ripple-view over 2 ranks shows a volume file's slabs as ripple-render renders them") {
-    const std::filesystem::path viewed = imageFolder() / "view_volume_2.pfm";
-    if (!std::filesystem::exists(viewed)) {
-        MESSAGE("skipped: ripple-view or xvfb-run was not found at configure time");
-        return;
-    }
-    const FloatImage view = readPfm(viewed), render = readPfm(imageFolder() / "volume_2.pfm");
-    REQUIRE(view.width == render.width);
-    REQUIRE(view.height == render.height);
-    int differing = 0;
-    for (size_t i = 0; i < view.pixels.size(); ++i) differing += view.pixels[i] != render.pixels[i] ? 1 : 0;
-    CHECK(differing == 0);
+}  // namespace
+
+TEST_CASE("ripple-view: over 2 ranks it shows the Cornell box as ripple-render renders it over 2 ranks") {
+    checkSameImage("view_cornell_2.pfm", "cornell_2.pfm");
+}
+
+TEST_CASE("ripple-view: over 2 ranks it shows a volume file's slabs as ripple-render renders them") {
+    checkSameImage("view_volume_2.pfm", "volume_2.pfm");
 }
 
 // Each rank holds a z-slab of the field (sharing its boundary sample plane) and keys its own random numbers,

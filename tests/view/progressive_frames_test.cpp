@@ -259,6 +259,91 @@ TEST_CASE("pass orders: volume and iso-surface edits carried to another rank's r
     CHECK(log.errors == 0);
 }
 
+// A pass order's fixed part as broadcast: every field rank 0 sets comes back (a field added to CameraView or
+// ViewerSettings and not carried would fail here), and an absent change stays absent.
+TEST_CASE("pass orders: encoded and decoded, every field") {
+    PassOrder order;
+    order.moving = true;
+    CameraView view;
+    view.orthographic = true;
+    view.position = {1.0f, 2.0f, 3.0f};
+    view.direction = {0.0f, -0.6f, -0.8f};
+    view.up = {0.0f, 0.8f, -0.6f};
+    view.fovy = 0.3f;
+    view.height = 4.5f;
+    view.apertureRadius = 0.25f;
+    view.focusDistance = 7.0f;
+    ViewerSettings settings;
+    settings.pixelSamples = 3;
+    settings.maxPathLength = 9;
+    settings.background = {0.1f, 0.2f, 0.3f, 0.4f};
+    settings.ambientRadiance = 0.7f;
+    settings.quickLookWhileMoving = false;
+    settings.display = DisplayChannel::InstanceId;
+    order.changes = {view, settings, glm::uvec2(640, 360), 4u};
+    order.fieldEdits = {1, 2, 3};
+    const PassOrder back = decodePassOrder(encodePassOrder(order));
+    CHECK_FALSE(back.quit);
+    CHECK(back.moving);
+    REQUIRE(back.changes.view);
+    const CameraView& v = *back.changes.view;
+    CHECK(v.orthographic);
+    CHECK(v.position == view.position);
+    CHECK(v.direction == view.direction);
+    CHECK(v.up == view.up);
+    CHECK(v.fovy == view.fovy);
+    CHECK(v.height == view.height);
+    CHECK(v.apertureRadius == view.apertureRadius);
+    CHECK(v.focusDistance == view.focusDistance);
+    REQUIRE(back.changes.settings);
+    CHECK(*back.changes.settings == settings);
+    CHECK(back.changes.size == glm::uvec2(640, 360));
+    CHECK(back.changes.reducedScale == 4u);
+    CHECK(back.fieldEdits.size() == 3);  // sized for the broadcast that fills it
+    const PassOrder quit = decodePassOrder(encodePassOrder({true, false, {}, {}}));
+    CHECK(quit.quit);
+    CHECK_FALSE(quit.changes.view);
+    CHECK_FALSE(quit.changes.settings);
+    CHECK_FALSE(quit.changes.size);
+    CHECK_FALSE(quit.changes.reducedScale);
+    CHECK_THROWS_WITH_AS(decodePassOrder(std::vector<uint8_t>(5)), "a pass order of the wrong size", std::runtime_error);
+}
+
+// Another rank takes up rank 0's pending changes and restarts where rank 0 restarts, also when a setting
+// changed and changed back within one pass (rank 0 restarts then; a setter that drops a value equal to the
+// current one would not).
+TEST_CASE("pass orders: the other rank's frames restart where rank 0's do") {
+    Session s;
+    StatusLog log{"view test", true, 0};
+    openAnariDevice("ripple", log, s);
+    const AnariWorld scene = buildDemoScene(s.device, "cornell");
+    s.objects.push_back(scene.world);
+    ViewerSettings settings;
+    settings.maxPathLength = 2;
+    ProgressiveFrames rank0(s, scene, scene.cameras.at(0), {8, 8}, settings, 2),
+        other(s, scene, scene.cameras.at(0), {8, 8}, settings, 2, false);
+    const auto pass = [&] {
+        const PendingChanges changes = rank0.pending();
+        REQUIRE(rank0.startPass(false, 0));
+        REQUIRE(rank0.poll(true));
+        other.apply(changes);
+        REQUIRE(other.startPass(false, 0));
+        REQUIRE(other.poll(true));
+        CHECK(other.fullSamples() == rank0.fullSamples());
+    };
+    pass();
+    pass();
+    CHECK(rank0.fullSamples() == 2);
+    ViewerSettings changed = settings;
+    changed.maxPathLength = 3;
+    rank0.setSettings(changed);
+    rank0.setSettings(settings);  // back: still pending, so the next pass restarts
+    pass();
+    CHECK(rank0.fullSamples() == 1);
+    CHECK(other.latest().rgba.empty());  // it holds no image
+    CHECK(log.errors == 0);
+}
+
 TEST_CASE("channel pictures: depth near bright, far dark, none black; ids hashed, none black") {
     const float depth[4] = {2.0f, 4.0f, 3.0f, std::numeric_limits<float>::infinity()};
     const std::vector<float> d = channelPicture(DisplayChannel::Depth, depth, 4);
