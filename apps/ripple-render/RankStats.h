@@ -1,6 +1,7 @@
 // ripple-render --stats under mpirun: what each rank holds and sends, gathered and printed by rank 0.
 #pragma once
 
+#include "core/render/StageProfile.h"
 #include "mpi/Communicator.h"
 
 #include <cstdint>
@@ -13,9 +14,12 @@ struct RankStats {
     uint64_t raysSent = 0;     // summed over frames (frame property ripple.raysSent)
     uint64_t bytesSent = 0;
     uint64_t frames = 0;
+    // GPU time of each stage of the wavefront loop, summed over frames (ripple.stageMicroseconds.NAME)
+    uint64_t stageMicroseconds[core::kStageCount] = {};
 };
 
-// Collective: rank 0 prints one line per rank (triangles, scene memory, rays and bytes sent per frame).
+// Collective: rank 0 prints one line per rank (triangles, scene memory, rays and bytes sent per frame), then
+// each rank's GPU time per frame by stage, the largest first.
 void printRankStats(const mpi::Communicator& ranks, const RankStats& mine);
 
 }  // namespace ripple::apps

@@ -440,6 +440,12 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
             stats.raysSent += rays;
             stats.bytesSent += bytes;
             ++stats.frames;
+            for (size_t i = 0; i < core::kStageCount; ++i) {  // GPU time per stage (Ripple's property)
+                const std::string name = std::string("ripple.stageMicroseconds.") + core::stageName(core::Stage(i));
+                uint64_t microseconds = 0;
+                if (anariGetProperty(s.device, frame, name.c_str(), ANARI_UINT64, &microseconds, sizeof microseconds, ANARI_WAIT))
+                    stats.stageMicroseconds[i] += microseconds;
+            }
         }
         if (plan.root)
             addFrameToEstimator(s.device, frame, plan.size, out.frames, setup.batch, setup.accumulationExtension,
@@ -745,7 +751,8 @@ int main(int argc, char** argv) {
                    "for trusted input only")
         ->check(CLI::ExistingDirectory);
     ripple::apps::addVolumeOptions(app, options.field);
-    app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame");
+    app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame, and "
+                                           "GPU time per frame by stage of the wavefront loop");
     int parseOutcome = 0;  // 0: parsed; else the parser's exit code + 1
     std::optional<CLI::ParseError> parseError;
     try {

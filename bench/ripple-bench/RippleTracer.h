@@ -4,7 +4,7 @@
 #pragma once
 
 #include "bench/kernels/Bvh4TraceKernels.h"
-#include "bench/kernels/Timestamps.h"
+#include "core/vk/Timestamps.h"
 #include "bench/ripple-bench/Timing.h"
 #include "core/render/TraceKernels.h"
 #include "core/scene/Scene.h"

@@ -80,10 +80,12 @@ struct PathTracer::Impl {
     uint32_t channelBits = 0;                                       // FEATURE_CHANNEL_* asked for in resize
     FeatureSet features = FeatureSet::all();                        // of the latest render
     VisitorTracer visitors;                                         // traces rays from other ranks
+    StageProfile profile;                                           // GPU time per stage
+    StageSeconds stageSeconds{};                                    // of the frame being rendered
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
         : context(ctx), options(opts), trace(ctx, traceOptions), pipelines(ctx), channels(ctx, opts.workgroupSize),
-          visitors(ctx, trace, opts.workgroupSize) {
+          visitors(ctx, trace, opts.workgroupSize), profile(ctx) {
         if (options.queueCapacity == 0 || options.workgroupSize == 0)
             throw std::invalid_argument("PathTracerOptions: queueCapacity and workgroupSize must be positive");
         const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options.workgroupSize}};
@@ -125,6 +127,17 @@ struct PathTracer::Impl {
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
                              nullptr, 0, nullptr);
     }
+
+    // A submission whose stages (mark) are timed into stageSeconds.
+    template <class Record>
+    void submitTimed(Record&& record) {
+        context.submitAndWait([&](VkCommandBuffer cmd) {
+            profile.begin(cmd);
+            record(cmd);
+        });
+        profile.collect(stageSeconds);
+    }
+    void mark(VkCommandBuffer cmd, Stage stage) { profile.mark(cmd, stage); }
 
     gpu::PathCounters readCounters() const {
         gpu::PathCounters c{};
@@ -187,6 +200,7 @@ struct PathTracer::Impl {
         const gpu::QueueAdvanceParams p{counters.address(), capacity, options.workgroupSize, trace.options().workgroupSize, 0};
         queueAdvance.pushConstants(cmd, &p, sizeof(p));
         vkCmdDispatch(cmd, 1, 1, 1);
+        mark(cmd, Stage::QueueAdvance);
     }
 
     void generateRays(VkCommandBuffer cmd, const Wave& wave, uint32_t sampleIndex) {
@@ -199,6 +213,7 @@ struct PathTracer::Impl {
             p.results = channels.tableAddress();
             dispatch(cmd, generate, p, part.pixels.count);
         }
+        mark(cmd, Stage::Generate);
     }
 
     RayExchange& exchange() { return options.exchange ? *options.exchange : localExchange; }
@@ -210,6 +225,7 @@ struct PathTracer::Impl {
         vk::computeBarrier(cmd);
         if (lengthsOnDevice) trace.traceAny(cmd, scene, shadowRays, occlusion, deviceRayCount(gpu::COUNT_SHADOW_QUEUE));
         else trace.traceAny(cmd, scene, shadowRays, occlusion, count);
+        mark(cmd, Stage::TraceAny);
     }
 
     void resolveShadows(VkCommandBuffer cmd, const Scene& scene, uint32_t count, uint32_t bounce, uint32_t sampleIndex) {
@@ -222,10 +238,12 @@ struct PathTracer::Impl {
             v.bounce = bounce;
             v.sampleIndex = sampleIndex;
             dispatchQueue(cmd, shadowVolume, v, gpu::COUNT_SHADOW_QUEUE, count);
+            mark(cmd, Stage::ShadowVolume);
         }
         p.shadowRequests = shadowRequests.address();
         p.results = occlusion.address();
         dispatchQueue(cmd, shadowResolve, p, gpu::COUNT_SHADOW_QUEUE, count);
+        mark(cmd, Stage::ShadowResolve);
     }
 
     // Closest hit for the current queue and the surface at each hit; shading follows the exchange.
@@ -235,16 +253,19 @@ struct PathTracer::Impl {
         vk::computeBarrier(cmd);
         if (lengthsOnDevice) trace.traceClosest(cmd, scene, in.rays, hits, deviceRayCount(gpu::COUNT_PATH_QUEUE));
         else trace.traceClosest(cmd, scene, in.rays, hits, count);
+        mark(cmd, Stage::TraceClosest);
         gpu::StageParams p = params(&scene);
         p.paths = in.paths.address();
         p.rays = in.rays.address();
         p.hits = hits.address();
         p.surfaces = surfaces.address();
         dispatchQueue(cmd, surface, p, gpu::COUNT_PATH_QUEUE, count);
+        mark(cmd, Stage::Surface);
         if (features.has(gpu::FEATURE_VOLUMES)) {  // free flight: a collision before the surface replaces it
             p.bounce = bounce;
             p.sampleIndex = sampleIndex;
             dispatchQueue(cmd, volume, p, gpu::COUNT_PATH_QUEUE, count);
+            mark(cmd, Stage::Volume);
         }
     }
 
@@ -262,6 +283,7 @@ struct PathTracer::Impl {
             gpu::StageParams c = p;
             c.results = channels.tableAddress();
             dispatchQueue(cmd, channels.pipeline(), c, gpu::COUNT_PATH_QUEUE, count);
+            mark(cmd, Stage::Channels);
         }
         p.nextPaths = out.paths.address();
         p.nextRays = out.rays.address();
@@ -270,6 +292,7 @@ struct PathTracer::Impl {
         p.bounce = bounce;
         p.sampleIndex = sampleIndex;
         dispatchQueue(cmd, shade, p, gpu::COUNT_PATH_QUEUE, count);
+        mark(cmd, Stage::Shade);
     }
 
     // With more than one rank: the queues as traced here go round the other ranks and come back with
@@ -327,7 +350,7 @@ struct PathTracer::Impl {
         uint32_t bounce = 0;
         while (bounce <= maxBounces) {
             const uint32_t end = bounce == 0 ? std::min(firstBatch, maxBounces + 1) : maxBounces + 1;
-            context.submitAndWait([&](VkCommandBuffer cmd) {
+            submitTimed([&](VkCommandBuffer cmd) {
                 if (bounce == 0) {
                     generateRays(cmd, wave, sampleIndex);
                     advanceQueueLengths(cmd);
@@ -356,14 +379,14 @@ struct PathTracer::Impl {
         RayExchange& ranks = exchange();
         uint32_t paths = wave ? wave->paths : 0, shadows = 0;
         for (uint32_t bounce = 0; bounce <= maxBounces && ranks.sum(paths + shadows) > 0; ++bounce) {
-            context.submitAndWait([&](VkCommandBuffer cmd) {
+            submitTimed([&](VkCommandBuffer cmd) {
                 if (bounce == 0 && paths > 0) generateRays(cmd, *wave, sampleIndex);
                 occlude(cmd, scene, shadows);
                 traceAndShade(cmd, scene, paths, bounce, sampleIndex);
                 hostReadBarrier(cmd);
             });
             exchangeRays(scene, paths, shadows, bounce, sampleIndex);
-            context.submitAndWait([&](VkCommandBuffer cmd) {
+            submitTimed([&](VkCommandBuffer cmd) {
                 resolveShadows(cmd, scene, shadows, bounce, sampleIndex);
                 shadePaths(cmd, scene, paths, bounce, sampleIndex);
                 hostReadBarrier(cmd);
@@ -441,6 +464,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     Impl& m = *impl_;
     m.uploadFrame(frameConstants(camera, settings), size_);
     m.writeCounters({});
+    m.stageSeconds = {};
     // Leave out what this frame does not need: kernels specialised for its FeatureSet (FeatureSet.h).
     m.features = m.options.specialize ? FeatureSet{scene.features() | m.channelBits |
                                                    (m.exchange().rankCount() > 1 ? gpu::FEATURE_MULTI_RANK : 0u)}
@@ -474,12 +498,13 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
             else
                 m.traceWaveAcrossRanks(scene, wave, sampleIndex, maxBounces, stats);
         }
-        m.context.submitAndWait([&](VkCommandBuffer cmd) {
+        m.submitTimed([&](VkCommandBuffer cmd) {
             for (const PixelRange& range : owned) {
                 gpu::StageParams p = m.params(nullptr);
                 p.firstPixel = range.first;
                 m.dispatch(cmd, m.accumulate, p, range.count);
             }
+            m.mark(cmd, Stage::Accumulate);
             Impl::hostReadBarrier(cmd);
         });
         ++accumulatedSamples_;
@@ -491,6 +516,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     stats.realCollisions = sum64(c.realCollisions);
     stats.nullCollisions = sum64(c.nullCollisions);
     stats.ratioCollisions = sum64(c.ratioCollisions);
+    stats.stageSeconds = m.stageSeconds;
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;
 }

@@ -14,6 +14,7 @@
 
 #include "core/render/RayExchange.h"
 #include "core/render/FeatureSet.h"
+#include "core/render/StageProfile.h"
 #include "core/render/SurfaceChannels.h"
 #include "core/render/TraceKernels.h"
 #include "core/scene/Scene.h"
@@ -99,6 +100,7 @@ struct FrameStats {
     uint64_t realCollisions = 0;
     uint64_t nullCollisions = 0;
     uint64_t ratioCollisions = 0;
+    StageSeconds stageSeconds{};          // GPU time per stage of the wavefront loop (StageProfile.h)
     double seconds = 0.0;
 };
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -324,6 +325,8 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
         results.realCollisions = stats.realCollisions;
         results.nullCollisions = stats.nullCollisions;
         results.ratioCollisions = stats.ratioCollisions;
+        for (size_t i = 0; i < core::kStageCount; ++i)
+            results.stageMicroseconds[i] = uint64_t(std::llround(stats.stageSeconds[i] * 1e6));
         results.sceneBuilds = sync_.builds();
         results.blasBuilt = scene.report().blasBuilt;
         results.blasReused = scene.report().blasReused;
@@ -455,6 +458,13 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
             return true;
         }
     }
+    constexpr std::string_view kStagePrefix = "ripple.stageMicroseconds.";
+    if (name.starts_with(kStagePrefix) && type == ANARI_UINT64 && size >= sizeof(uint64_t))
+        for (size_t i = 0; i < core::kStageCount; ++i)
+            if (name.substr(kStagePrefix.size()) == core::stageName(core::Stage(i))) {
+                std::memcpy(mem, &results_.stageMicroseconds[i], sizeof(uint64_t));
+                return true;
+            }
     return Object::getProperty(name, type, mem, size, wait);
 }
 

@@ -1,5 +1,7 @@
 // GPU timestamp queries, converted to seconds with the device's timestamp period.
-#include "bench/kernels/Timestamps.h"
+#include "core/vk/Timestamps.h"
+
+#include <algorithm>
 
 namespace ripple::vk {
 
@@ -27,6 +29,18 @@ double Timestamps::seconds(uint32_t from, uint32_t to) const {
     RIPPLE_VK_CHECK(vkGetQueryPoolResults(context_.device(), pool_, to, 1, sizeof(uint64_t), &stamps[1],
                                           sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     return static_cast<double>(stamps[1] - stamps[0]) * context_.properties().limits.timestampPeriod * 1e-9;
+}
+
+std::vector<double> Timestamps::read(uint32_t count) const {
+    std::vector<uint64_t> stamps(std::min(count, capacity_));
+    if (stamps.empty()) return {};
+    RIPPLE_VK_CHECK(vkGetQueryPoolResults(context_.device(), pool_, 0, uint32_t(stamps.size()),
+                                          stamps.size() * sizeof(uint64_t), stamps.data(), sizeof(uint64_t),
+                                          VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const double period = context_.properties().limits.timestampPeriod * 1e-9;
+    std::vector<double> seconds(stamps.size());
+    for (size_t i = 0; i < stamps.size(); ++i) seconds[i] = double(stamps[i] - stamps[0]) * period;
+    return seconds;
 }
 
 }  // namespace ripple::vk
