@@ -36,8 +36,8 @@ void printRankStats(const mpi::Communicator& ranks, const RankStats& mine) {
         uint64_t total = 0;
         for (uint64_t t : s.stageMicroseconds) total += t;
         if (total == 0) continue;  // a device without the stage properties
-        const double frames = s.frames > 0 ? double(s.frames) : 1.0;
-        std::printf("rank %zu GPU time per frame, %.1f ms:", r, double(total) / frames * 1e-3);
+        const double frames = s.stageFrames > 0 ? double(s.stageFrames) : 1.0;
+        std::printf("rank %zu GPU time per frame after the first, %.1f ms:", r, double(total) / frames * 1e-3);
         for (size_t i : order)
             if (s.stageMicroseconds[i] > 0)
                 std::printf(" %s %.1f (%.0f%%)", core::stageName(core::Stage(i)), double(s.stageMicroseconds[i]) / frames * 1e-3,

@@ -14,8 +14,10 @@ struct RankStats {
     uint64_t raysSent = 0;     // summed over frames (frame property ripple.raysSent)
     uint64_t bytesSent = 0;
     uint64_t frames = 0;
-    // GPU time of each stage of the wavefront loop, summed over frames (ripple.stageMicroseconds.NAME)
+    // GPU time of each stage of the wavefront loop (ripple.stageMicroseconds.NAME), summed over the
+    // frames after the first (which includes compiling kernels on some drivers), and their count
     uint64_t stageMicroseconds[core::kStageCount] = {};
+    uint64_t stageFrames = 0;
 };
 
 // Collective: rank 0 prints one line per rank (triangles, scene memory, rays and bytes sent per frame), then

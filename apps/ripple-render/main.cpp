@@ -440,7 +440,10 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
             stats.raysSent += rays;
             stats.bytesSent += bytes;
             ++stats.frames;
-            for (size_t i = 0; i < core::kStageCount; ++i) {  // GPU time per stage (Ripple's property)
+            // GPU time per stage (Ripple's property), after the first frame: lavapipe compiles a kernel
+            // the first time it runs, which would count as that stage's time.
+            if (out.frames > 1) ++stats.stageFrames;
+            for (size_t i = 0; out.frames > 1 && i < core::kStageCount; ++i) {
                 const std::string name = std::string("ripple.stageMicroseconds.") + core::stageName(core::Stage(i));
                 uint64_t microseconds = 0;
                 if (anariGetProperty(s.device, frame, name.c_str(), ANARI_UINT64, &microseconds, sizeof microseconds, ANARI_WAIT))

@@ -551,6 +551,26 @@ TEST_CASE("renderFrame returns before the frame is done; anariFrameReady(NO_WAIT
                            sizeof(raysPerSecond), ANARI_WAIT) == 1);
     CHECK(raysPerSecond > 0.0f);
     MESSAGE("48x48, 4 samples, paths of 3: " << duration << " s, " << raysPerSecond / 1e6f << " Mrays/s");
+    // GPU time per stage: the stages a lit surface scene runs took time, one it has no use for took none,
+    // and together they fit in the frame's duration.
+    const auto stage = [&](const char* name) {
+        uint64_t microseconds = ~0ull;
+        const std::string property = std::string("ripple.stageMicroseconds.") + name;
+        REQUIRE(anariGetProperty(s.device, frame, property.c_str(), ANARI_UINT64, &microseconds, sizeof microseconds,
+                                 ANARI_WAIT) == 1);
+        return microseconds;
+    };
+    uint64_t total = 0;
+    for (const char* name : {"generate", "traceClosest", "surface", "shade", "traceAny", "shadowResolve", "accumulate"}) {
+        CAPTURE(name);
+        CHECK(stage(name) > 0);
+        total += stage(name);
+    }
+    CHECK(stage("volume") == 0);
+    CHECK(double(total) * 1e-6 <= double(duration));
+    uint64_t unknown = 0;
+    CHECK(anariGetProperty(s.device, frame, "ripple.stageMicroseconds.teapot", ANARI_UINT64, &unknown, sizeof unknown,
+                           ANARI_WAIT) == 0);
     CHECK(s.log.problems() == 0);
 }
 
