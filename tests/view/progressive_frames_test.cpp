@@ -22,6 +22,13 @@ using namespace ripple::apps;
 
 namespace {
 
+// The Ripple device with quiet logging, as each test opens it (the session outlives the test's objects).
+struct RippleDevice {
+    StatusLog log{"view test", true, 0};
+    Session session;
+    RippleDevice() { openAnariDevice("ripple", log, session); }
+};
+
 // One pass of `subtype` at `size`, as the viewer's frames are set up (FLOAT32_VEC4, accumulation on): the
 // colour, or `channel` (channel.normal, FLOAT32_VEC3).
 std::vector<float> renderDirectly(Session& s, const AnariWorld& scene, const CameraView& view, glm::uvec2 size,
@@ -63,9 +70,9 @@ std::vector<float> renderDirectly(Session& s, const AnariWorld& scene, const Cam
 }  // namespace
 
 TEST_CASE("viewer passes: moving ones with the quick-look renderer (unless turned off), still ones path-traced") {
-    Session s;
-    StatusLog log{"view test", true, 0};
-    openAnariDevice("ripple", log, s);
+    RippleDevice d;
+    Session& s = d.session;
+    const StatusLog& log = d.log;
     const AnariWorld scene = buildDemoScene(s.device, "cornell");
     s.objects.push_back(scene.world);
     const auto [lo, hi] = worldBounds(s.device, scene);
@@ -136,9 +143,9 @@ uint64_t realCollisions(Session& s, ANARIFrame frame) {
 // the Cornell box's one light at twice its radiance gives every pixel twice its value, exactly (the light's
 // pick and every path's sampling do not depend on it, and the random numbers restart with the samples).
 TEST_CASE("scene edits: a light at twice its radiance doubles every pixel, exactly") {
-    Session s;
-    StatusLog log{"view test", true, 0};
-    openAnariDevice("ripple", log, s);
+    RippleDevice d;
+    Session& s = d.session;
+    const StatusLog& log = d.log;
     SceneEdits edits(s.device);
     const AnariWorld scene = buildDemoScene(s.device, "cornell", {}, &edits);
     s.objects.push_back(scene.world);
@@ -168,9 +175,9 @@ TEST_CASE("scene edits: a light at twice its radiance doubles every pixel, exact
 // An iso-surface's value moved out of the field's range and back gives the first image again, bit for bit;
 // a volume's opacity cleared leaves no real collision in it.
 TEST_CASE("scene edits: an isovalue out of range and back, a volume's opacity cleared") {
-    Session s;
-    StatusLog log{"view test", true, 0};
-    openAnariDevice("ripple", log, s);
+    RippleDevice d;
+    Session& s = d.session;
+    const StatusLog& log = d.log;
     const glm::uvec2 size{24, 18};
     ViewerSettings settings;
     settings.maxPathLength = 2;
@@ -228,9 +235,9 @@ TEST_CASE("scene edits: an isovalue out of range and back, a volume's opacity cl
 // Under mpirun rank 0 sends its volume and iso-surface edits to the other ranks, whose records (their own
 // slabs of the same scene) take the values: here two builds of one scene stand for two ranks.
 TEST_CASE("pass orders: volume and iso-surface edits carried to another rank's records") {
-    Session s;
-    StatusLog log{"view test", true, 0};
-    openAnariDevice("ripple", log, s);
+    RippleDevice d;
+    Session& s = d.session;
+    const StatusLog& log = d.log;
     SceneEdits rank0(s.device), rank1(s.device);
     for (SceneEdits* edits : {&rank0, &rank1}) s.objects.push_back(buildDemoScene(s.device, "volume", {}, edits).world);
     REQUIRE(rank0.volumes.size() == 1);
@@ -313,9 +320,9 @@ TEST_CASE("pass orders: encoded and decoded, every field") {
 // changed and changed back within one pass (rank 0 restarts then; a setter that drops a value equal to the
 // current one would not).
 TEST_CASE("pass orders: the other rank's frames restart where rank 0's do") {
-    Session s;
-    StatusLog log{"view test", true, 0};
-    openAnariDevice("ripple", log, s);
+    RippleDevice d;
+    Session& s = d.session;
+    const StatusLog& log = d.log;
     const AnariWorld scene = buildDemoScene(s.device, "cornell");
     s.objects.push_back(scene.world);
     ViewerSettings settings;
