@@ -124,10 +124,11 @@ AnariWorld buildScene(const Options& options, const std::optional<GltfScene>& gl
 // orders it, until it says the viewer closed.
 int followRankZero(const Options& options, const mpi::Communicator& ranks, Session& s) {
     if (!shareStart(ranks, false)) return 1;  // rank 0's answer; it said why
-    const std::optional<FieldPlan> field = planField(options.field, ranks, false, "ripple-view", true);  // collective
-    const std::optional<GltfScene> gltf = options.scene.empty() ? std::nullopt : std::optional(loadGltf(options.scene));
+    // The same collectives in the same order as rank 0: the device, the field's value range, the bounds.
     StatusLog log{"ripple-view", options.quiet, 0};
     openAnariDevice(options.library, log, s);
+    const std::optional<FieldPlan> field = planField(options.field, ranks, false, "ripple-view", true);
+    const std::optional<GltfScene> gltf = options.scene.empty() ? std::nullopt : std::optional(loadGltf(options.scene));
     SceneEdits edits(s.device);  // this rank's slab of the volumes rank 0's panel edits
     const AnariWorld scene = buildScene(options, gltf, field, ranks, s, {}, edits);
     s.objects.push_back(scene.world);
