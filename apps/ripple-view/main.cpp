@@ -398,10 +398,13 @@ int main(int argc, char** argv) {
     ripple::mpi::Runtime runtime(&argc, &argv);
     const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();  // collective: before anything can fail
     ripple::apps::Options options;
-    CLI::App app{"ripple-view: view a glTF 2.0 file or a built-in demo scene interactively through an ANARI library.\n"
+    CLI::App app{"ripple-view: view a glTF 2.0 file, a volume file or a built-in demo scene interactively through an "
+                 "ANARI library.\n"
                  "Mouse: left drag orbits, right or middle drag pans, the wheel zooms. Keys: W/A/S/D/Q/E fly (shift: "
                  "faster), F frames the scene, P writes a screenshot (ripple-view-NNN.png; shift+P: .exr, linear HDR), V saves the view (camera, "
-                 "settings, size) for ripple-render --view."};
+                 "settings, size) for ripple-render --view. Panels: Renderer, Camera, Lights, Volumes.\n"
+                 "Under mpirun every rank holds its share of a file (--partition, or --volume slabs); rank 0 shows the "
+                 "window."};
     app.add_option("scene", options.scene, "glTF 2.0 file (.gltf or .glb); without one a demo scene is shown");
     std::string demoNames;
     for (const std::string& n : ripple::apps::demoSceneNames()) demoNames += (demoNames.empty() ? "" : ", ") + n;
