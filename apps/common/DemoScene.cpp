@@ -187,8 +187,11 @@ public:
         set(d_, field, "origin", lo);
         set(d_, field, "spacing", (hi - lo) / glm::vec3(dims - 1u));
         anariCommitParameters(d_, field);
-        const auto [smallest, largest] = std::minmax_element(samples.begin(), samples.end());
-        fieldRanges_[field] = values ? *values : samples.empty() ? glm::vec2(0.0f, 1.0f) : glm::vec2(*smallest, *largest);
+        if (!values) {
+            const auto [smallest, largest] = std::minmax_element(samples.begin(), samples.end());
+            values = samples.empty() ? glm::vec2(0.0f, 1.0f) : glm::vec2(*smallest, *largest);
+        }
+        fieldRanges_[field] = *values;
         return field;
     }
 

@@ -5,8 +5,6 @@
 // record's values on its object.
 #pragma once
 
-#include "apps/common/ImageIO.h"
-
 #include <anari/anari.h>
 
 #include <glm/glm.hpp>
@@ -24,7 +22,7 @@ struct EditableLight {
     glm::vec3 color{1.0f};
     float intensity = 1.0f;             // the subtype's own: see intensityParameter
     std::optional<glm::vec3> direction; // directional and spot: where the light shines
-    float rotationDegrees = 0.0f;       // hdri: its turn about +Y (see newEnvironmentLight)
+    float rotationDegrees = 0.0f;       // hdri: its turn about +Y (environmentDirection)
 };
 
 struct EditableVolume {
@@ -74,14 +72,5 @@ public:
 private:
     ANARIDevice device_;
 };
-
-// An "hdri" light of an equirectangular image of linear radiances (row 0 at the top, towards +Y): its centre
-// column is seen along -Z turned by `rotationDegrees` about +Y, so the default faces a camera looking down
-// -Z. The caller releases the light. Throws when the device has no hdri light or cannot hold the image.
-ANARILight newEnvironmentLight(ANARIDevice device, const LinearImage& image, float intensity, float rotationDegrees);
-
-// The image --environment names, checked: finite, non-negative radiances, at least 2x1 texels. Throws naming
-// the file.
-LinearImage readEnvironmentImage(const std::string& file);
 
 }  // namespace ripple::apps

@@ -6,12 +6,12 @@
 #include "apps/common/AnariScene.h"
 #include "apps/common/AnariSession.h"
 #include "apps/common/DemoScene.h"
+#include "apps/common/EnvironmentOptions.h"
 #include "apps/common/GltfScene.h"
 #include "apps/common/HeatMap.h"
 #include "apps/common/ImageIO.h"
 #include "apps/common/ImageSize.h"
 #include "apps/common/OutputImage.h"
-#include "apps/common/SceneEdits.h"
 #include "apps/common/ScenePartition.h"
 #include "apps/common/ViewState.h"
 #include "apps/common/VolumeFile.h"
@@ -64,9 +64,7 @@ struct Options {
     std::optional<CameraView> viewCamera;     // from --view
     std::optional<glm::vec4> viewBackground;  // from --view
     std::optional<float> viewAmbient;         // from --view: the scene's ambient unless --ambient is given
-    std::string environment;            // equirectangular .hdr/.exr/.pfm/.png image: an hdri light
-    float environmentIntensity = 1.0f;  // its "scale"
-    float environmentRotation = 0.0f;   // degrees about the up axis (+Y)
+    EnvironmentOptions environment;     // --environment: an hdri light
     bool quiet = false;
     std::string partition = "round-robin";  // under mpirun: which share of the file each rank imports
     std::filesystem::path resourceRoot;     // empty: the scene file's folder confines its URIs
@@ -137,9 +135,7 @@ struct RenderPlan {
     std::optional<LinearImage> reference;
     std::string demo;                   // the demo scene, or empty for a file
     std::optional<GltfScene> gltf;
-    std::optional<LinearImage> environment;  // --environment
-    float environmentIntensity = 1.0f;
-    float environmentRotation = 0.0f;   // degrees
+    std::optional<LinearImage> environment;  // --environment's image
     std::optional<VolumeData> field;    // --volume
     FieldSceneOptions fieldOptions;
     bool depth = false, normal = false, albedo = false;  // --channels
@@ -243,13 +239,7 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
 
     // Every rank reads it and makes the light, so that all build the same scene settings; only rank 0
     // places lights in its world (the device gathers them).
-    if (!options.environment.empty()) {
-        plan.environment = readEnvironmentImage(options.environment);
-    }
-    if (!std::isfinite(options.environmentRotation))
-        throw std::runtime_error("--environment-rotation must be finite");
-    plan.environmentIntensity = options.environmentIntensity;
-    plan.environmentRotation = options.environmentRotation;
+    plan.environment = readEnvironment(options.environment);
 
     // The file is read before any library is loaded, so a bad file fails fast.
     if (!options.scene.empty()) {
@@ -272,7 +262,7 @@ void openDevice(const Options& options, StatusLog& log, Session& s) {
 
 // The scene on the device: under mpirun each rank imports only its share of the file, so that no rank holds
 // the whole scene; the lights become ANARI lights on rank 0 alone (the device gathers every rank's lights).
-AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session& s,
+AnariWorld buildScene(const Options& options, RenderPlan& plan, const mpi::Communicator& ranks, Session& s,
                       RankStats& stats) {
     std::optional<GltfScene>& gltf = plan.gltf;
     if (gltf && ranks.distributed() && plan.partition == PartitionKind::RoundRobin &&
@@ -284,8 +274,8 @@ AnariWorld buildScene(RenderPlan& plan, const mpi::Communicator& ranks, Session&
     // The environment is a light like the scene's, placed on rank 0 alone.
     std::vector<ANARILight> extraLights;
     if (plan.environment) {
-        extraLights.push_back(newEnvironmentLight(s.device, *plan.environment, plan.environmentIntensity,
-                                                  plan.environmentRotation));
+        extraLights.push_back(newEnvironmentLight(s.device, *plan.environment, options.environment.intensity,
+                                                  options.environment.rotationDegrees));
         s.objects.push_back(extraLights.back());
     }
     AnariWorld scene = plan.field ? buildFieldScene(s.device, *plan.field, plan.fieldOptions, extraLights)
@@ -597,7 +587,7 @@ int render(const Options& options, const mpi::Communicator& ranks, Session& s, T
     StatusLog log{"ripple-render", options.quiet, 0};
     openDevice(options, log, s);
     RankStats stats;
-    const AnariWorld scene = buildScene(plan, ranks, s, stats);
+    const AnariWorld scene = buildScene(options, plan, ranks, s, stats);
     const ANARICamera camera = makeCamera(options, scene, plan.size, s);
     const FrameSetup setup = makeFrame(options, plan, scene, camera, plan.size, s);
     RenderOutcome out = renderFrames(options, plan, setup, ranks, s, stats, budget);
@@ -643,9 +633,9 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
             {"--seed", options.seed, true},
             {"--camera", options.camera ? uint64_t(int64_t(*options.camera) + 2) : 0, false},
             {"--ambient", options.ambient ? number(*options.ambient) : 0, false},
-            {"--environment", optionHash(options.environment), false},
-            {"--environment-intensity", number(options.environmentIntensity), false},
-            {"--environment-rotation", number(options.environmentRotation), false},
+            {"--environment", optionHash(options.environment.file), false},
+            {"--environment-intensity", number(options.environment.intensity), false},
+            {"--environment-rotation", number(options.environment.rotationDegrees), false},
             {"--partition", optionHash(options.partition), false},
             {"--traversal", optionHash(options.traversal), false},
             {"--exchange", optionHash(options.exchange), false},
@@ -737,13 +727,7 @@ int main(int argc, char** argv) {
                    "where the command line does not set them");
     app.add_option("--ambient", options.ambient, "ambient radiance (default: what the scene suggests; 0 with --environment)")
         ->check(CLI::NonNegativeNumber);
-    app.add_option("--environment", options.environment,
-                   "equirectangular environment image lighting the scene (.hdr, .exr, .pfm, .png; linear radiance, the "
-                   "image's top row up, +Y)");
-    app.add_option("--environment-intensity", options.environmentIntensity, "scale of the environment's radiance")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
-    app.add_option("--environment-rotation", options.environmentRotation,
-                   "turn of the environment about the up axis, degrees")->capture_default_str();
+    ripple::apps::addEnvironmentOptions(app, options.environment);
     app.add_flag("-q,--quiet", options.quiet, "no progress line and no warnings");
     app.add_option("--partition", options.partition,
                    "under mpirun, each rank imports: round-robin (whole mesh instances dealt in turn) or spatial "

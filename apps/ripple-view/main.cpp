@@ -5,6 +5,7 @@
 // and sends the others each pass's changes (PassOrders.h); the composite shows on rank 0.
 #include "apps/common/AnariSession.h"
 #include "apps/common/DemoScene.h"
+#include "apps/common/EnvironmentOptions.h"
 #include "apps/common/GltfScene.h"
 #include "apps/common/ImageSize.h"
 #include "apps/common/OutputImage.h"
@@ -54,9 +55,7 @@ struct Options {
     std::optional<int> camera;
     std::string partition = "round-robin";  // under mpirun: how the glTF file is split over the ranks
     VolumeOptions field;                // --volume: a scalar field drawn as a volume and/or isosurfaces
-    std::string environment;            // an equirectangular image lighting the scene (rank 0 holds the light)
-    float environmentIntensity = 1.0f;
-    float environmentRotation = 0.0f;   // degrees
+    EnvironmentOptions environment;     // an hdri light (rank 0 holds it)
     bool quiet = false;
 };
 
@@ -189,12 +188,7 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                 throw std::runtime_error("--camera " + std::to_string(*options.camera) + ": the scene has " +
                                          std::to_string(gltf->cameras.size()) + " cameras");
         }
-        if (!options.environment.empty()) {
-            if (!std::isfinite(options.environmentIntensity) || options.environmentIntensity < 0.0f ||
-                !std::isfinite(options.environmentRotation))
-                throw std::runtime_error("--environment-intensity and --environment-rotation must be finite, the intensity not negative");
-            environment = readEnvironmentImage(options.environment);
-        }
+        environment = readEnvironment(options.environment);
         const std::string title = !options.field.volume.empty() ? "ripple-view: " + options.field.volume
                                   : options.scene.empty()        ? "ripple-view: demo " + demo
                                                                  : "ripple-view: " + options.scene;
@@ -212,11 +206,11 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
     SceneEdits edits(s.device);  // what the Lights and Volumes panels edit
     std::vector<ANARILight> extraLights;
     if (environment) {
-        extraLights.push_back(newEnvironmentLight(s.device, *environment, options.environmentIntensity,
-                                                  options.environmentRotation));
+        extraLights.push_back(newEnvironmentLight(s.device, *environment, options.environment.intensity,
+                                                  options.environment.rotationDegrees));
         s.objects.push_back(extraLights.back());
-        edits.add({extraLights.back(), "environment", "hdri", glm::vec3(1.0f), options.environmentIntensity,
-                   std::nullopt, options.environmentRotation});
+        edits.add({extraLights.back(), "environment", "hdri", glm::vec3(1.0f), options.environment.intensity,
+                   std::nullopt, options.environment.rotationDegrees});
     }
     // Collective under mpirun (the colour map spans every rank's values); a bad file ends every rank.
     const std::optional<FieldPlan> field = planField(options.field, ranks, true, "ripple-view", options.quiet);
@@ -427,13 +421,7 @@ int main(int argc, char** argv) {
     app.add_option("--view", options.view,
                    "view-state file: read at start when it exists (camera, settings, size where the command line "
                    "does not set them); V writes it (default: ripple-view.json)");
-    app.add_option("--environment", options.environment,
-                   "equirectangular environment image lighting the scene (.hdr, .exr, .pfm, .png; linear radiance, "
-                   "the image's top row up, +Y); replaces the scene's ambient fill");
-    app.add_option("--environment-intensity", options.environmentIntensity, "scale of the environment's radiance")
-        ->capture_default_str();
-    app.add_option("--environment-rotation", options.environmentRotation, "turn of the environment about the up axis, degrees")
-        ->capture_default_str();
+    ripple::apps::addEnvironmentOptions(app, options.environment);
     ripple::apps::addVolumeOptions(app, options.field);
     app.add_option("--partition", options.partition,
                    "under mpirun, each rank imports: round-robin (whole mesh instances dealt in turn) or spatial "

@@ -31,6 +31,8 @@ void RayQueryTraversal::dispatch(VkCommandBuffer cmd, const Scene& scene, const 
                                  "with Traversal::RayQuery (or Auto, resolved the same way as the trace kernels)");
     if (launch.rayCount == 0 && launch.rayCountAddress == 0) return;
     vk::ComputePipeline& pipeline = launch.anyHit ? any_ : closest_;
+    if (pipeline.handle() == VK_NULL_HANDLE)
+        throw std::logic_error("RayQueryTraversal::dispatch before useFeatures built its pipelines");
     pipeline.bind(cmd);
     gpu::TraceParams params{};
     params.scene = scene.descAddress();

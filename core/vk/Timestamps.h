@@ -19,7 +19,7 @@ public:
     void write(VkCommandBuffer cmd, uint32_t index);
     // Seconds between stamps `from` and `to` of the last finished submission.
     double seconds(uint32_t from, uint32_t to) const;
-    // Stamps 0 .. count-1 of the last finished submission, in seconds from an arbitrary origin (one query).
+    // Stamps 0 .. count-1 of the last finished submission, in seconds after stamp 0 (one query).
     std::vector<double> read(uint32_t count) const;
     uint32_t capacity() const { return capacity_; }
 
