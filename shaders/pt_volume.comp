@@ -6,6 +6,9 @@
 // Data-parallel, a rank also runs it on rays visiting from other ranks (params.paths 0, params.mode its
 // rank + 1 to key its own random numbers), up to the closest event found so far: the nearest collision
 // over the ranks wins, as over the volumes of one rank.
+// A march that spends the step budget is parked with what it found so far and continued by the next resume
+// round (params.resumeRound > 0: the invocations are the parked marches); one still unfinished after the
+// last round flags its record HIT_FLAG_RAN_OUT.
 #extension GL_GOOGLE_include_directive : require
 #include "pt_common.glsl"
 #include "rng.glsl"
@@ -13,57 +16,81 @@
 #include "volume.glsl"
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
-    if (i >= stageCount()) return;
     FrameConstants f = FrameRef(params.frame).frame;
     SceneDesc scene = SceneRef(params.scene).desc;
     if (scene.volumeCount == 0u) return;
+    // Where the march starts: the item's own ray from its start, or a parked march where it stopped.
+    VolumeParked march = VolumeParked(gl_GlobalInvocationID.x, 0u, 0.0, 0.0, vec4(0.0), 1.0, 0xFFFFFFFFu, 0u, 0u);
+    if (params.resumeRound == 0u) {
+        if (march.ray >= stageCount()) return;
+    } else if (!parkedMarch(march)) {
+        return;
+    }
+    uint i = march.ray;
     Ray ray = RaysRef(params.rays).rays[i];
     SurfaceRecord r = SurfacesRef(params.surfaces).records[i];
-    float tEnd = r.status == HIT_FOUND ? r.position.w : ray.direction.w;
     if ((r.status & ~0xFFu) != 0u) return;  // a flagged traversal: no trustworthy extent
+    if (params.resumeRound == 0u) {
+        march.t = ray.origin.w;
+        march.tEnd = r.status == HIT_FOUND ? r.position.w : ray.direction.w;
+    }
     uint key = params.paths != 0ul ? PathsRef(params.paths).paths[i].pixel : i;
-    VolumeRng rng = volumeRng(key, params.sampleIndex, params.bounce, RNG_VOLUME, f.seed ^ (params.mode * 0x9E3779B9u));
+    VolumeRng rng = volumeRng(key, params.sampleIndex, params.bounce, RNG_VOLUME, f.seed ^ (params.mode * 0x9E3779B9u),
+                              params.resumeRound);
     VolumeDataRef data = VolumeDataRef(scene.volumeData);
-    bool collided = false;
-    bool ranOut = false;
-    vec3 albedo = vec3(0.0);
-    uint objectId = 0xFFFFFFFFu, instanceId = 0xFFFFFFFFu;
+    uint budget = volumeStepBudget();
+    bool ranOut = false, parked = false;
+    bool collidedHere = false;  // the nearest collision so far was found by this invocation
     uint collisions = 0u;
-    for (uint v = 0u; v < scene.volumeCount; ++v) {
+    uint supersededParked = 0u; // a nearer collision replaced the one a parked march carried (now null)
+    for (uint v = march.volume; v < scene.volumeCount; ++v) {
         VolumeRecord volume = VolumesRef(scene.volumes).volumes[v];
-        TrackResult track = trackVolume(volume, data, ray.origin.xyz, ray.direction.xyz, ray.origin.w, tEnd, TRACK_DELTA, rng);
-        ranOut = ranOut || track.ranOut;
+        float tStart = v == march.volume ? march.t : ray.origin.w;
+        TrackResult track = trackVolume(volume, data, ray.origin.xyz, ray.direction.xyz, tStart, march.tEnd, TRACK_DELTA,
+                                        rng, budget);
         collisions += track.collisions;
-        if (track.transmittance == 0.0 && track.t < tEnd) {
-            tEnd = track.t;
-            albedo = track.albedo;
-            objectId = volume.objectId;
-            instanceId = volume.instanceId;
-            collided = true;
+        if (track.ranOut) {
+            march.volume = v;
+            march.t = track.t;
+            parked = parkMarch(march);
+            ranOut = !parked;
+            break;
+        }
+        if (track.transmittance == 0.0 && track.t < march.tEnd) {
+            if (march.collidedVolume != 0xFFFFFFFFu && !collidedHere) supersededParked = 1u;
+            march.tEnd = track.t;
+            march.albedo = vec4(track.albedo, 0.0);
+            march.collidedVolume = v;
+            collidedHere = true;
         }
     }
-    // One real collision (the nearest, if any); every other tentative collision counts as null.
+    // One real collision per ray (the nearest, counted when its march ends); every other tentative
+    // collision counts as null.
     CountersRef counters = CountersRef(f.counters);
-    const uint real = collided ? 1u : 0u;
-    if (collided) countVolumeSteps(counters.counters, realCollisions, 1u);
-    if (collisions > real) countVolumeSteps(counters.counters, nullCollisions, collisions - real);
+    bool collided = march.collidedVolume != 0xFFFFFFFFu;
+    const uint real = !parked && collided ? 1u : 0u;
+    const uint realHere = collidedHere ? 1u : 0u;
+    if (real > 0u) countVolumeSteps(counters.counters, realCollisions, 1u);
+    const uint nulls = collisions - realHere + supersededParked;
+    if (nulls > 0u) countVolumeSteps(counters.counters, nullCollisions, nulls);
+    if (parked) return;
     if (ranOut) {
         SurfacesRef(params.surfaces).records[i].status = r.status | HIT_FLAG_RAN_OUT;
         return;
     }
     if (!collided) return;
+    VolumeRecord hitVolume = VolumesRef(scene.volumes).volumes[march.collidedVolume];
     r.status = HIT_FOUND;
-    r.position = vec4(ray.origin.xyz + tEnd * ray.direction.xyz, tEnd);
+    r.position = vec4(ray.origin.xyz + march.tEnd * ray.direction.xyz, march.tEnd);
     r.geometricNormal = vec4(0.0, 0.0, 0.0, 1.0);  // opaque: a collision always scatters
     r.shadingNormal = vec4(0.0);                    // not a light
-    r.baseColor = vec4(clamp(albedo, vec3(0.0), vec3(1.0)), 0.0);
+    r.baseColor = vec4(clamp(march.albedo.rgb, vec3(0.0), vec3(1.0)), 0.0);
     r.emission = vec4(0.0);
     r.layers = vec4(0.0, 0.0, 1.0, 1.0);
     r.materialKind = MATERIAL_VOLUME;
     r.f0 = 0.0;
     r.primitiveId = 0xFFFFFFFFu;
-    r.objectId = objectId;
-    r.instanceId = instanceId;
+    r.objectId = hitVolume.objectId;
+    r.instanceId = hitVolume.instanceId;
     SurfacesRef(params.surfaces).records[i] = r;
 }

@@ -1,9 +1,10 @@
 // Volumes (shared/volume.h): the field and its transfer function at a point, and the two estimators that
 // march a ray through a volume's macrocell grid by a 3D DDA: delta tracking (where the ray first collides,
 // for free-flight sampling) and ratio tracking (its transmittance, for shadow rays). Both are unbiased for
-// any majorant that bounds the extinction, which the macrocells do. Every step of both is one iteration of
-// ONE flat loop, counted against a budget (lavapipe silently ends a loop after 65,535 iterations); a ray that
-// spends it is reported as ran out, never given a wrong answer silently. Needs pt_common.glsl and rng.glsl.
+// any majorant that bounds the extinction, which the macrocells do. Every step of both counts against the
+// invocation's step budget (lavapipe silently ends a loop after 65,535 iterations); a march that spends it
+// stops where it is and is parked for a resume round (VolumeParking below), never given a wrong answer.
+// Needs pt_common.glsl and rng.glsl.
 #ifndef RIPPLE_VOLUME_GLSL
 #define RIPPLE_VOLUME_GLSL
 
@@ -12,10 +13,9 @@
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer VolumesRef { VolumeRecord volumes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VolumeDataRef { float values[]; };
 
-// DDA steps plus tentative collisions per ray and volume: VOLUME_STEP_CHUNKS loops of VOLUME_STEP_CHUNK,
-// nested because lavapipe ends any one loop after 65,535 iterations. About a million steps cross a
-// macrocell whose majorant is 1e6 per unit over a unit of its thin part (extinction from 1e-6 to 1e6 in one
-// scene); a ray that needs more is flagged, never given a silently wrong answer.
+// The most tracking steps one invocation may take: VOLUME_STEP_CHUNKS loops of VOLUME_STEP_CHUNK, nested
+// because lavapipe ends any one loop after 65,535 iterations. The budget an invocation is given
+// (VolumeParkingHeader.stepBudget) is at most this; the host checks it.
 const uint VOLUME_STEP_CHUNK = 32768u;
 const uint VOLUME_STEP_CHUNKS = 32u;
 
@@ -27,8 +27,10 @@ struct VolumeRng {
     uvec4 bits;
 };
 
-VolumeRng volumeRng(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {
-    return VolumeRng(uvec4(pixel, sampleIndex, (bounce << 4u) | group, seed), 0u, 4u, uvec4(0u));
+// A resumed march draws from a stream of its own round (the exponential steps are memoryless, so fresh
+// numbers from where it stopped leave the estimate unbiased); round 0 is the stream of a march never parked.
+VolumeRng volumeRng(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed, uint round) {
+    return VolumeRng(uvec4(pixel, sampleIndex, (bounce << 4u) | group, seed ^ (round * 0x632BE5ABu)), 0u, 4u, uvec4(0u));
 }
 
 uint volumeRandomBits(inout VolumeRng r) {
@@ -91,10 +93,10 @@ const uint TRACK_DELTA = 0u;  // stop at the first real collision
 const uint TRACK_RATIO = 1u;  // product of (1 - extinction / majorant) over tentative collisions
 
 struct TrackResult {
-    float t;             // delta: where the ray collided (tmax when it did not)
-    float transmittance; // delta: 0 at a collision, 1 without; ratio: the estimate
+    float t;             // delta: where the ray collided (tmax when it did not); ran out: where it stopped
+    float transmittance; // delta: 0 at a collision, 1 without; ratio: the estimate (so far, when ran out)
     vec3 albedo;         // delta: the albedo at the collision
-    bool ranOut;         // the step budget ended the march: no answer
+    bool ranOut;         // the step budget ended the march at t: resume it from there
     uint collisions;     // tentative collisions (delta: the real one, if any, and the null ones before it)
 };
 
@@ -105,9 +107,10 @@ struct TrackResult {
         if (countedBefore + (n) < countedBefore) atomicAdd(counters.field[1], 1u);  \
     }
 
-// Marches world ray origin + t * direction, t in [tmin, tmax], through volume v.
+// Marches world ray origin + t * direction, t in [tmin, tmax], through volume v, taking steps from
+// `budget` (left as what remains).
 TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 direction, float tmin, float tmax,
-                        uint mode, inout VolumeRng rng) {
+                        uint mode, inout VolumeRng rng, inout uint budget) {
     TrackResult result = TrackResult(tmax, 1.0, vec3(0.0), false, 0u);
     mat3x4 toGrid = mat3x4(v.worldToGrid[0], v.worldToGrid[1], v.worldToGrid[2]);
     vec3 o = vec4(origin, 1.0) * toGrid;
@@ -128,11 +131,21 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
     vec3 nextBoundary = vec3(cell + max(stepDir, ivec3(0))) * float(VOLUME_MACROCELL);
     vec3 tNext = mix(vec3(INFINITY), (nextBoundary - o) * inv, notEqual(stepDir, ivec3(0)));
     vec3 tDelta = abs(float(VOLUME_MACROCELL) * inv);
+    // A march resumed on a macrocell face (where it parked after crossing it) may round into the cell behind
+    // the face: step past faces at or behind t0, or it would cross the same face again with every budget.
+    for (int k = 0; k < 3; ++k) {
+        if (tNext[k] <= t0) {
+            cell[k] += stepDir[k];
+            tNext[k] += tDelta[k];
+        }
+    }
+    if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, macroDims))) return result;
     float t = t0;
     uint cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
     float majorant = data.values[v.majorantOffset + cellIndex] * speed;
-    for (uint chunk = 0u; chunk < VOLUME_STEP_CHUNKS; ++chunk) {
-        for (uint steps = 0u; steps < VOLUME_STEP_CHUNK; ++steps) {
+    for (uint chunk = 0u; chunk < VOLUME_STEP_CHUNKS && budget > 0u; ++chunk) {
+        uint chunkSteps = min(budget, VOLUME_STEP_CHUNK);
+        for (uint steps = 0u; steps < chunkSteps; ++steps, --budget) {
             float tExit = min(t1, min(tNext.x, min(tNext.y, tNext.z)));
             if (majorant > 0.0) {
                 float s = t - log(1.0 - volumeRandom(rng)) / majorant;
@@ -145,6 +158,7 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
                         result.transmittance *= 1.0 - ratio;
                         if (result.transmittance <= 0.0) return result;
                     } else if (volumeChance(rng, ratio)) {
+                        --budget;
                         result.t = t;
                         result.transmittance = 0.0;
                         result.albedo = medium.rgb;
@@ -172,7 +186,44 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
         }
     }
     result.ranOut = true;
+    result.t = t;
     return result;
+}
+
+// Parking (shared/volume.h): params.volumeParking holds the header and the two pools.
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer ParkingRef {
+    VolumeParkingHeader header;
+    VolumeParked entries[];
+};
+
+// This invocation's step budget: the header's, or the most one invocation may take without parking.
+uint volumeStepBudget() {
+    if (params.volumeParking == 0ul) return VOLUME_STEP_CHUNK * VOLUME_STEP_CHUNKS;
+    return ParkingRef(params.volumeParking).header.stepBudget;
+}
+
+// In a resume round: whether invocation gl_GlobalInvocationID.x has a march to resume, and which.
+bool parkedMarch(out VolumeParked march) {
+    ParkingRef parking = ParkingRef(params.volumeParking);
+    uint k = gl_GlobalInvocationID.x;
+    uint pool = (params.resumeRound - 1u) & 1u;
+    if (k >= min(parking.header.parked[params.resumeRound - 1u].count, parking.header.capacity)) return false;
+    march = parking.entries[pool * parking.header.capacity + k];
+    return true;
+}
+
+// Parks a march for the next round; false when this is the last round, there is no parking or no slot left.
+bool parkMarch(VolumeParked march) {
+    if (params.volumeParking == 0ul) return false;
+    ParkingRef parking = ParkingRef(params.volumeParking);
+    uint round = params.resumeRound;
+    if (round >= parking.header.lastRound) return false;
+    uint slot = atomicAdd(parking.header.parked[round].count, 1u);
+    if (slot >= parking.header.capacity) return false;
+    atomicMax(parking.header.parked[round].groupsX, slot / gl_WorkGroupSize.x + 1u);
+    parking.entries[(round & 1u) * parking.header.capacity + slot] = march;
+    atomicAdd(CountersRef(FrameRef(params.frame).frame.counters).counters.parkedMarches, 1u);
+    return true;
 }
 
 #endif

@@ -374,19 +374,22 @@ struct TracingWork {
     uint64_t realCollisions = 0;   // volumes: delta tracking
     uint64_t nullCollisions = 0;
     uint64_t ratioCollisions = 0;  // volumes: ratio tracking of shadow rays
+    uint64_t parkedMarches = 0;    // volumes: marches resumed after spending a dispatch's step budget
 
     void addFrame(ANARIDevice device, ANARIFrame frame) {
         const std::pair<const char*, uint64_t*> counters[] = {{"ripple.flaggedRays", &flaggedRays},
                                                               {"ripple.realCollisions", &realCollisions},
                                                               {"ripple.nullCollisions", &nullCollisions},
-                                                              {"ripple.ratioCollisions", &ratioCollisions}};
+                                                              {"ripple.ratioCollisions", &ratioCollisions},
+                                                              {"ripple.parkedMarches", &parkedMarches}};
         for (const auto& [name, total] : counters) {
             uint64_t value = 0;
             if (anariGetProperty(device, frame, name, ANARI_UINT64, &value, sizeof value, ANARI_WAIT)) *total += value;
         }
     }
     void sumOverRanks(const mpi::Communicator& ranks) {
-        for (uint64_t* total : {&flaggedRays, &realCollisions, &nullCollisions, &ratioCollisions}) *total = ranks.sum(*total);
+        for (uint64_t* total : {&flaggedRays, &realCollisions, &nullCollisions, &ratioCollisions, &parkedMarches})
+            *total = ranks.sum(*total);
     }
 };
 
@@ -573,9 +576,9 @@ void writeResults(const Options& options, const RenderPlan& plan, const RenderOu
     if (work.realCollisions + work.nullCollisions + work.ratioCollisions > 0) {
         const double ratio = work.realCollisions > 0 ? double(work.nullCollisions) / double(work.realCollisions) : 0.0;
         std::printf("volumes: %llu real and %llu null collisions in free flight (null/real %.2f), %llu in ratio "
-                    "tracking of shadow rays\n",
+                    "tracking of shadow rays; %llu marches parked and resumed\n",
                     (unsigned long long)work.realCollisions, (unsigned long long)work.nullCollisions, ratio,
-                    (unsigned long long)work.ratioCollisions);
+                    (unsigned long long)work.ratioCollisions, (unsigned long long)work.parkedMarches);
     }
     if (work.flaggedRays > 0)
         std::printf("warning: %llu rays ran out of their step budget and were treated as misses (the image is "

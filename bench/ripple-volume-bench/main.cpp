@@ -171,6 +171,7 @@ int main(int argc, char** argv) {
                 total.realCollisions += f.realCollisions;
                 total.nullCollisions += f.nullCollisions;
                 total.flaggedRays += f.flaggedRays;
+                total.parkedMarches += f.parkedMarches;
             }
             const double cpu = bench::processCpuSeconds() - cpu0, wall = bench::wallSeconds() - wall0;
             const double freeFlight = double(total.realCollisions + total.nullCollisions);
@@ -178,6 +179,9 @@ int main(int argc, char** argv) {
             const double ratio = total.realCollisions > 0 ? double(total.nullCollisions) / double(total.realCollisions) : 0.0;
             std::printf("%-20s %9.2f %9.2f %9.2f %9.2f %12.2f %9.2f\n", c.name.c_str(), buildSeconds, bytesPerVoxel,
                         first + wall, first, perCpu, ratio);
+            if (total.parkedMarches > 0)
+                std::printf("  %llu marches spent a dispatch's step budget and were resumed\n",
+                            (unsigned long long)total.parkedMarches);
             if (total.flaggedRays > 0)
                 std::printf("  warning: %llu rays ran out of their step budget\n", (unsigned long long)total.flaggedRays);
             results.push_back({{"case", c.name}, {"dims", n}, {"size", size}, {"spp", spp},
@@ -186,7 +190,7 @@ int main(int argc, char** argv) {
                                {"firstFrameSeconds", first}, {"cpuSecondsAfterFirst", cpu},
                                {"realCollisions", total.realCollisions}, {"nullCollisions", total.nullCollisions},
                                {"freeFlightPerCpuSecond", perCpu * 1e6}, {"nullPerReal", ratio},
-                               {"flaggedRays", total.flaggedRays}});
+                               {"flaggedRays", total.flaggedRays}, {"parkedMarches", total.parkedMarches}});
         }
         if (!jsonFile.empty()) {
             std::ofstream out(jsonFile);

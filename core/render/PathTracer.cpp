@@ -8,6 +8,7 @@
 #include "core/render/CameraRays.h"
 #include "core/render/PixelTiles.h"
 #include "core/render/VisitorTracer.h"
+#include "core/render/VolumeParking.h"
 #include "core/vk/ComputePipeline.h"
 #include "shaders/pt_accumulate.spv.h"
 #include "shaders/pt_generate.spv.h"
@@ -67,6 +68,7 @@ struct PathTracer::Impl {
     TraceKernels trace;
     vk::ComputePipeline generate, surface, shade, shadowResolve, accumulate, resolve, queueAdvance;
     vk::ComputePipeline volume, shadowVolume;                       // frames whose world has volumes
+    VolumeParking parking;                                          // their marches' resume rounds
     vk::Buffer frame, counters;                                     // FrameConstants, PathCounters
     vk::Buffer sampleRadiance, accumulation, sampleCount, depth, color;  // per pixel
     Queue queues[2];
@@ -84,7 +86,7 @@ struct PathTracer::Impl {
     StageSeconds stageSeconds{};                                    // of the frame being rendered
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
-        : context(ctx), options(opts), trace(ctx, traceOptions), pipelines(ctx), channels(ctx, opts.workgroupSize),
+        : context(ctx), options(opts), trace(ctx, traceOptions), parking(ctx, opts.volumeParking), pipelines(ctx), channels(ctx, opts.workgroupSize),
           visitors(ctx, trace, opts.workgroupSize), profile(ctx) {
         if (options.queueCapacity == 0 || options.workgroupSize == 0)
             throw std::invalid_argument("PathTracerOptions: queueCapacity and workgroupSize must be positive");
@@ -186,6 +188,21 @@ struct PathTracer::Impl {
                                                           : offsetof(gpu::PathCounters, shadowGroups));
     }
 
+    // A volume stage over a queue, as dispatchQueue, then the resume rounds of marches it parks.
+    void dispatchVolumeStage(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, gpu::StageParams p,
+                             uint32_t queue, uint32_t hostCount) {
+        VolumeParking::Launch launch{hostCount, nullptr, 0, options.workgroupSize};
+        if (lengthsOnDevice) {
+            p.countSource = queue;
+            launch.indirect = &counters;
+            launch.indirectOffset = queue == gpu::COUNT_PATH_QUEUE ? offsetof(gpu::PathCounters, pathGroups)
+                                                                  : offsetof(gpu::PathCounters, shadowGroups);
+        } else {
+            p.count = hostCount;
+        }
+        parking.run(cmd, pipeline, p, capacity, launch);
+    }
+
     DeviceRayCount deviceRayCount(uint32_t queue) const {
         const bool paths = queue == gpu::COUNT_PATH_QUEUE;
         return {&counters, paths ? offsetof(gpu::PathCounters, pathCount) : offsetof(gpu::PathCounters, shadowCount),
@@ -237,7 +254,7 @@ struct PathTracer::Impl {
             v.shadowRequests = shadowRequests.address();
             v.bounce = bounce;
             v.sampleIndex = sampleIndex;
-            dispatchQueue(cmd, shadowVolume, v, gpu::COUNT_SHADOW_QUEUE, count);
+            dispatchVolumeStage(cmd, shadowVolume, v, gpu::COUNT_SHADOW_QUEUE, count);
             mark(cmd, Stage::ShadowVolume);
         }
         p.shadowRequests = shadowRequests.address();
@@ -264,7 +281,7 @@ struct PathTracer::Impl {
         if (features.has(gpu::FEATURE_VOLUMES)) {  // free flight: a collision before the surface replaces it
             p.bounce = bounce;
             p.sampleIndex = sampleIndex;
-            dispatchQueue(cmd, volume, p, gpu::COUNT_PATH_QUEUE, count);
+            dispatchVolumeStage(cmd, volume, p, gpu::COUNT_PATH_QUEUE, count);
             mark(cmd, Stage::Volume);
         }
     }
@@ -300,7 +317,7 @@ struct PathTracer::Impl {
     void exchangeRays(const Scene& scene, uint32_t paths, uint32_t shadows, uint32_t bounce, uint32_t sampleIndex) {
         RayExchange& ranks = exchange();
         VisitorTracer::Volumes here;
-        if (features.has(gpu::FEATURE_VOLUMES)) here = {&volume, &shadowVolume, bounce, sampleIndex, ranks.rank()};
+        if (features.has(gpu::FEATURE_VOLUMES)) here = {&volume, &shadowVolume, &parking, bounce, sampleIndex, ranks.rank()};
         visitors.use(scene, frame.address(), surface, here);
         std::vector<gpu::Ray> rays(std::max(paths, shadows));
         std::vector<gpu::SurfaceRecord> records(paths);
@@ -516,6 +533,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     stats.realCollisions = sum64(c.realCollisions);
     stats.nullCollisions = sum64(c.nullCollisions);
     stats.ratioCollisions = sum64(c.ratioCollisions);
+    stats.parkedMarches = c.parkedMarches;
     stats.stageSeconds = m.stageSeconds;
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;

@@ -17,6 +17,7 @@
 #include "core/render/StageProfile.h"
 #include "core/render/SurfaceChannels.h"
 #include "core/render/TraceKernels.h"
+#include "core/render/VolumeParking.h"
 #include "core/scene/Scene.h"
 #include "core/vk/Buffer.h"
 #include "core/vk/Context.h"
@@ -84,6 +85,8 @@ struct PathTracerOptions {
     // The other ranks of a data-parallel render (not owned; must outlive the tracer). Null: this rank
     // holds the whole scene. With N ranks, this rank generates and shades only its pixels (PixelTiles.h).
     RayExchange* exchange = nullptr;
+    // Tracking steps per invocation of the volume stages and the resume rounds of marches that spend them.
+    VolumeParkingOptions volumeParking;
 };
 
 // Pixel formats the resolve stage writes. Row 0 of every channel is the bottom row of the image.
@@ -100,6 +103,7 @@ struct FrameStats {
     uint64_t realCollisions = 0;
     uint64_t nullCollisions = 0;
     uint64_t ratioCollisions = 0;
+    uint64_t parkedMarches = 0;           // volume marches that spent their step budget and were resumed later
     StageSeconds stageSeconds{};          // GPU time per stage of the wavefront loop (StageProfile.h)
     double seconds = 0.0;
 };

@@ -51,6 +51,12 @@ void VisitorTracer::dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& sta
     vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
 }
 
+void VisitorTracer::dispatchVolumeStage(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p,
+                                        uint32_t count) const {
+    p.count = count;
+    volumes_.parking->run(cmd, stage, p, count, {count, nullptr, 0, workgroupSize_});
+}
+
 void VisitorTracer::reserve(size_t count) {
     if (count <= capacity_) return;
     capacity_ = std::max(count, capacity_ * 2);
@@ -86,7 +92,7 @@ void VisitorTracer::traceClosest(std::span<WireRay> rays) {
             gpu::StageParams v = volumeParams();
             v.rays = rays_.address();
             v.surfaces = surfaces_.address();
-            dispatch(cmd, *volumes_.freeFlight, v, count);
+            dispatchVolumeStage(cmd, *volumes_.freeFlight, v, count);
         }
         hostReadBarrier(cmd);
     });
@@ -129,7 +135,7 @@ void VisitorTracer::traceShadow(std::span<WireShadowRay> rays) {
         gpu::StageParams v = volumeParams();
         v.shadowRays = rays_.address();
         v.results = transmittance_.address();
-        dispatch(cmd, *volumes_.transmittance, v, count);
+        dispatchVolumeStage(cmd, *volumes_.transmittance, v, count);
         hostReadBarrier(cmd);
     });
     hostTransmittance_.resize(count);

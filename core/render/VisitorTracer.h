@@ -7,6 +7,7 @@
 
 #include "core/render/RayExchange.h"
 #include "core/render/TraceKernels.h"
+#include "core/render/VolumeParking.h"
 #include "core/scene/Scene.h"
 #include "core/vk/Buffer.h"
 #include "core/vk/ComputePipeline.h"
@@ -21,6 +22,7 @@ public:
     struct Volumes {
         const vk::ComputePipeline* freeFlight = nullptr;     // pt_volume
         const vk::ComputePipeline* transmittance = nullptr;  // pt_shadow_volume
+        VolumeParking* parking = nullptr;                    // their resume rounds
         uint32_t bounce = 0;
         uint32_t sampleIndex = 0;
         uint32_t rank = 0;
@@ -39,6 +41,8 @@ private:
     gpu::StageParams volumeParams() const;
     // Records one path stage over `count` items with these parameters (their count set to it).
     void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p, uint32_t count) const;
+    // The same for a volume stage, with the resume rounds of the marches it parks.
+    void dispatchVolumeStage(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p, uint32_t count) const;
 
     const vk::Context& context_;
     TraceKernels& trace_;

@@ -81,6 +81,8 @@ struct PathCounters {
     uint realCollisions[2];
     uint nullCollisions[2];
     uint ratioCollisions[2];
+    uint parkedMarches; // volume marches parked for a resume round (each park counts once)
+    uint pad0;
 };
 
 // Parameters of pt_queue_advance.
@@ -163,6 +165,10 @@ struct StageParams {
     uint bounce;           // pt_shade: interactions every path in the queue has had (RNG key)
     uint mode;             // pt_resolve: OUTPUT_*
     uint countSource;      // COUNT_*: the queue stages' item count (count, or a queue length on the device)
+    uint resumeRound;      // pt_volume, pt_shadow_volume: 0 for the stage's items, r > 0 for the marches
+                           // parked in round r - 1 (VolumeParkingHeader)
+    uint pad0;
+    uint64_t volumeParking; // pt_volume, pt_shadow_volume: VolumeParkingHeader then its pools; 0: none
 };
 
 RIPPLE_GPU_END

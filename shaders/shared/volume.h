@@ -6,6 +6,7 @@
 #ifndef RIPPLE_SHARED_VOLUME_H
 #define RIPPLE_SHARED_VOLUME_H
 #include "common.h"
+#include "ray.h"
 
 RIPPLE_GPU_BEGIN
 
@@ -36,6 +37,33 @@ struct VolumeRecord {
     uint pad0;
     uint pad1;
     uint pad2;
+};
+
+// Marches that spend their step budget (pt_volume, pt_shadow_volume) are parked with their state and
+// resumed by further dispatches, never ended with a wrong answer: see core/render/VolumeParking.h.
+RIPPLE_CONST uint VOLUME_MAX_RESUME_ROUNDS = 31u;
+
+// A parked march: enough to continue from where it stopped. Pool `round & 1` holds those parked in `round`.
+struct VolumeParked {
+    uint ray;              // the item's index in the stage's queue (or batch of visiting rays)
+    uint volume;           // the volume whose march spent the budget; volumes before it are done
+    float t;               // where along the ray that march stopped
+    float tEnd;            // pt_volume: the nearest collision so far, else where the ray ends (surface or tmax)
+    vec4 albedo;           // pt_volume: rgb the albedo at that collision; w unused
+    float transmittance;   // pt_shadow_volume: the product over the volumes so far
+    uint collidedVolume;   // pt_volume: the volume of that collision; ~0u: none yet
+    uint pad0;
+    uint pad1;
+};
+
+// Head of the parking buffer, followed by 2 * capacity VolumeParked (pool 0, then pool 1). parked[r]
+// counts the marches round r parked and is the indirect dispatch of round r + 1 (all zeroed before a stage).
+struct VolumeParkingHeader {
+    ResumeHeader parked[VOLUME_MAX_RESUME_ROUNDS + 1u];
+    uint capacity;         // entries per pool
+    uint stepBudget;       // tracking steps (macrocell crossings plus tentative collisions) per invocation
+    uint lastRound;        // the last resume round: it parks nothing (a march still unfinished is flagged)
+    uint pad0;
 };
 
 RIPPLE_GPU_END

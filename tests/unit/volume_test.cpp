@@ -13,12 +13,11 @@ using namespace ripple;
 
 namespace {
 
-// A box volume filling [-1, 1]^2 x [0, depth] (x, y, z), `n` voxels per axis, all voxels `value` unless
+// A box volume filling [-1, 1]^2 x [0, depth] (x, y, z), `n` voxels per axis (9: one macrocell), all 1 unless
 // ramp: value rises linearly from 0 at z = 0 to 1 at z = depth. The transfer function maps [0, 1] to
 // opacities {0, opacity} (ramp) or {opacity, opacity}, over unitDistance.
-core::Volume boxVolume(float depth, float opacity, float unitDistance, bool ramp, glm::vec3 albedo) {
+core::Volume boxVolume(float depth, float opacity, float unitDistance, bool ramp, glm::vec3 albedo, uint32_t n = 9) {
     core::Volume v;
-    const uint32_t n = 9;
     v.dims = {n, n, n};
     for (uint32_t z = 0; z < n; ++z)
         for (uint32_t i = 0; i < n * n; ++i) v.values.push_back(ramp ? float(z) / float(n - 1) : 1.0f);
@@ -222,8 +221,79 @@ TEST_CASE("volumes: extinction from 1e-6 to 1e6 in one macrocell completes witho
             far += image.at(x, y).r;  // the lower half of the image: y < 0, away from the dense corner
             ++count;
         }
-    MESSAGE("null collisions " << image.stats.nullCollisions << ", far transmittance " << far / count);
+    MESSAGE("null collisions " << image.stats.nullCollisions << ", parked marches " << image.stats.parkedMarches
+                                << ", far transmittance " << far / count);
     CHECK(far / count == doctest::Approx(1.0).epsilon(1e-3));
+    // Marches of half a million steps spent the default budget per invocation (2^17) and were resumed.
+    CHECK(image.stats.parkedMarches >= uint64_t(size) * size * settings.pixelSamples / 2);
+}
+
+// Every march parked after each step (a budget of one) and resumed, round after round: the answers are the
+// analytic ones of the cases above, for delta tracking (camera rays through a black slab and ramp: the
+// transmittance, and a real collision exactly for each sample that did not pass) and ratio tracking (shadow
+// rays through a slab onto a lit floor). Without resume rounds the same marches are flagged instead.
+TEST_CASE("volumes: marches parked after every step and resumed give the analytic answers") {
+    test::ValidationGuard guard;
+    core::PathTracerOptions resumed;
+    resumed.volumeParking = {.stepBudget = 1, .resumeRounds = gpu::VOLUME_MAX_RESUME_ROUNDS};
+    const float opacity = 1.0f - std::exp(-1.0f);  // over unit distance 1: extinction 1
+    for (const bool ramp : {false, true}) {
+        CAPTURE(ramp);
+        core::RenderSettings settings;
+        settings.background = glm::vec4(1.0f);
+        settings.maxPathLength = 1;
+        settings.pixelSamples = 32;
+        const float depth = ramp ? 2.0f : 1.0f;
+        core::SceneDescription scene;
+        scene.volumes.push_back(boxVolume(depth, opacity, 1.0f, ramp, glm::vec3(0.0f), 33));  // 4^3 macrocells
+        const double o = opacity, rampMean = 1.0 + (1.0 - o) * std::log(1.0 - o) / o;
+        const double expected = std::exp(-double(depth) * (ramp ? rampMean : 1.0));
+        const test::Rendered image = test::render(scene, test::lookingDown(depth + 1.0f, 1.8f), settings, {24, 24}, false, resumed);
+        const Mean m = meanRed(image);
+        MESSAGE((ramp ? "ramp" : "slab") << ": transmittance " << m.mean << " +- " << m.standardError << ", expected "
+                                         << expected << ", parked marches " << image.stats.parkedMarches);
+        CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
+        CHECK(image.stats.flaggedRays == 0);
+        CHECK(image.stats.parkedMarches >= uint64_t(24 * 24) * settings.pixelSamples);
+        double blocked = 0.0;
+        for (const glm::vec4& c : image.color) blocked += (1.0 - double(c.r)) * settings.pixelSamples;
+        CHECK(image.stats.realCollisions == uint64_t(std::llround(blocked)));
+        if (!ramp) CHECK(image.stats.nullCollisions == 0);
+
+        core::PathTracerOptions unresumed;
+        unresumed.volumeParking = {.stepBudget = 1, .resumeRounds = 0};
+        const test::Rendered flagged = test::render(scene, test::lookingDown(depth + 1.0f, 1.8f), settings, {24, 24}, false, unresumed);
+        CHECK(flagged.stats.parkedMarches == 0);
+        CHECK(flagged.stats.flaggedRays >= uint64_t(24 * 24) * settings.pixelSamples / 2);
+    }
+    // Shadow rays: a white floor lit straight down through an absorbing slab of optical depth 1, seen from
+    // below the slab (as in the ratio-tracking case above): 0.8 exp(-1).
+    core::SceneDescription scene;
+    scene.meshes.push_back(test::squareMesh(4.0f));
+    core::Material white;
+    white.baseColor = glm::vec3(0.8f);
+    scene.materials.push_back(white);
+    scene.instances.push_back({{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f), 0});
+    core::Light sun;
+    sun.kind = core::Light::Kind::Directional;
+    sun.direction = {0.0f, 0.0f, -1.0f};
+    sun.intensity = float(M_PI);
+    scene.lights.push_back(sun);
+    core::Volume slab = boxVolume(1.0f, opacity, 1.0f, false, glm::vec3(0.0f), 33);
+    slab.origin.z = 0.5f;
+    scene.volumes.push_back(slab);
+    core::RenderSettings settings;
+    settings.maxPathLength = 1;
+    settings.pixelSamples = 64;
+    const test::Rendered image = test::render(scene, test::lookingDown(0.4f, 1.8f), settings, {24, 24}, false, resumed);
+    const Mean m = meanRed(image);
+    const double expected = 0.8 * std::exp(-1.0);
+    MESSAGE("shadow rays: " << m.mean << " +- " << m.standardError << ", expected " << expected << ", parked marches "
+                            << image.stats.parkedMarches);
+    CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
+    CHECK(image.stats.flaggedRays == 0);
+    CHECK(image.stats.ratioCollisions > 0);
+    CHECK(image.stats.parkedMarches >= uint64_t(24 * 24) * settings.pixelSamples);
 }
 
 TEST_CASE("volumes: Henyey-Greenstein sampling agrees with its evaluation: phase sampling alone equals light sampling alone") {

@@ -325,6 +325,7 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
         results.realCollisions = stats.realCollisions;
         results.nullCollisions = stats.nullCollisions;
         results.ratioCollisions = stats.ratioCollisions;
+        results.parkedMarches = stats.parkedMarches;
         for (size_t i = 0; i < core::kStageCount; ++i)
             results.stageMicroseconds[i] = uint64_t(std::llround(stats.stageSeconds[i] * 1e6));
         results.sceneBuilds = sync_.builds();
@@ -451,7 +452,8 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
                                                                      {"ripple.flaggedRays", &results_.flaggedRays},
                                                                      {"ripple.realCollisions", &results_.realCollisions},
                                                                      {"ripple.nullCollisions", &results_.nullCollisions},
-                                                                     {"ripple.ratioCollisions", &results_.ratioCollisions}};
+                                                                     {"ripple.ratioCollisions", &results_.ratioCollisions},
+                                                                     {"ripple.parkedMarches", &results_.parkedMarches}};
     for (const auto& [counter, value] : counters) {
         if (name == counter && type == ANARI_UINT64 && size >= sizeof(uint64_t)) {
             std::memcpy(mem, value, sizeof(uint64_t));

@@ -37,7 +37,8 @@ public:
     // (UINT64, the exchange's hops or rounds), "ripple.visitMicroseconds" (UINT64, time tracing others' rays) and "ripple.sceneBytes" (UINT64, its scene's GPU memory);
     // of the last frame on this rank: "ripple.flaggedRays" (UINT64, traversals and volume marches that ran out
     // of their step budget), "ripple.realCollisions", "ripple.nullCollisions" (UINT64, delta tracking in
-    // volumes) and "ripple.ratioCollisions" (UINT64, ratio tracking of shadow rays); and
+    // volumes), "ripple.ratioCollisions" (UINT64, ratio tracking of shadow rays) and "ripple.parkedMarches"
+    // (UINT64, volume marches that spent their step budget and were resumed by a later round); and
     // "ripple.stageMicroseconds.NAME" (UINT64, GPU time of each stage of the wavefront loop, NAME as
     // core::stageName gives it: generate, traceClosest, surface, shade, traceAny, ...).
     bool getProperty(std::string_view name, ANARIDataType type, void* mem, uint64_t size, bool wait) override;
@@ -89,6 +90,7 @@ private:
         uint64_t realCollisions = 0;
         uint64_t nullCollisions = 0;
         uint64_t ratioCollisions = 0;
+        uint64_t parkedMarches = 0;
         std::array<uint64_t, core::kStageCount> stageMicroseconds{};
     };
 
