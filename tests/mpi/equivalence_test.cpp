@@ -142,7 +142,7 @@ TEST_CASE("data parallel: world bounds are reduced, lights gathered in rank orde
 // their noise is a few percent). The volume matters: the image without it fails the tile criterion.
 namespace {
 
-void checkVolumeSlabs(core::ExchangeKind kind) {
+void checkVolumeSlabs(core::ExchangeKind kind, const core::VolumeParkingOptions& parking = {}) {
     test::ValidationGuard guard;
     const mpi::Communicator world = mpi::Communicator::world();
     const auto rank = uint32_t(world.rank()), ranks = uint32_t(world.size());
@@ -157,9 +157,11 @@ void checkVolumeSlabs(core::ExchangeKind kind) {
     const std::unique_ptr<core::RayExchange> exchange = makeExchange(kind, world);
     core::PathTracerOptions options;
     options.exchange = exchange.get();
+    options.volumeParking = parking;
     test::Rendered split = test::render(mine, test::volumeCamera(), settings, size, false, options);
     mpi::gatherFrame(world, size, sizeof(glm::vec4), split.color.data());
     CHECK(split.stats.flaggedRays == 0);
+    if (parking.stepBudget < 64) CHECK(world.sum(split.stats.parkedMarches) > 0);
     if (rank != 0) return;
 
     core::SceneDescription all = test::volumePart(0, 1);
@@ -202,4 +204,9 @@ void checkVolumeSlabs(core::ExchangeKind kind) {
 
 TEST_CASE("data parallel: a scattering volume split into slabs over the ranks renders as on one rank") {
     for (const core::ExchangeKind kind : kExchanges) checkVolumeSlabs(kind);
+}
+
+// The same with every march parked every few steps and resumed, the visiting rays' marches included.
+TEST_CASE("data parallel: volume marches parked and resumed on every rank still render as on one rank") {
+    checkVolumeSlabs(core::ExchangeKind::Bounds, {.stepBudget = 8, .resumeRounds = gpu::VOLUME_MAX_RESUME_ROUNDS});
 }
