@@ -143,31 +143,35 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
     float t = t0;
     uint cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
     float majorant = data.values[v.majorantOffset + cellIndex] * speed;
+    // Tentative collisions of the piecewise-constant majorant: an exponential optical depth tau, spent cell by
+    // cell (majorant times the length crossed) until a cell holds the rest. One logarithm per tentative
+    // collision, none per macrocell crossed: rays cross many more cells than they collide in.
+    float tau = -log(1.0 - volumeRandom(rng));
     for (uint chunk = 0u; chunk < VOLUME_STEP_CHUNKS && budget > 0u; ++chunk) {
         uint chunkSteps = min(budget, VOLUME_STEP_CHUNK);
         for (uint steps = 0u; steps < chunkSteps; ++steps, --budget) {
             float tExit = min(t1, min(tNext.x, min(tNext.y, tNext.z)));
-            if (majorant > 0.0) {
-                float s = t - log(1.0 - volumeRandom(rng)) / majorant;
-                if (s < tExit) {
-                    t = s;
-                    ++result.collisions;
-                    vec4 medium = transferFunction(v, data, fieldValue(v, data, o + t * d));
-                    float ratio = clamp(medium.w * speed / majorant, 0.0, 1.0);
-                    if (mode == TRACK_RATIO) {
-                        result.transmittance *= 1.0 - ratio;
-                        if (result.transmittance <= 0.0) return result;
-                    } else if (volumeChance(rng, ratio)) {
-                        --budget;
-                        result.t = t;
-                        result.transmittance = 0.0;
-                        result.albedo = medium.rgb;
-                        return result;
-                    }
-                    continue;
+            float segment = majorant * (tExit - t);  // optical depth of the majorant to the cell's exit
+            if (majorant > 0.0 && tau < segment) {
+                t += tau / majorant;
+                ++result.collisions;
+                vec4 medium = transferFunction(v, data, fieldValue(v, data, o + t * d));
+                float ratio = clamp(medium.w * speed / majorant, 0.0, 1.0);
+                if (mode == TRACK_RATIO) {
+                    result.transmittance *= 1.0 - ratio;
+                    if (result.transmittance <= 0.0) return result;
+                } else if (volumeChance(rng, ratio)) {
+                    --budget;
+                    result.t = t;
+                    result.transmittance = 0.0;
+                    result.albedo = medium.rgb;
+                    return result;
                 }
+                tau = -log(1.0 - volumeRandom(rng));
+                continue;
             }
-            // Into the next macrocell (the exponential is memoryless: the sample past the exit is dropped).
+            tau -= max(segment, 0.0);
+            // Into the next macrocell with what is left of tau.
             if (tExit >= t1) return result;
             t = tExit;
             if (tNext.x <= tNext.y && tNext.x <= tNext.z) {
