@@ -89,6 +89,9 @@ vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
     return mix(a, b, w);
 }
 
+// Ratio tracking's transmittance below which Russian roulette decides whether the march goes on.
+const float VOLUME_ROULETTE_BELOW = 0.1;
+
 const uint TRACK_DELTA = 0u;  // stop at the first real collision
 const uint TRACK_RATIO = 1u;  // product of (1 - extinction / majorant) over tentative collisions
 
@@ -159,6 +162,12 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
                 float ratio = clamp(medium.w * speed / majorant, 0.0, 1.0);
                 if (mode == TRACK_RATIO) {
                     result.transmittance *= 1.0 - ratio;
+                    // Russian roulette once little light is left: go on with probability T / threshold and
+                    // weight threshold (unbiased), so a ray deep in a dense medium stops soon.
+                    if (result.transmittance < VOLUME_ROULETTE_BELOW) {
+                        if (volumeRandom(rng) * VOLUME_ROULETTE_BELOW >= result.transmittance) result.transmittance = 0.0;
+                        else result.transmittance = VOLUME_ROULETTE_BELOW;
+                    }
                     if (result.transmittance <= 0.0) return result;
                 } else if (volumeChance(rng, ratio)) {
                     --budget;
