@@ -165,8 +165,8 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
                     // Russian roulette once little light is left: go on with probability T / threshold and
                     // weight threshold (unbiased), so a ray deep in a dense medium stops soon.
                     if (result.transmittance < VOLUME_ROULETTE_BELOW) {
-                        if (volumeRandom(rng) * VOLUME_ROULETTE_BELOW >= result.transmittance) result.transmittance = 0.0;
-                        else result.transmittance = VOLUME_ROULETTE_BELOW;
+                        if (volumeChance(rng, result.transmittance / VOLUME_ROULETTE_BELOW)) result.transmittance = VOLUME_ROULETTE_BELOW;
+                        else result.transmittance = 0.0;
                     }
                     if (result.transmittance <= 0.0) return result;
                 } else if (volumeChance(rng, ratio)) {
@@ -235,7 +235,8 @@ bool parkMarch(VolumeParked march) {
     if (slot >= parking.header.capacity) return false;
     atomicMax(parking.header.parked[round].groupsX, slot / gl_WorkGroupSize.x + 1u);
     parking.entries[(round & 1u) * parking.header.capacity + slot] = march;
-    atomicAdd(CountersRef(FrameRef(params.frame).frame.counters).counters.parkedMarches, 1u);
+    CountersRef counters = CountersRef(FrameRef(params.frame).frame.counters);
+    countVolumeSteps(counters.counters, parkedMarches, 1u);
     return true;
 }
 

@@ -9,7 +9,6 @@
 #include "bench/ripple-bench/Timing.h"
 #include "core/render/PathTracer.h"
 #include "core/scene/Scene.h"
-#include "core/scene/VolumeTable.h"
 #include "core/vk/Context.h"
 
 #include <nlohmann/json.hpp>
@@ -151,12 +150,7 @@ int main(int argc, char** argv) {
             double buildSeconds = bench::wallSeconds();
             const core::Scene scene(context, c.scene);
             buildSeconds = bench::wallSeconds() - buildSeconds;
-            double majorantSeconds = 0.0;
-            if (!c.scene.volumes.empty()) {  // the majorant grid and table alone, as the scene builds them
-                majorantSeconds = bench::wallSeconds();
-                (void)core::buildVolumeTable(c.scene.volumes);
-                majorantSeconds = bench::wallSeconds() - majorantSeconds;
-            }
+            const double majorantSeconds = scene.report().volumeMajorantSeconds;  // on the device, within the build
             const double voxels = double(n) * n * n;
             const double bytesPerVoxel = double(scene.report().gpuBytes) / voxels;
             core::PathTracer tracer(context);

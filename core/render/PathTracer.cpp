@@ -533,7 +533,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     stats.realCollisions = sum64(c.realCollisions);
     stats.nullCollisions = sum64(c.nullCollisions);
     stats.ratioCollisions = sum64(c.ratioCollisions);
-    stats.parkedMarches = c.parkedMarches;
+    stats.parkedMarches = sum64(c.parkedMarches);
     stats.stageSeconds = m.stageSeconds;
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;

@@ -37,6 +37,9 @@ void VolumeParking::run(VkCommandBuffer cmd, const vk::ComputePipeline& stage, g
     header.capacity = capacity_;
     header.stepBudget = options_.stepBudget;
     header.lastRound = options_.resumeRounds;
+    // The previous volume stage in this command buffer may still read the header (its last round's
+    // indirect dispatch and counts): finish with it before rewriting it.
+    vk::computeBarrier(cmd);
     vkCmdUpdateBuffer(cmd, pools_.handle(), 0, sizeof(header), &header);
     p.volumeParking = pools_.address();
     p.resumeRound = 0;

@@ -9,6 +9,7 @@
 #include "core/render/FeatureSet.h"
 #include "core/scene/AccelerationStructures.h"
 #include "core/scene/ShadingTables.h"
+#include "core/scene/VolumeMajorants.h"
 #include "core/scene/VolumeTable.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -489,6 +490,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.volumes = upload(volumes_, volumes.records, "scene volumes");
     desc.volumeData = upload(volumeData_, volumes.data, "scene volume data");
     desc.volumeCount = static_cast<uint32_t>(volumes.records.size());
+    report_.volumeMajorantSeconds = buildMajorantsOnDevice(context, desc.volumes, desc.volumeData, volumes.records);
     desc.instanceCount = instanceCount_;
     desc.lightCount = lightCount_;
     desc.materialCount = static_cast<uint32_t>(shading.materials.size());

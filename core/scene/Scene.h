@@ -49,6 +49,7 @@ struct SceneReport {
     uint64_t lightsSkipped = 0;        // NaN/Inf or negative values, zero direction or area
     uint64_t volumesKept = 0;
     uint64_t volumesSkipped = 0;       // NaN/Inf voxels or settings, wrong value count, bad transform
+    double volumeMajorantSeconds = 0.0; // the macrocell majorants, computed on the device
     uint64_t blasBuilt = 0;
     uint64_t blasReused = 0;           // taken from `previous` (see the header comment)
     double blasBuildSeconds = 0.0;     // validation and BLAS builds (reused BLASes cost nothing)

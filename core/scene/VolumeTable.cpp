@@ -87,47 +87,21 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         const size_t entries = transferTableSize(v);
         record.tableSize = static_cast<uint32_t>(entries);
         record.tableOffset = static_cast<uint32_t>(table.data.size());
-        std::vector<float> extinction(entries);
         for (size_t e = 0; e < entries; ++e) {
             const float x = float(e) / float(entries - 1);
             const glm::vec3 albedo = v.colors.empty() ? glm::vec3(1.0f) : glm::clamp(resampled(v.colors, x), 0.0f, 1.0f);
             const float opacity = v.opacities.empty() ? 1.0f : std::clamp(resampled(v.opacities, x), 0.0f, gpu::VOLUME_OPACITY_CAP);
-            extinction[e] = -std::log1p(-std::min(opacity, gpu::VOLUME_OPACITY_CAP)) / v.unitDistance;
-            table.data.insert(table.data.end(), {albedo.r, albedo.g, albedo.b, extinction[e]});
+            const float extinction = -std::log1p(-std::min(opacity, gpu::VOLUME_OPACITY_CAP)) / v.unitDistance;
+            table.data.insert(table.data.end(), {albedo.r, albedo.g, albedo.b, extinction});
         }
 
         record.voxelOffset = static_cast<uint32_t>(table.data.size());
         table.data.insert(table.data.end(), v.values.begin(), v.values.end());
 
-        // Majorants: the largest extinction the table gives over the range of voxel values in each
-        // macrocell (its corners included: interpolation never leaves that range). A piecewise-linear table
-        // peaks at an end of the range or at an entry inside it.
+        // Majorants: one float per macrocell, filled on the device once the data is uploaded
+        // (VolumeMajorants.h).
         record.majorantOffset = static_cast<uint32_t>(table.data.size());
-        const float scale = float(entries - 1) * record.valueRange.y;
-        auto tablePosition = [&](float value) { return std::clamp((value - lo) * scale, 0.0f, float(entries - 1)); };
-        auto extinctionAt = [&](float position) {
-            const size_t i = std::min(size_t(position), entries - 2);
-            const float w = position - float(i);
-            return extinction[i] * (1.0f - w) + extinction[i + 1] * w;
-        };
-        for (uint32_t mz = 0; mz < macro.z; ++mz)
-            for (uint32_t my = 0; my < macro.y; ++my)
-                for (uint32_t mx = 0; mx < macro.x; ++mx) {
-                    const glm::uvec3 first = glm::uvec3(mx, my, mz) * gpu::VOLUME_MACROCELL;
-                    const glm::uvec3 last = glm::min(first + gpu::VOLUME_MACROCELL, extent);
-                    float vmin = std::numeric_limits<float>::max(), vmax = -vmin;
-                    for (uint32_t z = first.z; z <= last.z; ++z)
-                        for (uint32_t y = first.y; y <= last.y; ++y)
-                            for (uint32_t x = first.x; x <= last.x; ++x) {
-                                const float value = v.values[(size_t(z) * v.dims.y + y) * v.dims.x + x];
-                                vmin = std::min(vmin, value);
-                                vmax = std::max(vmax, value);
-                            }
-                    const float p0 = tablePosition(vmin), p1 = tablePosition(vmax);
-                    float majorant = std::max(extinctionAt(p0), extinctionAt(p1));
-                    for (size_t e = size_t(std::ceil(p0)); float(e) < p1; ++e) majorant = std::max(majorant, extinction[e]);
-                    table.data.push_back(majorant * (1.0f + 1e-5f));  // float rounding on the GPU stays under it
-                }
+        table.data.resize(table.data.size() + size_t(macro.x) * macro.y * macro.z, 0.0f);
 
         // World bounds: the grid box's corners.
         const glm::vec3 hiCorner = v.origin + glm::vec3(extent) * v.spacing;

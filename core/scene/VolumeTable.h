@@ -1,6 +1,7 @@
 // The volumes the kernels read (shaders/shared/volume.h): each valid Volume of a description becomes a
-// VolumeRecord, and its voxels, transfer-function table (albedo, extinction) and macrocell majorants are
-// appended to one float array. Volumes with bad data are skipped and reported, never uploaded.
+// VolumeRecord, and its voxels, transfer-function table (albedo, extinction) and room for its macrocell
+// majorants (zeros, filled on the device: VolumeMajorants.h) are appended to one float array. Volumes
+// with bad data are skipped and reported, never uploaded.
 #pragma once
 
 #include "core/bvh/Aabb.h"

@@ -76,13 +76,12 @@ struct PathCounters {
     DispatchSize pathTraceGroups;   // the same in workgroups of the trace kernels
     DispatchSize shadowTraceGroups;
     // Volume tracking over the frame, each a 64-bit sum in two words (low, high; countVolumeSteps in
-    // volume.glsl carries): real and null collisions of delta tracking (free flight of path rays), and the
-    // tentative collisions of ratio tracking (shadow rays).
+    // volume.glsl carries): real and null collisions of delta tracking (free flight of path rays), the
+    // tentative collisions of ratio tracking (shadow rays), and the marches parked for a resume round.
     uint realCollisions[2];
     uint nullCollisions[2];
     uint ratioCollisions[2];
-    uint parkedMarches; // volume marches parked for a resume round (each park counts once)
-    uint pad0;
+    uint parkedMarches[2];
 };
 
 // Parameters of pt_queue_advance.

@@ -39,6 +39,14 @@ struct VolumeRecord {
     uint pad2;
 };
 
+// Push constants of volume_majorants.comp: the majorants of macrocells firstCell.. of one volume.
+struct MajorantParams {
+    uint64_t volumes;      // VolumeRecord[]
+    uint64_t volumeData;   // the floats VolumeRecord's offsets index (SceneDesc.volumeData)
+    uint volume;           // which record
+    uint firstCell;        // macrocell of invocation 0 (a grid may need more than one dispatch)
+};
+
 // Marches that spend their step budget (pt_volume, pt_shadow_volume) are parked with their state and
 // resumed by further dispatches, never ended with a wrong answer: see core/render/VolumeParking.h.
 RIPPLE_CONST uint VOLUME_MAX_RESUME_ROUNDS = 31u;
