@@ -4,8 +4,8 @@
 // transfer function), as a smooth medium (opacity rising with the value), and as the iso-surface at 0.5.
 // Per case it prints the scene build (the majorant grid for volumes, the BLAS over crossed cells for the
 // iso-surface), bytes per voxel on the GPU, the time of a 512^2 16-spp render (one sample per frame, as
-// ripple-render renders), free-flight samples (tentative collisions of delta tracking) per CPU-second and
-// the null/real collision ratio; --json writes the same. Core only: no ANARI, no files.
+// ripple-render renders), free-flight samples (tentative collisions of delta tracking) per CPU-second, the
+// null/real collision ratio, and the GPU time per frame of the main stages; --json writes the same. Core only: no ANARI, no files.
 #include "bench/ripple-bench/Timing.h"
 #include "core/render/PathTracer.h"
 #include "core/scene/Scene.h"
@@ -166,6 +166,7 @@ int main(int argc, char** argv) {
                 total.nullCollisions += f.nullCollisions;
                 total.flaggedRays += f.flaggedRays;
                 total.parkedMarches += f.parkedMarches;
+                for (size_t i = 0; i < core::kStageCount; ++i) total.stageSeconds[i] += f.stageSeconds[i];
             }
             const double cpu = bench::processCpuSeconds() - cpu0, wall = bench::wallSeconds() - wall0;
             const double freeFlight = double(total.realCollisions + total.nullCollisions);
@@ -173,6 +174,21 @@ int main(int argc, char** argv) {
             const double ratio = total.realCollisions > 0 ? double(total.nullCollisions) / double(total.realCollisions) : 0.0;
             std::printf("%-20s %9.2f %9.2f %9.2f %9.2f %12.2f %9.2f\n", c.name.c_str(), buildSeconds, bytesPerVoxel,
                         first + wall, first, perCpu, ratio);
+            // GPU time per frame of the stages that take at least 5% of it, longest first.
+            const size_t frames = std::max(spp, 2u) - 1;
+            double frameSeconds = 0.0;
+            for (double seconds : total.stageSeconds) frameSeconds += seconds / double(frames);
+            std::vector<size_t> order(core::kStageCount);
+            for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+            std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return total.stageSeconds[a] > total.stageSeconds[b]; });
+            std::printf("  GPU ms per frame %.1f:", frameSeconds * 1e3);
+            nlohmann::json stageMilliseconds;
+            for (size_t i : order) {
+                const double ms = total.stageSeconds[i] / double(frames) * 1e3;
+                stageMilliseconds[core::stageName(core::Stage(i))] = ms;
+                if (ms >= 0.05 * frameSeconds * 1e3) std::printf(" %s %.1f", core::stageName(core::Stage(i)), ms);
+            }
+            std::printf("\n");
             if (total.parkedMarches > 0)
                 std::printf("  %llu marches spent a dispatch's step budget and were resumed\n",
                             (unsigned long long)total.parkedMarches);
@@ -184,7 +200,8 @@ int main(int argc, char** argv) {
                                {"firstFrameSeconds", first}, {"cpuSecondsAfterFirst", cpu},
                                {"realCollisions", total.realCollisions}, {"nullCollisions", total.nullCollisions},
                                {"freeFlightPerCpuSecond", perCpu * 1e6}, {"nullPerReal", ratio},
-                               {"flaggedRays", total.flaggedRays}, {"parkedMarches", total.parkedMarches}});
+                               {"flaggedRays", total.flaggedRays}, {"parkedMarches", total.parkedMarches},
+                               {"stageMillisecondsPerFrame", stageMilliseconds}});
         }
         if (!jsonFile.empty()) {
             std::ofstream out(jsonFile);

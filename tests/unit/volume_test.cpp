@@ -46,6 +46,26 @@ Mean meanRed(const test::Rendered& image) {
     return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / n)};
 }
 
+// A white (0.8) matte floor at z = 0, 4 units wide, lit straight down by a directional light of irradiance
+// pi through `slab`, moved to start at z = 0.5: seen from below the slab, each pixel shows 0.8 times the
+// slab's transmittance along the vertical.
+core::SceneDescription litFloorUnder(core::Volume slab) {
+    core::SceneDescription scene;
+    scene.meshes.push_back(test::squareMesh(4.0f));
+    core::Material white;
+    white.baseColor = glm::vec3(0.8f);
+    scene.materials.push_back(white);
+    scene.instances.push_back({{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f), 0});
+    core::Light sun;
+    sun.kind = core::Light::Kind::Directional;
+    sun.direction = {0.0f, 0.0f, -1.0f};
+    sun.intensity = float(M_PI);
+    scene.lights.push_back(sun);
+    slab.origin.z = 0.5f;
+    scene.volumes.push_back(slab);
+    return scene;
+}
+
 }  // namespace
 
 TEST_CASE("volumes: transmittance of a homogeneous slab and of a linear ramp, extinction 1e-3 to 1e3") {
@@ -113,21 +133,8 @@ TEST_CASE("volumes: shadow rays carry the slab's transmittance (ratio tracking)"
     // tracking takes many small steps down to about 0.03, past where Russian roulette takes over (0.1).
     test::ValidationGuard guard;
     for (const auto& [sigma, ramp] : {std::pair{1.0f, false}, std::pair{1e6f, false}, std::pair{8.0f, true}}) {
-        core::SceneDescription scene;
-        scene.meshes.push_back(test::squareMesh(4.0f));
-        core::Material white;
-        white.baseColor = glm::vec3(0.8f);
-        scene.materials.push_back(white);
-        scene.instances.push_back({{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f), 0});
-        core::Light sun;
-        sun.kind = core::Light::Kind::Directional;
-        sun.direction = {0.0f, 0.0f, -1.0f};
-        sun.intensity = float(M_PI);
-        scene.lights.push_back(sun);
         const float opacity = 1.0f - std::exp(-1.0f);
-        core::Volume slab = boxVolume(1.0f, opacity, 1.0f / sigma, ramp, glm::vec3(0.0f));
-        slab.origin.z = 0.5f;
-        scene.volumes.push_back(slab);
+        const core::SceneDescription scene = litFloorUnder(boxVolume(1.0f, opacity, 1.0f / sigma, ramp, glm::vec3(0.0f)));
         core::RenderSettings settings;
         settings.maxPathLength = 1;
         settings.pixelSamples = 64;
@@ -273,20 +280,7 @@ TEST_CASE("volumes: marches parked after every step and resumed give the analyti
     }
     // Shadow rays: a white floor lit straight down through an absorbing slab of optical depth 1, seen from
     // below the slab (as in the ratio-tracking case above): 0.8 exp(-1).
-    core::SceneDescription scene;
-    scene.meshes.push_back(test::squareMesh(4.0f));
-    core::Material white;
-    white.baseColor = glm::vec3(0.8f);
-    scene.materials.push_back(white);
-    scene.instances.push_back({{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f), 0});
-    core::Light sun;
-    sun.kind = core::Light::Kind::Directional;
-    sun.direction = {0.0f, 0.0f, -1.0f};
-    sun.intensity = float(M_PI);
-    scene.lights.push_back(sun);
-    core::Volume slab = boxVolume(1.0f, opacity, 1.0f, false, glm::vec3(0.0f), 33);
-    slab.origin.z = 0.5f;
-    scene.volumes.push_back(slab);
+    const core::SceneDescription scene = litFloorUnder(boxVolume(1.0f, opacity, 1.0f, false, glm::vec3(0.0f), 33));
     core::RenderSettings settings;
     settings.maxPathLength = 1;
     settings.pixelSamples = 64;
