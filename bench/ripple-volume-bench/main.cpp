@@ -5,7 +5,8 @@
 // Per case it prints the scene build (the majorant grid for volumes, the BLAS over crossed cells for the
 // iso-surface), bytes per voxel on the GPU, the time of a 512^2 16-spp render (one sample per frame, as
 // ripple-render renders), free-flight samples (tentative collisions of delta tracking) per CPU-second, the
-// null/real collision ratio, and the GPU time per frame of the main stages; --json writes the same. Core only: no ANARI, no files.
+// null/real collision ratio, and the GPU time per frame of the main stages; --json writes the same. Core
+// only: no ANARI, no files.
 #include "bench/ripple-bench/Timing.h"
 #include "core/render/PathTracer.h"
 #include "core/scene/Scene.h"
@@ -180,7 +181,8 @@ int main(int argc, char** argv) {
             for (double seconds : total.stageSeconds) frameSeconds += seconds / double(frames);
             std::vector<size_t> order(core::kStageCount);
             for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-            std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return total.stageSeconds[a] > total.stageSeconds[b]; });
+            std::sort(order.begin(), order.end(),
+                      [&](size_t a, size_t b) { return total.stageSeconds[a] > total.stageSeconds[b]; });
             std::printf("  GPU ms per frame %.1f:", frameSeconds * 1e3);
             nlohmann::json stageMilliseconds;
             for (size_t i : order) {

@@ -86,8 +86,8 @@ struct PathTracer::Impl {
     StageSeconds stageSeconds{};                                    // of the frame being rendered
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
-        : context(ctx), options(opts), trace(ctx, traceOptions), parking(ctx, opts.volumeParking), pipelines(ctx), channels(ctx, opts.workgroupSize),
-          visitors(ctx, trace, opts.workgroupSize), profile(ctx) {
+        : context(ctx), options(opts), trace(ctx, traceOptions), parking(ctx, opts.volumeParking), pipelines(ctx),
+          channels(ctx, opts.workgroupSize), visitors(ctx, trace, opts.workgroupSize), profile(ctx) {
         if (options.queueCapacity == 0 || options.workgroupSize == 0)
             throw std::invalid_argument("PathTracerOptions: queueCapacity and workgroupSize must be positive");
         const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options.workgroupSize}};
@@ -317,7 +317,8 @@ struct PathTracer::Impl {
     void exchangeRays(const Scene& scene, uint32_t paths, uint32_t shadows, uint32_t bounce, uint32_t sampleIndex) {
         RayExchange& ranks = exchange();
         VisitorTracer::Volumes here;
-        if (features.has(gpu::FEATURE_VOLUMES)) here = {&volume, &shadowVolume, &parking, bounce, sampleIndex, ranks.rank()};
+        if (features.has(gpu::FEATURE_VOLUMES))
+            here = {&volume, &shadowVolume, &parking, bounce, sampleIndex, ranks.rank()};
         visitors.use(scene, frame.address(), surface, here);
         std::vector<gpu::Ray> rays(std::max(paths, shadows));
         std::vector<gpu::SurfaceRecord> records(paths);

@@ -42,7 +42,8 @@ private:
     // Records one path stage over `count` items with these parameters (their count set to it).
     void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p, uint32_t count) const;
     // The same for a volume stage, with the resume rounds of the marches it parks.
-    void dispatchVolumeStage(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p, uint32_t count) const;
+    void dispatchVolumeStage(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p,
+                             uint32_t count) const;
 
     const vk::Context& context_;
     TraceKernels& trace_;
