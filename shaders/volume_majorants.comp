@@ -34,7 +34,7 @@ void main() {
     if (cell >= v.macroX * v.macroY * v.macroZ) return;
     VolumeDataRef data = VolumeDataRef(params.volumeData);
     uvec3 macro = uvec3(cell % v.macroX, (cell / v.macroX) % v.macroY, cell / (v.macroX * v.macroY));
-    uvec3 extent = uvec3(v.gridExtent.xyz);
+    uvec3 extent = uvec3(v.dimX - 1u, v.dimY - 1u, v.dimZ - 1u);
     uvec3 first = macro * VOLUME_MACROCELL;
     uvec3 last = min(first + VOLUME_MACROCELL, extent);
     float lowest = 3.402823e38, highest = -3.402823e38;
@@ -52,6 +52,9 @@ void main() {
     float p0 = clamp((lowest - v.valueRange.x) * scale, 0.0, top);
     float p1 = clamp((highest - v.valueRange.x) * scale, 0.0, top);
     float majorant = max(extinctionAt(v, data, p0), extinctionAt(v, data, p1));
-    for (uint e = uint(ceil(p0)); float(e) < p1; ++e) majorant = max(majorant, tableExtinction(v, data, e));
+    // The entries strictly inside (p0, p1), in nested loops: lavapipe ends any one loop after 65,535
+    // iterations, and a table may be longer than that.
+    for (uint chunk = uint(ceil(p0)); float(chunk) < p1; chunk += 32768u)
+        for (uint e = chunk; e < chunk + 32768u && float(e) < p1; ++e) majorant = max(majorant, tableExtinction(v, data, e));
     data.values[v.majorantOffset + cell] = majorant * (1.0 + 1e-5);
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 
@@ -63,6 +64,19 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
             ++table.skipped;
             continue;
         }
+        // The kernels index the one float array with 32-bit offsets: a volume that would reach past them is
+        // skipped (the majorants would otherwise be written over another volume's data).
+        const size_t entries = transferTableSize(v);
+        const glm::uvec3 macroCells =
+            glm::max((v.dims - 1u + gpu::VOLUME_MACROCELL - 1u) / gpu::VOLUME_MACROCELL, glm::uvec3(1u));
+        const uint64_t floatsNeeded =
+            4 * uint64_t(entries) + v.values.size() + uint64_t(macroCells.x) * macroCells.y * macroCells.z;
+        if (table.data.size() + floatsNeeded > uint64_t(UINT32_MAX)) {
+            table.messages.push_back("volume " + std::to_string(index) + ": the scene's volumes hold more than 2^32 floats "
+                                     "with this one; skipped");
+            ++table.skipped;
+            continue;
+        }
         gpu::VolumeRecord record{};
         // World -> object -> grid index space (voxel i at i).
         const glm::dmat4 objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / glm::dvec3(v.spacing)) *
@@ -78,13 +92,11 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         record.filterMode = v.linearFilter ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
         record.objectId = v.objectId;
         record.instanceId = v.instanceId;
-        const glm::uvec3 macro = glm::max((extent + gpu::VOLUME_MACROCELL - 1u) / gpu::VOLUME_MACROCELL, glm::uvec3(1u));
-        record.macroX = macro.x;
-        record.macroY = macro.y;
-        record.macroZ = macro.z;
+        record.macroX = macroCells.x;
+        record.macroY = macroCells.y;
+        record.macroZ = macroCells.z;
 
         // Transfer-function table: albedo and extinction per entry.
-        const size_t entries = transferTableSize(v);
         record.tableSize = static_cast<uint32_t>(entries);
         record.tableOffset = static_cast<uint32_t>(table.data.size());
         for (size_t e = 0; e < entries; ++e) {
@@ -101,7 +113,7 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         // Majorants: one float per macrocell, filled on the device once the data is uploaded
         // (VolumeMajorants.h).
         record.majorantOffset = static_cast<uint32_t>(table.data.size());
-        table.data.resize(table.data.size() + size_t(macro.x) * macro.y * macro.z, 0.0f);
+        table.data.resize(table.data.size() + size_t(macroCells.x) * macroCells.y * macroCells.z, 0.0f);
 
         // World bounds: the grid box's corners.
         const glm::vec3 hiCorner = v.origin + glm::vec3(extent) * v.spacing;
