@@ -76,6 +76,8 @@ public:
 
     const SceneReport& report() const { return report_; }
     VkDeviceAddress descAddress() const { return desc_.address(); }
+    // The volumes' float array as VolumeTable laid it out, majorants filled in (for tests).
+    const vk::Buffer& volumeData() const { return volumeData_; }
     uint32_t instanceCount() const { return instanceCount_; }
     uint32_t lightCount() const { return lightCount_; }
     // Software or RayQuery: whether this scene has acceleration structures for ray-query kernels.
