@@ -2,6 +2,7 @@
 #include "apps/common/EnvironmentOptions.h"
 
 #include "apps/common/AnariParams.h"
+#include "apps/common/SceneEdits.h"
 
 #include <cmath>
 #include <cstring>
@@ -37,7 +38,8 @@ glm::vec3 environmentDirection(float rotationDegrees) {
     return {-std::sin(turn), 0.0f, -std::cos(turn)};
 }
 
-ANARILight newEnvironmentLight(ANARIDevice device, const LinearImage& image, float intensity, float rotationDegrees) {
+ANARILight newEnvironmentLight(ANARIDevice device, const LinearImage& image, float intensity, float rotationDegrees,
+                               SceneEdits* edits) {
     ANARILight light = anariNewLight(device, "hdri");
     if (!light) throw std::runtime_error("the device has no 'hdri' light: --environment needs one");
     ANARIArray2D radiance = anariNewArray2D(device, nullptr, nullptr, nullptr, ANARI_FLOAT32_VEC3, image.width, image.height);
@@ -60,6 +62,7 @@ ANARILight newEnvironmentLight(ANARIDevice device, const LinearImage& image, flo
     anari::set(device, light, "up", glm::vec3(0.0f, 1.0f, 0.0f));
     anari::set(device, light, "scale", intensity);
     anariCommitParameters(device, light);
+    if (edits) edits->add({light, "environment", "hdri", glm::vec3(1.0f), intensity, std::nullopt, rotationDegrees});
     return light;
 }
 

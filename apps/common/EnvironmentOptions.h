@@ -15,6 +15,8 @@
 
 namespace ripple::apps {
 
+class SceneEdits;
+
 struct EnvironmentOptions {
     std::string file;                   // equirectangular .hdr/.exr/.pfm/.png image; empty: none
     float intensity = 1.0f;             // the light's "scale"
@@ -33,7 +35,9 @@ glm::vec3 environmentDirection(float rotationDegrees);
 
 // An "hdri" light of an equirectangular image of linear radiances (row 0 at the top, towards +Y): its centre
 // column is seen along -Z turned by `rotationDegrees` about +Y, so the default faces a camera looking down
-// -Z. The caller releases the light. Throws when the device has no hdri light or cannot hold the image.
-ANARILight newEnvironmentLight(ANARIDevice device, const LinearImage& image, float intensity, float rotationDegrees);
+// -Z. The caller releases the light; `edits`, where given, lists it as the light "environment". Throws when
+// the device has no hdri light or cannot hold the image.
+ANARILight newEnvironmentLight(ANARIDevice device, const LinearImage& image, float intensity, float rotationDegrees,
+                               SceneEdits* edits = nullptr);
 
 }  // namespace ripple::apps

@@ -67,4 +67,10 @@ void SceneEdits::commit(const EditableIsosurface& isosurface) const {
     anariCommitParameters(device_, isosurface.handle);
 }
 
+void SceneEdits::commit(const SceneEditRequests& requests) const {
+    for (size_t i : requests.lights) commit(lights.at(i));
+    for (size_t i : requests.volumes) commit(volumes.at(i));
+    for (size_t i : requests.isosurfaces) commit(isosurfaces.at(i));
+}
+
 }  // namespace ripple::apps

@@ -9,7 +9,9 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,17 @@ struct EditableIsosurface {
 // scale (hdri), intensity (point, spot).
 const char* intensityParameter(const std::string& lightSubtype);
 
+// Which records of a SceneEdits changed (indices into its lists), to be committed together.
+struct SceneEditRequests {
+    std::set<size_t> lights, volumes, isosurfaces;
+    bool empty() const { return lights.empty() && volumes.empty() && isosurfaces.empty(); }
+    void merge(const SceneEditRequests& other) {
+        lights.insert(other.lights.begin(), other.lights.end());
+        volumes.insert(other.volumes.begin(), other.volumes.end());
+        isosurfaces.insert(other.isosurfaces.begin(), other.isosurfaces.end());
+    }
+};
+
 class SceneEdits {
 public:
     explicit SceneEdits(ANARIDevice device) : device_(device) {}
@@ -64,6 +77,8 @@ public:
     void commit(const EditableLight& light) const;
     void commit(const EditableVolume& volume) const;
     void commit(const EditableIsosurface& isosurface) const;
+    // Commits the requested records.
+    void commit(const SceneEditRequests& requests) const;
 
     std::vector<EditableLight> lights;  // edited in place, then committed
     std::vector<EditableVolume> volumes;

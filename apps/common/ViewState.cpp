@@ -42,6 +42,19 @@ public:
         return v;
     }
 
+    std::string label(const Json& record, const std::string& name) const {
+        const Json& value = member(record, "label", " in \"" + name + "\"");
+        if (!value.is_string()) fail("\"" + name + ".label\" must be a string");
+        return value.get<std::string>();
+    }
+
+    // An array member of at most `limit` entries, or a failure naming it.
+    const Json& list(const Json& value, const std::string& name, size_t limit) const {
+        if (!value.is_array() || value.empty() || value.size() > limit)
+            fail("\"" + name + "\" must be an array of 1 to " + std::to_string(limit) + " entries");
+        return value;
+    }
+
     int32_t integer(const Json& value, const std::string& name, int64_t lowest, int64_t highest) const {
         if (!value.is_number_integer()) fail("\"" + name + "\" must be an integer");
         const int64_t v = value.get<int64_t>();
@@ -54,6 +67,86 @@ private:
     std::string file_;
 };
 
+constexpr size_t kMaxRecords = 4096, kMaxTableEntries = 65536;
+
+// "lights", "volumes", "isosurfaces" (see ViewState.h).
+void readSceneEdits(const Reader& r, const Json& root, ViewState& state) {
+    if (const auto it = root.find("lights"); it != root.end()) {
+        state.lights.emplace();
+        for (const Json& record : r.list(*it, "lights", kMaxRecords)) {
+            const std::string name = "lights[" + std::to_string(state.lights->size()) + "]";
+            if (!record.is_object()) r.fail("\"" + name + "\" must be an object");
+            EditableLight light;
+            light.label = r.label(record, name);
+            light.color = r.vector<3>(r.member(record, "color", " in \"" + name + "\""), name + ".color");
+            light.intensity = r.number(r.member(record, "intensity", " in \"" + name + "\""), name + ".intensity");
+            if (light.color.r < 0.0f || light.color.g < 0.0f || light.color.b < 0.0f || light.intensity < 0.0f)
+                r.fail("\"" + name + "\" must not have a negative colour or intensity");
+            if (const auto v = record.find("direction"); v != record.end()) {
+                light.direction = r.vector<3>(*v, name + ".direction");
+                const float lengthSquared = glm::dot(*light.direction, *light.direction);
+                if (!(lengthSquared > 0.0f) || !std::isfinite(lengthSquared))
+                    r.fail("\"" + name + ".direction\" must not be zero or overflow");
+            }
+            if (const auto v = record.find("rotation"); v != record.end()) light.rotationDegrees = r.number(*v, name + ".rotation");
+            state.lights->push_back(std::move(light));
+        }
+    }
+    if (const auto it = root.find("volumes"); it != root.end()) {
+        state.volumes.emplace();
+        for (const Json& record : r.list(*it, "volumes", kMaxRecords)) {
+            const std::string name = "volumes[" + std::to_string(state.volumes->size()) + "]";
+            if (!record.is_object()) r.fail("\"" + name + "\" must be an object");
+            EditableVolume volume;
+            volume.label = r.label(record, name);
+            if (const auto v = record.find("colorMap"); v != record.end()) {
+                if (!v->is_string()) r.fail("\"" + name + ".colorMap\" must be a string");
+                volume.colorMap = v->get<std::string>();
+            }
+            const Json& colors = r.list(r.member(record, "colors", " in \"" + name + "\""), name + ".colors", kMaxTableEntries);
+            for (const Json& c : colors) {
+                volume.colors.push_back(r.vector<3>(c, name + ".colors[" + std::to_string(volume.colors.size()) + "]"));
+                const glm::vec3& rgb = volume.colors.back();
+                if (rgb.r < 0.0f || rgb.g < 0.0f || rgb.b < 0.0f) r.fail("\"" + name + ".colors\" must not be negative");
+            }
+            const Json& opacities = r.list(r.member(record, "opacities", " in \"" + name + "\""), name + ".opacities", kMaxTableEntries);
+            for (const Json& o : opacities) {
+                volume.opacities.push_back(r.number(o, name + ".opacities[" + std::to_string(volume.opacities.size()) + "]"));
+                if (volume.opacities.back() < 0.0f || volume.opacities.back() > 1.0f)
+                    r.fail("\"" + name + ".opacities\" must lie within 0..1");
+            }
+            volume.valueRange = r.vector<2>(r.member(record, "valueRange", " in \"" + name + "\""), name + ".valueRange");
+            if (!(volume.valueRange.x <= volume.valueRange.y)) r.fail("\"" + name + ".valueRange\" must not be inverted");
+            volume.unitDistance = r.number(r.member(record, "unitDistance", " in \"" + name + "\""), name + ".unitDistance");
+            if (!(volume.unitDistance > 0.0f)) r.fail("\"" + name + ".unitDistance\" must be positive");
+            state.volumes->push_back(std::move(volume));
+        }
+    }
+    if (const auto it = root.find("isosurfaces"); it != root.end()) {
+        state.isosurfaces.emplace();
+        for (const Json& record : r.list(*it, "isosurfaces", kMaxRecords)) {
+            const std::string name = "isosurfaces[" + std::to_string(state.isosurfaces->size()) + "]";
+            if (!record.is_object()) r.fail("\"" + name + "\" must be an object");
+            EditableIsosurface isosurface;
+            isosurface.label = r.label(record, name);
+            isosurface.isovalue = r.number(r.member(record, "isovalue", " in \"" + name + "\""), name + ".isovalue");
+            state.isosurfaces->push_back(std::move(isosurface));
+        }
+    }
+}
+
+// The records of one kind in the file against the scene's: the same count, the same labels in order.
+template <typename Record>
+void checkRecords(const Reader& r, const std::vector<Record>& inFile, const std::vector<Record>& inScene, const char* kind) {
+    if (inFile.size() != inScene.size())
+        r.fail(std::string("the view file lists ") + std::to_string(inFile.size()) + " " + kind + "(s), the scene has " +
+               std::to_string(inScene.size()) + " (give both programs the same scene)");
+    for (size_t i = 0; i < inFile.size(); ++i)
+        if (inFile[i].label != inScene[i].label)
+            r.fail(std::string(kind) + " " + std::to_string(i) + " is \"" + inFile[i].label + "\" in the view file but \"" +
+                   inScene[i].label + "\" in the scene");
+}
+
 }  // namespace
 
 ViewState readViewState(const std::filesystem::path& file) {
@@ -65,7 +158,7 @@ ViewState readViewState(const std::filesystem::path& file) {
     Json root;
     try {
         root = Json::parse(text.str());
-    } catch (const Json::parse_error& e) {
+    } catch (const Json::exception& e) {  // malformed, or a number past a double (1e999)
         r.fail(std::string("not JSON: ") + e.what());
     }
     if (!root.is_object()) r.fail("not a view-state object");
@@ -120,11 +213,16 @@ ViewState readViewState(const std::filesystem::path& file) {
         }
         if (const auto v = renderer.find("background"); v != renderer.end())
             state.background = r.vector<4>(*v, "renderer.background");
+        if (const auto t = renderer.find("traversal"); t != renderer.end()) {
+            if (!t->is_string() || t->get<std::string>().empty()) r.fail("\"renderer.traversal\" must be a non-empty string");
+            state.traversal = t->get<std::string>();
+        }
     }
     if (const auto it = root.find("size"); it != root.end()) {
         if (!it->is_array() || it->size() != 2) r.fail("\"size\" must be [width, height]");
         state.size = glm::uvec2(uint32_t(r.integer((*it)[0], "size[0]", 1, 16384)), uint32_t(r.integer((*it)[1], "size[1]", 1, 16384)));
     }
+    readSceneEdits(r, root, state);
     return state;
 }
 
@@ -151,11 +249,76 @@ void writeViewState(const std::filesystem::path& file, const ViewState& state) {
     if (state.maxPathLength) renderer["maxPathLength"] = *state.maxPathLength;
     if (state.ambientRadiance) renderer["ambientRadiance"] = *state.ambientRadiance;
     if (state.background) renderer["background"] = array(*state.background);
+    if (state.traversal) renderer["traversal"] = *state.traversal;
     Json root = {{"ripple-view-state", kVersion}, {"camera", camera}, {"renderer", renderer}};
     if (state.size) root["size"] = {state.size->x, state.size->y};
+    if (state.lights && !state.lights->empty()) {
+        Json& lights = root["lights"] = Json::array();
+        for (const EditableLight& l : *state.lights) {
+            Json record = {{"label", l.label}, {"color", array(l.color)}, {"intensity", l.intensity}};
+            if (l.direction) record["direction"] = array(*l.direction);
+            if (l.subtype == "hdri") record["rotation"] = l.rotationDegrees;
+            lights.push_back(std::move(record));
+        }
+    }
+    if (state.volumes && !state.volumes->empty()) {
+        Json& volumes = root["volumes"] = Json::array();
+        for (const EditableVolume& volume : *state.volumes) {
+            Json colors = Json::array();
+            for (const glm::vec3& c : volume.colors) colors.push_back(array(c));
+            Json record = {{"label", volume.label}, {"colors", colors}, {"opacities", volume.opacities},
+                           {"valueRange", array(volume.valueRange)}, {"unitDistance", volume.unitDistance}};
+            if (!volume.colorMap.empty()) record["colorMap"] = volume.colorMap;
+            volumes.push_back(std::move(record));
+        }
+    }
+    if (state.isosurfaces && !state.isosurfaces->empty()) {
+        Json& isosurfaces = root["isosurfaces"] = Json::array();
+        for (const EditableIsosurface& i : *state.isosurfaces)
+            isosurfaces.push_back({{"label", i.label}, {"isovalue", i.isovalue}});
+    }
     std::ofstream out(file, std::ios::binary | std::ios::trunc);
     out << root.dump(2) << "\n";
     if (!out) throw std::runtime_error(file.string() + ": cannot write the view file");
+}
+
+SceneEditRequests applyViewEdits(const ViewState& state, SceneEdits& edits, bool withLights,
+                                 const std::filesystem::path& file) {
+    const Reader r(file.string());
+    SceneEditRequests changed;
+    if (state.lights && withLights) {
+        checkRecords(r, *state.lights, edits.lights, "light");
+        for (size_t i = 0; i < edits.lights.size(); ++i) {
+            const EditableLight& saved = (*state.lights)[i];
+            EditableLight& light = edits.lights[i];
+            light.color = saved.color;
+            light.intensity = saved.intensity;
+            if (light.direction && saved.direction) light.direction = saved.direction;
+            light.rotationDegrees = saved.rotationDegrees;
+            changed.lights.insert(i);
+        }
+    }
+    if (state.volumes) {
+        checkRecords(r, *state.volumes, edits.volumes, "volume");
+        for (size_t i = 0; i < edits.volumes.size(); ++i) {
+            const EditableVolume& saved = (*state.volumes)[i];
+            EditableVolume& volume = edits.volumes[i];
+            volume.colors = saved.colors;
+            volume.opacities = saved.opacities;
+            volume.valueRange = saved.valueRange;
+            volume.unitDistance = saved.unitDistance;
+            volume.colorMap = saved.colorMap;
+            changed.volumes.insert(i);
+        }
+    }
+    if (state.isosurfaces) {
+        checkRecords(r, *state.isosurfaces, edits.isosurfaces, "isosurface");
+        for (size_t i = 0; i < edits.isosurfaces.size(); ++i) {
+            edits.isosurfaces[i].isovalue = (*state.isosurfaces)[i].isovalue;
+            changed.isosurfaces.insert(i);
+        }
+    }
+    return changed;
 }
 
 }  // namespace ripple::apps

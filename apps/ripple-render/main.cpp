@@ -12,6 +12,7 @@
 #include "apps/common/ImageIO.h"
 #include "apps/common/ImageSize.h"
 #include "apps/common/OutputImage.h"
+#include "apps/common/SceneEdits.h"
 #include "apps/common/ScenePartition.h"
 #include "apps/common/ViewState.h"
 #include "apps/common/VolumeFile.h"
@@ -61,9 +62,7 @@ struct Options {
     std::string view;                   // a view-state file (ripple-view's): camera, renderer settings, size
     std::vector<std::string> channels;  // --channels: depth, normal, albedo as layers of the EXR output
     bool exrHalf = false;               // the EXR output's colour, normal and albedo as half floats
-    std::optional<CameraView> viewCamera;     // from --view
-    std::optional<glm::vec4> viewBackground;  // from --view
-    std::optional<float> viewAmbient;         // from --view: the scene's ambient unless --ambient is given
+    std::optional<ViewState> viewState; // --view's contents (its ambient counts unless --ambient is given)
     EnvironmentOptions environment;     // --environment: an hdri light
     bool quiet = false;
     std::string partition = "round-robin";  // under mpirun: which share of the file each rank imports
@@ -273,14 +272,16 @@ AnariWorld buildScene(const Options& options, RenderPlan& plan, const mpi::Commu
     stats.triangles = gltf ? gltf->trianglesDrawn() : 0;
     // The environment is a light like the scene's, placed on rank 0 alone.
     std::vector<ANARILight> extraLights;
+    SceneEdits edits(s.device);  // what a --view file's panel values apply to
     if (plan.environment) {
         extraLights.push_back(newEnvironmentLight(s.device, *plan.environment, options.environment.intensity,
-                                                  options.environment.rotationDegrees));
+                                                  options.environment.rotationDegrees, &edits));
         s.objects.push_back(extraLights.back());
     }
-    AnariWorld scene = plan.field ? buildFieldScene(s.device, *plan.field, plan.fieldOptions, extraLights)
-                       : gltf     ? buildAnariWorld(s.device, *gltf, plan.root, extraLights)
-                                  : buildDemoScene(s.device, plan.demo, extraLights);
+    AnariWorld scene = plan.field ? buildFieldScene(s.device, *plan.field, plan.fieldOptions, extraLights, &edits)
+                       : gltf     ? buildAnariWorld(s.device, *gltf, plan.root, extraLights, &edits)
+                                  : buildDemoScene(s.device, plan.demo, extraLights, &edits);
+    if (options.viewState) edits.commit(applyViewEdits(*options.viewState, edits, plan.root, options.view));
     if (plan.environment) scene.ambientRadiance = 0.0f;  // the environment replaces the scene's ambient fill
     s.objects.push_back(scene.world);
     return scene;
@@ -293,8 +294,8 @@ ANARICamera makeCamera(const Options& options, const AnariWorld& scene, glm::uve
     const float aspect = float(size.x) / float(size.y);
     CameraView view;
     const int cameraIndex = options.camera.value_or(scene.cameras.empty() ? -1 : 0);
-    if (options.viewCamera) {
-        view = *options.viewCamera;
+    if (options.viewState) {
+        view = options.viewState->camera;
     } else if (cameraIndex >= 0) {
         if (size_t(cameraIndex) >= scene.cameras.size())
             throw std::runtime_error("--camera " + std::to_string(cameraIndex) + ": the scene has " +
@@ -332,12 +333,14 @@ FrameSetup makeFrame(const Options& options, const RenderPlan& plan, const Anari
     anari::set(s.device, renderer, "pixelSamples", int32_t(setup.batch));
     anari::set(s.device, renderer, "maxPathLength", int32_t(options.maxPathLength));
     if (options.seed != 0) anari::set(s.device, renderer, "seed", options.seed);  // 0: the device's default
-    anari::set(s.device, renderer, "background", options.viewBackground.value_or(scene.background));
+    anari::set(s.device, renderer, "background", options.viewState && options.viewState->background ? *options.viewState->background : scene.background);
     // eyeLight's ambient light is the light at the eye: the scene's suggestion (meant for path tracing lit
     // scenes, often 0) would darken it, so only an explicit --ambient sets it.
     if (options.renderer != "eyeLight" || options.ambient)
         anari::set(s.device, renderer, "ambientRadiance",
-                   options.ambient.value_or(options.viewAmbient.value_or(scene.ambientRadiance)));
+                   options.ambient.value_or(options.viewState && options.viewState->ambientRadiance
+                                                       ? *options.viewState->ambientRadiance
+                                                       : scene.ambientRadiance));
     anariCommitParameters(s.device, renderer);
 
     setup.frame = anariNewFrame(s.device);
@@ -656,12 +659,11 @@ void applyViewState(Options& options, const CLI::App& app) {
     if (options.view.empty()) return;
     if (options.camera) throw std::runtime_error("give one of --camera and --view");
     const ViewState state = readViewState(options.view);
-    options.viewCamera = state.camera;
-    options.viewBackground = state.background;
     if (state.size && app.count("--size") == 0) options.size = std::to_string(state.size->x) + "x" + std::to_string(state.size->y);
     if (state.maxPathLength && app.count("--max-path-length") == 0) options.maxPathLength = uint32_t(*state.maxPathLength);
-    options.viewAmbient = state.ambientRadiance;
     if (state.renderer && app.count("--renderer") == 0) options.renderer = *state.renderer;
+    if (state.traversal && app.count("--traversal") == 0) options.traversal = *state.traversal;
+    options.viewState = state;
 }
 
 }  // namespace
@@ -726,8 +728,9 @@ int main(int argc, char** argv) {
         ->delimiter(',');
     app.add_flag("--exr-half", options.exrHalf, "the .exr output's colour, normal and albedo as 16-bit half floats (depth stays 32-bit)");
     app.add_option("--view", options.view,
-                   "a view-state file (ripple-view writes them with V): its camera, renderer settings and size, "
-                   "where the command line does not set them");
+                   "a view-state file (ripple-view writes them with V): its camera, renderer settings and size "
+                   "where the command line does not set them, and its light, volume and iso-surface values (give "
+                   "the same scene as to ripple-view)");
     app.add_option("--ambient", options.ambient, "ambient radiance (default: what the scene suggests; 0 with --environment)")
         ->check(CLI::NonNegativeNumber);
     ripple::apps::addEnvironmentOptions(app, options.environment);

@@ -140,10 +140,4 @@ SceneEditRequests drawScenePanels(SceneEdits& edits) {
     return out;
 }
 
-void commitEdits(const SceneEdits& edits, const SceneEditRequests& requests) {
-    for (size_t i : requests.lights) edits.commit(edits.lights[i]);
-    for (size_t i : requests.volumes) edits.commit(edits.volumes[i]);
-    for (size_t i : requests.isosurfaces) edits.commit(edits.isosurfaces[i]);
-}
-
 }  // namespace ripple::apps

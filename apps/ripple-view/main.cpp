@@ -28,6 +28,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -89,15 +90,20 @@ std::filesystem::path viewFileOf(const Options& options) {
     return options.view.empty() ? std::filesystem::path("ripple-view.json") : std::filesystem::path(options.view);
 }
 
-void saveView(const std::filesystem::path& file, const CameraView& view, const ViewerSettings& settings, glm::uvec2 size) {
+void saveView(const std::filesystem::path& file, const CameraView& view, const ViewerUiState& ui, glm::uvec2 size,
+              const SceneEdits& edits) {
     ViewState state;
     state.camera = view;
     state.renderer = "default";
-    state.pixelSamples = settings.pixelSamples;
-    state.maxPathLength = settings.maxPathLength;
-    state.ambientRadiance = settings.ambientRadiance;
-    state.background = settings.background;
+    state.pixelSamples = ui.settings.pixelSamples;
+    state.maxPathLength = ui.settings.maxPathLength;
+    state.ambientRadiance = ui.settings.ambientRadiance;
+    state.background = ui.settings.background;
     state.size = size;
+    if (!ui.traversal.empty()) state.traversal = ui.traversal;
+    state.lights = edits.lights;
+    state.volumes = edits.volumes;
+    state.isosurfaces = edits.isosurfaces;
     try {
         writeViewState(file, state);
         std::printf("wrote view %s (ripple-render --view %s renders it)\n", file.c_str(), file.c_str());
@@ -140,7 +146,7 @@ int followRankZero(const Options& options, const mpi::Communicator& ranks, Sessi
                              *start.changes.reducedScale, false);
     for (PassOrder order = sharePassOrder(ranks, {}); !order.quit; order = sharePassOrder(ranks, {})) {
         if (!order.fieldEdits.empty())
-            frames.editScene([&edits, requests = decodeFieldEdits(order.fieldEdits, edits)] { commitEdits(edits, requests); });
+            frames.editScene([&edits, requests = decodeFieldEdits(order.fieldEdits, edits)] { edits.commit(requests); });
         frames.apply(order.changes);
         // Rank 0 decided the pass is due: no sample limit here (none is in flight, so it starts).
         if (!frames.startPass(order.moving, 0))
@@ -207,10 +213,8 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
     std::vector<ANARILight> extraLights;
     if (environment) {
         extraLights.push_back(newEnvironmentLight(s.device, *environment, options.environment.intensity,
-                                                  options.environment.rotationDegrees));
+                                                  options.environment.rotationDegrees, &edits));
         s.objects.push_back(extraLights.back());
-        edits.add({extraLights.back(), "environment", "hdri", glm::vec3(1.0f), options.environment.intensity,
-                   std::nullopt, options.environment.rotationDegrees});
     }
     // Collective under mpirun (the colour map spans every rank's values); a bad file ends every rank.
     const std::optional<FieldPlan> field = planField(options.field, ranks, true, "ripple-view", options.quiet);
@@ -226,6 +230,21 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
         if (const auto* values = static_cast<const char* const*>(anariGetParameterInfo(
                 s.device, ANARI_DEVICE, "default", "traversal", ANARI_STRING, "value", ANARI_STRING_LIST)))
             for (const char* const* v = values; *v; ++v) ui.traversals.emplace_back(*v);
+    SceneEditRequests editsToCommit;  // panel edits not yet handed to the frames (they wait for a pass to end)
+    if (savedView) {
+        // The file's panel values, committed before the first pass (and sent to the other ranks with it).
+        editsToCommit = applyViewEdits(*savedView, edits, true, options.view);
+        if (savedView->traversal) {
+            if (std::find(ui.traversals.begin(), ui.traversals.end(), *savedView->traversal) != ui.traversals.end()) {
+                ui.traversal = *savedView->traversal;
+                anariSetParameter(s.device, s.device, "traversal", ANARI_STRING, ui.traversal.c_str());
+                anariCommitParameters(s.device, s.device);
+            } else if (!options.quiet) {
+                std::fprintf(stderr, "[ripple-view] WARNING: %s: traversal \"%s\" is not one this device offers here; "
+                             "the device's default stays\n", options.view.c_str(), savedView->traversal->c_str());
+            }
+        }
+    }
     ui.settings.pixelSamples = options.samplesPerPass;
     ui.settings.maxPathLength = options.maxPathLength;
     ui.settings.background = scene.background;
@@ -261,7 +280,6 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
     uint32_t fullPasses = 0;
     double laterPassMilliseconds = 0.0;  // full-size passes after the first
     std::optional<std::filesystem::path> screenshotRequest;
-    SceneEditRequests editsToCommit;  // panel edits not yet handed to the frames (they wait for a pass to end)
     while (!window.closing()) {
         window.beginFrame(frames.busy() ? 0.008 : 0.05);
         const Clock::time_point now = Clock::now();
@@ -301,7 +319,7 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                 if (ImGui::IsKeyPressed(GLFW_KEY_P, false))
                     screenshotRequest = nextScreenshotName(ImGui::IsKeyDown(GLFW_KEY_LEFT_SHIFT) ||
                                                            ImGui::IsKeyDown(GLFW_KEY_RIGHT_SHIFT));
-                if (ImGui::IsKeyPressed(GLFW_KEY_V, false)) saveView(viewFileOf(options), camera.view(), ui.settings, renderSize);
+                if (ImGui::IsKeyPressed(GLFW_KEY_V, false)) saveView(viewFileOf(options), camera.view(), ui, renderSize, edits);
             }
             CameraView& view = camera.view();
             const PanelRequests requests = drawPanels(ui, view, scene.cameras, frames.latest(), frames.fullSamples(),
@@ -330,7 +348,7 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                 });
             if (requests.screenshot) screenshotRequest = nextScreenshotName(false);
             if (requests.screenshotExr) screenshotRequest = nextScreenshotName(true);
-            if (requests.saveView) saveView(viewFileOf(options), camera.view(), ui.settings, renderSize);
+            if (requests.saveView) saveView(viewFileOf(options), camera.view(), ui, renderSize, edits);
             if (const glm::uvec2 fb = window.framebufferSize(); fb.x > 0 && fb.y > 0 && fb != renderSize) {
                 renderSize = fb;
                 frames.setSize(renderSize);
@@ -364,7 +382,7 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                             now - lastChange < std::chrono::duration<double>(kSettleSeconds);
         std::vector<uint8_t> fieldEdits;  // the other ranks' share of the edits (their volume slabs)
         if (!editsToCommit.empty() && !frames.busy()) {
-            frames.editScene([&edits, requests = editsToCommit] { commitEdits(edits, requests); });
+            frames.editScene([&edits, requests = editsToCommit] { edits.commit(requests); });
             // Lights need nothing sent: rank 0 alone holds them (the device restarts every rank's frame).
             if (ranks.distributed() && (!editsToCommit.volumes.empty() || !editsToCommit.isosurfaces.empty()))
                 fieldEdits = encodeFieldEdits(edits, editsToCommit);
@@ -420,7 +438,8 @@ int main(int argc, char** argv) {
                  "renderer, a quick look lit from the eye, where the device has one)");
     app.add_option("--view", options.view,
                    "view-state file: read at start when it exists (camera, settings, size where the command line "
-                   "does not set them); V writes it (default: ripple-view.json)");
+                   "does not set them, and the Lights and Volumes panels' values); V writes it (default: "
+                   "ripple-view.json)");
     ripple::apps::addEnvironmentOptions(app, options.environment);
     ripple::apps::addVolumeOptions(app, options.field);
     app.add_option("--partition", options.partition,

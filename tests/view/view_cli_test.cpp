@@ -149,3 +149,53 @@ TEST_CASE("xvfb: a view file renders the same image in ripple-view and ripple-re
     for (int i = 0; i < c.width * c.height * 4; ++i) different += c.pixels[i] != b.pixels[i] ? 1 : 0;
     CHECK(different > c.width * c.height);
 }
+
+// The panels' values in a view file (what V writes after editing the Lights and Volumes panels): a sun of
+// another colour and strength, a denser volume of another colour map. Both programs apply them, pixel for
+// pixel the same, and the image is not the one without them.
+TEST_CASE("xvfb: a view file's light and volume values render the same in ripple-view and ripple-render") {
+    TempFolder dir;
+    const auto viewFile = dir / "view.json", cameraOnly = dir / "camera.json";
+    const std::string head = R"({"ripple-view-state": 1,
+        "camera": {"type": "perspective", "position": [0, 1.6, 4.4], "direction": [0, -0.3, -1], "up": [0, 1, 0],
+                   "fovy": 0.7},
+        "renderer": {"pixelSamples": 1, "maxPathLength": 3}, "size": [40, 30])";
+    writeText(cameraOnly, head + "}");
+    writeText(viewFile, head + R"(,
+        "lights": [{"label": "sun", "color": [1, 0.4, 0.3], "intensity": 5, "direction": [0.3, -1, 0.2]}],
+        "volumes": [{"label": "volume 0", "colors": [[0.9, 0.9, 0.2], [0.2, 0.9, 0.9]], "opacities": [0, 0.6, 0.3],
+                     "valueRange": [0, 1], "unitDistance": 0.05}]})");
+    const auto viewed = dir / "view.png", rendered = dir / "render.png", plain = dir / "plain.png";
+    const ProgramRun view = runView("--demo volume --view '" + viewFile.string() + "' --frames 2 --screenshot '" +
+                                        viewed.string() + "'",
+                                    "xvfb-run -a");
+    REQUIRE_MESSAGE(view.exitCode == 0, view.output);
+    const ProgramRun render = runProgram(RIPPLE_RENDER_PATH, "--demo volume --view '" + viewFile.string() +
+                                                                 "' --spp 2 --quiet -o '" + rendered.string() + "'",
+                                         "RIPPLE_VK_VALIDATION=1");
+    REQUIRE_MESSAGE(render.exitCode == 0, render.output);
+    const ProgramRun other = runProgram(RIPPLE_RENDER_PATH, "--demo volume --view '" + cameraOnly.string() +
+                                                                "' --spp 2 --quiet -o '" + plain.string() + "'",
+                                        "RIPPLE_VK_VALIDATION=1");
+    REQUIRE_MESSAGE(other.exitCode == 0, other.output);
+    const Image a(viewed), b(rendered), c(plain);
+    REQUIRE(a.pixels != nullptr);
+    REQUIRE(b.pixels != nullptr);
+    REQUIRE(c.pixels != nullptr);
+    REQUIRE(a.width == 40);
+    REQUIRE(b.width == 40);
+    REQUIRE(c.width == 40);
+    REQUIRE(a.height == b.height);
+    REQUIRE(c.height == b.height);
+    int differing = 0, edited = 0;
+    for (int i = 0; i < a.width * a.height * 4; ++i) {
+        differing += a.pixels[i] != b.pixels[i] ? 1 : 0;
+        edited += c.pixels[i] != b.pixels[i] ? 1 : 0;
+    }
+    CHECK(differing == 0);
+    CHECK(edited > a.width * a.height);
+    // The redder sun: the lit floor's red over green rises (column means over the lower third).
+    const int floorTop = 2 * a.height / 3;
+    CHECK(b.mean(0, b.width, floorTop, b.height, 0) / b.mean(0, b.width, floorTop, b.height, 1) >
+          1.2 * c.mean(0, c.width, floorTop, c.height, 0) / c.mean(0, c.width, floorTop, c.height, 1));
+}
