@@ -260,6 +260,25 @@ TEST_CASE("ripple-render --channels: depth, normal and albedo as EXR layers; --e
         }
     }
     CHECK(hits > b.at("Z").size() / 2);
+
+    // The same render written as PFM: the EXR's colour read back equals it to the bit (both hold 32-bit
+    // floats; the EXR's alpha aside), the half EXR's within half precision.
+    const auto pfm = dir / "plain.pfm";
+    const ProgramRun run = runRender(common + pfm.string() + "'");
+    REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+    const ripple::apps::LinearImage fromPfm = ripple::apps::readLinearImage(pfm), fromExr = ripple::apps::readLinearImage(plain),
+                                    fromHalf = ripple::apps::readLinearImage(half);
+    REQUIRE(fromPfm.width == 24);
+    REQUIRE(fromExr.width == 24);
+    REQUIRE(fromPfm.rgb.size() == fromExr.rgb.size());
+    REQUIRE(fromPfm.rgb.size() == fromHalf.rgb.size());
+    size_t unequal = 0, outsideHalf = 0;
+    for (size_t i = 0; i < fromPfm.rgb.size(); ++i) {
+        unequal += fromExr.rgb[i] != fromPfm.rgb[i];
+        outsideHalf += std::abs(fromHalf.rgb[i] - fromPfm.rgb[i]) > std::abs(fromPfm.rgb[i]) / 1024.0f + 1e-7f;
+    }
+    CHECK(unequal == 0);
+    CHECK(outsideHalf == 0);
 }
 
 TEST_CASE("ripple-render writes JPEG for .jpg and .jpeg") {
@@ -561,13 +580,9 @@ TEST_CASE("ripple-render --environment: an hdri light scaled by --environment-in
     }
 }
 
-// The furnace through the command line: a closed, convex, white (baseColor 1, metallic 0) polyhedron lit
-// only by a constant Radiance .hdr environment of radiance L reflects L everywhere, however many bounces a
-// path takes (each sees the environment), so the pixels inside its silhouette average L.
-TEST_CASE("ripple-render --environment: a constant .hdr on a white diffuse sphere gives the furnace result") {
-    TempFolder dir;
-    // A UV sphere of radius 1 with flat faces (no normals: the geometric normal shades): every triangle with
-    // its own three vertices, none degenerate.
+// A closed, convex, white (baseColor 1, metallic 0) UV sphere of radius 1 at the origin with flat faces (no
+// normals: the geometric normal shades): every triangle with its own three vertices, none degenerate.
+std::filesystem::path writeWhiteSphere(const std::filesystem::path& file) {
     const int rings = 12, segments = 24;
     std::vector<float> positions;
     const auto point = [&](int ring, int segment) {
@@ -594,7 +609,15 @@ TEST_CASE("ripple-render --environment: a constant .hdr on a white diffuse spher
                   ",\"type\":\"VEC3\",\"min\":[-1,-1,-1],\"max\":[1,1,1]}]}";
     sphere.bin.resize(positions.size() * 4);
     std::memcpy(sphere.bin.data(), positions.data(), sphere.bin.size());
-    const auto scene = writeGlb(dir / "sphere.glb", sphere);
+    return writeGlb(file, sphere);
+}
+
+// The furnace through the command line: the white sphere lit only by a constant Radiance .hdr environment
+// of radiance L reflects L everywhere, however many bounces a path takes (each sees the environment), so
+// the pixels inside its silhouette average L.
+TEST_CASE("ripple-render --environment: a constant .hdr on a white diffuse sphere gives the furnace result") {
+    TempFolder dir;
+    const auto scene = writeWhiteSphere(dir / "sphere.glb");
     const float radiance = 0.5f;  // exact in RGBE
     const std::vector<float> sky(16 * 8 * 3, radiance);
     const auto environment = dir / "constant.hdr";
@@ -615,6 +638,48 @@ TEST_CASE("ripple-render --environment: a constant .hdr on a white diffuse spher
     const double mean = sum / (8.0 * 8.0 * 3.0);
     MESSAGE("furnace: mean " << mean << " inside the sphere, environment radiance " << radiance);
     CHECK(mean == doctest::Approx(radiance).epsilon(0.02));
+}
+
+// --environment-rotation turns the map about +Y: its centre column, seen along -Z at 0 degrees, is seen along
+// -X at 90 and along +X at 270 (environmentDirection). A map dark but for a bright band of centre columns
+// lights the white sphere from there: from its left at 90 and its right at 270 (the framed camera looks
+// down -Z), and from the camera's side at 180, where the face the camera sees is far brighter than at 0.
+TEST_CASE("ripple-render --environment-rotation: the map's centre turns to where the rotation says") {
+    TempFolder dir;
+    const auto scene = writeWhiteSphere(dir / "sphere.glb");
+    const int width = 16, height = 8;
+    std::vector<float> sky(size_t(width * height * 3), 0.0f);
+    for (int y = 0; y < height; ++y)
+        for (int x = width / 2 - 1; x <= width / 2; ++x)
+            for (int c = 0; c < 3; ++c) sky[size_t((y * width + x) * 3 + c)] = 4.0f;
+    const auto environment = dir / "band.hdr";
+    REQUIRE(stbi_write_hdr(environment.string().c_str(), width, height, 3, sky.data()) != 0);
+    struct Halves {
+        double left = 0.0, right = 0.0;
+    };
+    const auto render = [&](const char* degrees) {
+        const auto image = dir / (std::string("turn") + degrees + ".pfm");
+        std::string arguments = "'";
+        arguments.append(scene.string()).append("' --size 32x32 --spp 16 --max-path-length 2 --quiet --environment '");
+        arguments.append(environment.string()).append("' --environment-rotation ").append(degrees);
+        arguments.append(" -o '").append(image.string()).append("'");
+        const ProgramRun run = runRender(arguments);
+        REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+        const ripple::apps::LinearImage picture = ripple::apps::readLinearImage(image);
+        REQUIRE(picture.width == 32);
+        Halves h;  // the sphere's central rows, its left and right thirds
+        for (uint32_t y = 12; y < 20; ++y)
+            for (uint32_t x = 8; x < 24; ++x)
+                if (x < 13 || x >= 19) (x < 16 ? h.left : h.right) += picture.rgb[(size_t(y) * picture.width + x) * 3 + 1];
+        return h;
+    };
+    const Halves turn0 = render("0"), turn90 = render("90"), turn180 = render("180"), turn270 = render("270");
+    MESSAGE("left/right thirds: 0: " << turn0.left << "/" << turn0.right << ", 90: " << turn90.left << "/" << turn90.right
+                                     << ", 180: " << turn180.left << "/" << turn180.right << ", 270: " << turn270.left
+                                     << "/" << turn270.right);
+    CHECK(turn90.left > 4.0 * turn90.right);
+    CHECK(turn270.right > 4.0 * turn270.left);
+    CHECK(turn180.left + turn180.right > 4.0 * (turn0.left + turn0.right));
 }
 
 namespace {

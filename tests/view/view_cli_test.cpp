@@ -1,6 +1,7 @@
 // ripple-view as a user runs it: without a display it says what to do instead and exits with 1; under a
 // virtual X server (xvfb-run) --screenshot renders the Cornell demo and writes the image ripple-render
-// writes for the same scene, size and samples, also from a view-state file both read.
+// writes for the same scene, size and samples, also from a view-state file both read (with and without
+// panel edits), and on Ripple's compositing device.
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 
@@ -198,4 +199,28 @@ TEST_CASE("xvfb: a view file's light and volume values render the same in ripple
     const int floorTop = 2 * a.height / 3;
     CHECK(b.mean(0, b.width, floorTop, b.height, 0) / b.mean(0, b.width, floorTop, b.height, 1) >
           1.2 * c.mean(0, c.width, floorTop, c.height, 0) / c.mean(0, c.width, floorTop, c.height, 1));
+}
+
+// ripple-view speaks ANARI only: on Ripple's compositing device (which passes the scene to a Ripple device
+// under it) it shows what ripple-render renders through that library, pixel for pixel.
+TEST_CASE("xvfb: ripple-view on another ANARI device (ripple_ptc) renders ripple-render's image") {
+    TempFolder dir;
+    const auto viewed = dir / "view.png", rendered = dir / "render.png";
+    const ProgramRun view =
+        runView("--library ripple_ptc --demo cornell --size 48x32 --frames 4 --screenshot '" + viewed.string() + "'",
+                "xvfb-run -a");
+    REQUIRE_MESSAGE(view.exitCode == 0, view.output);
+    const ProgramRun render = runProgram(RIPPLE_RENDER_PATH, "--library ripple_ptc --demo cornell --size 48x32 --spp 4 "
+                                                             "--quiet -o '" + rendered.string() + "'",
+                                         "RIPPLE_VK_VALIDATION=1");
+    REQUIRE_MESSAGE(render.exitCode == 0, render.output);
+    const Image a(viewed), b(rendered);
+    REQUIRE(a.pixels != nullptr);
+    REQUIRE(b.pixels != nullptr);
+    REQUIRE(a.width == b.width);
+    REQUIRE(a.height == b.height);
+    int differing = 0;
+    for (int i = 0; i < a.width * a.height * 4; ++i) differing += a.pixels[i] != b.pixels[i] ? 1 : 0;
+    CHECK(differing == 0);
+    CHECK(a.meanLuminance() > 10.0);  // a lit box, not an empty frame
 }
