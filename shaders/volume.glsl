@@ -209,9 +209,8 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer ParkingRef 
     VolumeParked entries[];
 };
 
-// This invocation's step budget: the header's, or the most one invocation may take without parking.
+// This invocation's step budget (the header's; at most VOLUME_STEP_CHUNK * VOLUME_STEP_CHUNKS).
 uint volumeStepBudget() {
-    if (params.volumeParking == 0ul) return VOLUME_STEP_CHUNK * VOLUME_STEP_CHUNKS;
     return ParkingRef(params.volumeParking).header.stepBudget;
 }
 
@@ -225,9 +224,8 @@ bool parkedMarch(out VolumeParked march) {
     return true;
 }
 
-// Parks a march for the next round; false when this is the last round, there is no parking or no slot left.
+// Parks a march for the next round; false when this is the last round or no slot is left.
 bool parkMarch(VolumeParked march) {
-    if (params.volumeParking == 0ul) return false;
     ParkingRef parking = ParkingRef(params.volumeParking);
     uint round = params.resumeRound;
     if (round >= parking.header.lastRound) return false;

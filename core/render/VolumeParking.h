@@ -44,8 +44,6 @@ public:
     void run(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p, uint32_t capacity,
              const Launch& launch);
 
-    const VolumeParkingOptions& options() const { return options_; }
-
 private:
     void reserve(uint32_t capacity);
 

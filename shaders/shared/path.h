@@ -167,7 +167,7 @@ struct StageParams {
     uint resumeRound;      // pt_volume, pt_shadow_volume: 0 for the stage's items, r > 0 for the marches
                            // parked in round r - 1 (VolumeParkingHeader)
     uint pad0;
-    uint64_t volumeParking; // pt_volume, pt_shadow_volume: VolumeParkingHeader then its pools; 0: none
+    uint64_t volumeParking; // pt_volume, pt_shadow_volume: VolumeParkingHeader then its pools (VolumeParking::run)
 };
 
 RIPPLE_GPU_END
