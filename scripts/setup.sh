@@ -9,6 +9,7 @@ packages=(
   libglm-dev libtbb-dev doctest-dev libtinygltf-dev libcli11-dev libstb-dev libtinyexr-dev
   libembree-dev                                                                # ripple-bench comparison only
   nlohmann-json3-dev                                                           # glTF importer: JSON checks
+  zlib1g-dev                                                                   # gzip-encoded NRRD volumes
   libopenmpi-dev openmpi-bin                                                   # data-parallel rendering
   clang-14 libclang-rt-14-dev                                                  # libFuzzer (scripts/fuzz.sh)
   libglfw3-dev libimgui-dev libgl1-mesa-dri                                    # ripple-view: window, panels, GL (llvmpipe)

@@ -1,6 +1,7 @@
 // Raw and NRRD volume files (NRRD: teem.sourceforge.net/nrrd/format.html; only the fields a 3D scalar
-// field of one of six types needs). Sizes are checked before anything is allocated, so a hostile header
-// cannot ask for more than kMaxVoxels, and a short file is refused before it is read.
+// field of one of six types needs, raw or gzip-encoded). Sizes are checked before anything is allocated, so
+// a hostile header cannot ask for more than kMaxVoxels, and a short raw file is refused before it is read
+// (a gzip stream only ever yields as many bytes as the field needs, so no stream can make it read more).
 #include "apps/common/VolumeFile.h"
 
 #include <algorithm>
@@ -10,6 +11,10 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+
+#include <fcntl.h>
+#include <unistd.h>
+#include <zlib.h>
 
 namespace ripple::apps {
 
@@ -134,8 +139,80 @@ std::optional<VoxelType> voxelTypeNamed(const std::string& name) {
 
 // Converts the samples of `slab` at `offset` in `dataFile` (whose size is checked for the whole field) to
 // floats.
+// The bytes of a field's samples, from `offset` in a file on: raw, or a gzip stream decompressed on the way
+// (whose first `skip` decompressed bytes are passed over: NRRD's byte skip of compressed data).
+class SampleBytes {
+public:
+    SampleBytes(const std::filesystem::path& label, const std::filesystem::path& dataFile, uint64_t offset, bool gzip)
+        : label_(label), dataFile_(dataFile) {
+        if (!gzip) {
+            raw_.open(dataFile, std::ios::binary);
+            if (!raw_) fail(label, "cannot open " + quoted(dataFile));
+            raw_.seekg(std::streamoff(offset));
+            return;
+        }
+        const int fd = ::open(dataFile.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) fail(label, "cannot open " + quoted(dataFile));
+        if (::lseek(fd, off_t(offset), SEEK_SET) != off_t(offset) || !(gzip_ = gzdopen(fd, "rb"))) {
+            ::close(fd);
+            fail(label, "cannot start reading the gzip data of " + quoted(dataFile));
+        }
+        gzbuffer(gzip_, 1u << 17);
+    }
+    ~SampleBytes() {
+        if (gzip_) gzclose(gzip_);
+    }
+    SampleBytes(const SampleBytes&) = delete;
+    SampleBytes& operator=(const SampleBytes&) = delete;
+
+    // Fills `bytes`, or fails naming how many bytes the data held (`before` of them already read).
+    void read(unsigned char* bytes, uint64_t count, uint64_t before, uint64_t needed) {
+        if (!gzip_) {
+            if (!raw_.read(reinterpret_cast<char*>(bytes), std::streamsize(count)))
+                fail(label_, "reading " + quoted(dataFile_) + " stopped early");
+            return;
+        }
+        for (uint64_t done = 0; done < count;) {
+            const unsigned ask = unsigned(std::min<uint64_t>(count - done, uint64_t(1) << 30));
+            const int got = gzread(gzip_, bytes + done, ask);
+            if (got < 0) {
+                int code = 0;
+                const char* why = gzerror(gzip_, &code);
+                fail(label_, "its gzip data is corrupt (" + std::string(why ? why : "zlib error") + ")");
+            }
+            if (gzdirect(gzip_)) fail(label_, "its encoding is gzip but its data is not gzip-compressed");
+            if (got == 0)
+                fail(label_, "its gzip data holds " + std::to_string(before + done) + " bytes after decompression, but the " +
+                                 "field needs " + std::to_string(needed));
+            done += uint64_t(got);
+        }
+    }
+
+    // Passes over `count` bytes.
+    void skip(uint64_t count, uint64_t needed) {
+        if (!gzip_) {
+            raw_.seekg(std::streamoff(count), std::ios::cur);
+            return;
+        }
+        std::vector<unsigned char> discard(std::min<uint64_t>(count, uint64_t(1) << 20));
+        for (uint64_t done = 0; done < count;) {
+            const uint64_t n = std::min<uint64_t>(count - done, discard.size());
+            read(discard.data(), n, done, needed);
+            done += n;
+        }
+    }
+
+private:
+    std::filesystem::path label_, dataFile_;
+    std::ifstream raw_;
+    gzFile gzip_ = nullptr;
+};
+
+// The field's samples (or slab's) from `dataFile`: raw from `offset` on, or (`gzip`) decompressed from a gzip
+// stream starting at `offset`, past its first `gzipSkip` decompressed bytes.
 VolumeData readSamples(const std::filesystem::path& label, const std::filesystem::path& dataFile, uint64_t offset,
-                       glm::uvec3 dims, VoxelType type, bool bigEndian, VolumeSlab slab) {
+                       glm::uvec3 dims, VoxelType type, bool bigEndian, VolumeSlab slab, bool gzip = false,
+                       uint64_t gzipSkip = 0) {
     std::error_code ec;
     if (!std::filesystem::exists(dataFile, ec))
         fail(label, (dataFile == label ? std::string("no such file") : "its data file " + quoted(dataFile) + " does not exist"));
@@ -148,7 +225,7 @@ VolumeData readSamples(const std::filesystem::path& label, const std::filesystem
     const uint64_t needed = voxels * size;
     const uint64_t available = fileSize > offset ? fileSize - offset : 0;
     const std::string dimsText = std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" + std::to_string(dims.z);
-    if (available < needed)
+    if (!gzip && available < needed)
         fail(label, (dataFile == label ? std::string("holds ") : "its data file " + quoted(dataFile) + " holds ") +
                         std::to_string(available) + " bytes of data but " + dimsText + " " + typeName(type) +
                         " voxels need " + std::to_string(needed) + " bytes");
@@ -159,9 +236,9 @@ VolumeData readSamples(const std::filesystem::path& label, const std::filesystem
     const uint32_t zFirst = uint32_t(cells * slab.index / slab.count);
     const uint32_t zLast = uint32_t(cells * (slab.index + 1) / slab.count);  // shared with the next slab
     const uint64_t plane = uint64_t(dims.x) * dims.y;
-    std::ifstream in(dataFile, std::ios::binary);
-    if (!in) fail(label, "cannot open " + quoted(dataFile));
-    in.seekg(std::streamoff(offset + plane * zFirst * size));
+    // A gzip stream is read from its start (each rank decompresses up to its slab, keeping only the slab).
+    SampleBytes in(label, dataFile, offset, gzip);
+    in.skip(gzipSkip + plane * zFirst * size, gzipSkip + needed);
 
     VolumeData out;
     out.wholeDims = dims;
@@ -175,8 +252,7 @@ VolumeData readSamples(const std::filesystem::path& label, const std::filesystem
     for (uint64_t done = 0; done < slabVoxels;) {
         const uint64_t count = std::min<uint64_t>(slabVoxels - done, uint64_t(1) << 20);
         chunk.resize(count * size);
-        if (!in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size())))
-            fail(label, "reading " + quoted(dataFile) + " stopped early");
+        in.read(chunk.data(), chunk.size(), gzipSkip + (plane * zFirst + done) * size, gzipSkip + needed);
         for (uint64_t i = 0; i < count; ++i) {
             unsigned char bytes[8];
             std::memcpy(bytes, chunk.data() + i * size, size);
@@ -346,9 +422,10 @@ VolumeData readNrrdVolume(const std::filesystem::path& file, VolumeSlab slab) {
     if (!sizesGood) fail(file, "sizes '" + sizesText + "' are not three counts of at most 2^64 - 1");
     const glm::uvec3 dims = checkedDims(file, d);
     const std::string encoding = lower(required("encoding"));
-    if (encoding != "raw")
-        fail(file, "encoding '" + encoding + "' is not supported: only raw is (decompress the data, e.g. with unu save "
-                                             "-e raw)");
+    const bool gzip = encoding == "gzip" || encoding == "gz";
+    if (encoding != "raw" && !gzip)
+        fail(file, "encoding '" + encoding + "' is not supported: raw and gzip are (convert the data, e.g. with unu "
+                                             "save -e gzip)");
     bool bigEndian = false;
     if (const auto endian = field("endian")) {
         const std::string e = lower(*endian);
@@ -420,9 +497,10 @@ VolumeData readNrrdVolume(const std::filesystem::path& file, VolumeSlab slab) {
     } else if (!blankLine) {
         fail(file, "the header names no 'data file' and no blank line ends it before attached data");
     }
-    if (__builtin_add_overflow(offset, byteSkip, &offset)) fail(file, "byte skip is too large");
+    // Raw data skips file bytes; gzip data skips decompressed bytes (the NRRD format's reading).
+    if (!gzip && __builtin_add_overflow(offset, byteSkip, &offset)) fail(file, "byte skip is too large");
 
-    VolumeData out = readSamples(file, dataFile, offset, dims, *type, bigEndian, slab);
+    VolumeData out = readSamples(file, dataFile, offset, dims, *type, bigEndian, slab, gzip, gzip ? byteSkip : 0);
     out.origin = origin;
     out.spacing = glm::vec3(float(spacing[0]), float(spacing[1]), float(spacing[2]));
     return out;

@@ -61,7 +61,8 @@ VoxelType parseVoxelType(const std::string& name);
 VolumeData readRawVolume(const std::filesystem::path& file, const RawLayout& layout, VolumeSlab slab = {});
 
 // Reads an NRRD file: attached data (.nrrd) or `data file:` (relative to the header's folder, confined to
-// it). Encoding raw only. Throws VolumeError.
+// it). Encoding raw or gzip (a slab of gzip data is decompressed from the stream's start: every rank reads
+// up to its slab, and keeps only the slab). Throws VolumeError.
 VolumeData readNrrdVolume(const std::filesystem::path& file, VolumeSlab slab = {});
 
 }  // namespace ripple::apps

@@ -4,6 +4,7 @@
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstring>
@@ -46,6 +47,21 @@ std::string errorOf(Read read) {
 }
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// `data` as a gzip stream (what NRRD's "encoding: gzip" holds).
+std::vector<uint8_t> gzipped(const std::vector<uint8_t>& data) {
+    z_stream z{};
+    REQUIRE(deflateInit2(&z, Z_BEST_SPEED, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) == Z_OK);  // 16: gzip header
+    std::vector<uint8_t> out(deflateBound(&z, uLong(data.size())));
+    z.next_in = const_cast<Bytef*>(data.data());
+    z.avail_in = uInt(data.size());
+    z.next_out = out.data();
+    z.avail_out = uInt(out.size());
+    REQUIRE(deflate(&z, Z_FINISH) == Z_STREAM_END);
+    out.resize(z.total_out);
+    deflateEnd(&z);
+    return out;
+}
 
 }  // namespace
 
@@ -118,6 +134,28 @@ TEST_CASE("NRRD volumes: attached and detached data, spacings, directions, origi
         const VolumeData d = ripple::apps::readNrrdVolume(file);
         for (size_t i = 0; i < u.size(); ++i) CHECK(d.values[i] == float(u[i]));
         CHECK(d.spacing == glm::vec3(0.5f, 1.5f, 3.0f));
+    }
+    SUBCASE("gzip-encoded, big-endian, with a byte skip of the decompressed data") {
+        std::vector<uint8_t> big = {0xAB, 0xCD, 0xEF};  // three bytes the skip passes over
+        for (uint16_t x : u) big.insert(big.end(), {uint8_t(x >> 8), uint8_t(x & 0xFF)});
+        const auto file = writeBytes(dir / "g.nrrd", nrrd("NRRD0004\ntype: uint16\ndimension: 3\nsizes: 2 2 3\n"
+                                                          "endian: big\nencoding: gzip\nbyte skip: 3",
+                                                          gzipped(big)));
+        const VolumeData d = ripple::apps::readNrrdVolume(file);
+        CHECK(d.dims == glm::uvec3(2, 2, 3));
+        for (size_t i = 0; i < u.size(); ++i) CHECK(d.values[i] == float(u[i]));
+        // The second of two z-slabs (planes 1 and 2 of 0..2; plane 1 shared with the first) from the stream.
+        const VolumeData slab = ripple::apps::readNrrdVolume(file, {1, 2});
+        CHECK(slab.zFirst == 1);
+        REQUIRE(slab.values.size() == 8);
+        for (size_t i = 0; i < 8; ++i) CHECK(slab.values[i] == float(u[4 + i]));
+    }
+    SUBCASE("detached .nhdr with gzip data") {
+        writeBytes(dir / "v.raw.gz", gzipped(bytesOf(u)));
+        const auto file = writeText(dir / "v.nhdr", "NRRD0004\ntype: uint16\ndimension: 3\nsizes: 2 3 2\nendian: little\n"
+                                                    "encoding: gz\ndata file: v.raw.gz\n");
+        const VolumeData d = ripple::apps::readNrrdVolume(file);
+        for (size_t i = 0; i < u.size(); ++i) CHECK(d.values[i] == float(u[i]));
     }
     SUBCASE("detached .nhdr with its data file in a subfolder") {
         std::filesystem::create_directory(dir / "data");
@@ -246,9 +284,29 @@ TEST_CASE("malformed volume files are refused with the file and the problem name
         message = errorOf([&] { ripple::apps::readNrrdVolume(file); });
         expected = "empty.nrrd: is empty";
     }
-    SUBCASE("gzip encoding") {
-        header("gz.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: gzip", eight);
-        expected = "encoding 'gzip' is not supported: only raw is";
+    SUBCASE("bzip2 encoding") {
+        header("bz.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: bzip2", eight);
+        expected = "encoding 'bzip2' is not supported: raw and gzip are";
+    }
+    SUBCASE("gzip encoding over uncompressed data") {
+        header("plain.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: gzip", eight);
+        expected = "its encoding is gzip but its data is not gzip-compressed";
+    }
+    SUBCASE("gzip data cut short") {
+        std::vector<uint8_t> packed = gzipped(std::vector<uint8_t>(4096, 9));
+        packed.resize(packed.size() / 2);
+        header("cut.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16 16\nencoding: gzip", packed);
+        expected = "its gzip data";
+    }
+    SUBCASE("gzip data of fewer bytes than the field") {
+        header("few.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 3\nencoding: gz", gzipped(eight));
+        expected = "its gzip data holds 8 bytes after decompression, but the field needs 12";
+    }
+    SUBCASE("corrupt gzip data") {
+        std::vector<uint8_t> packed = gzipped(std::vector<uint8_t>(4096, 9));
+        for (size_t i = 12; i < packed.size() - 8; ++i) packed[i] ^= 0x5A;
+        header("bad.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16 16\nencoding: gzip", packed);
+        expected = "its gzip data is corrupt";
     }
     SUBCASE("unknown NRRD type") {
         header("t.nrrd", "NRRD0004\ntype: block\ndimension: 3\nsizes: 2 2 2\nencoding: raw", eight);
