@@ -225,7 +225,9 @@ void flattenIsosurfaces(const IsosurfaceSet& set, UsedGeometry& g, FlatScene& fl
         c.isovalueIndex = iso;
         flat.isoCells.push_back(c);
     }
-    record.colorOffset = appendAttribute(set.colors, isoCount, "colors", geometryLabel(g.kind, g.index), flat, report);
+    const std::string name = geometryLabel(g.kind, g.index);
+    record.colorOffset = appendAttribute(set.colors, isoCount, "colors", name, flat, report);
+    appendGeometryAttributes(set.attributes, 0, isoCount, {}, name, flat, record, report);
 }
 
 // Appends a geometry's BLAS, primitives, slot map and attributes; returns its GeometryRecord index.

@@ -104,6 +104,7 @@ struct IsosurfaceSet {
     glm::vec3 spacing{1.0f};              // each component finite and positive
     std::vector<float> isovalues;         // finite
     std::vector<glm::vec4> colors;        // empty, or one per isovalue
+    GeometryAttributes attributes;        // per primitive (one per isovalue) or uniform
     GeometryIdentity identity;
 };
 

@@ -825,6 +825,56 @@ TEST_CASE("isosurface: exact crossing of the trilinear interpolant, its gradient
     CHECK(checked[2] > 20);
 }
 
+// Attributes as KHR_GEOMETRY_ISOSURFACE lists them: "primitive.attributeN" holds one value per isovalue,
+// the uniform "attributeN" one for all; a matte material reading the attribute shows it as the albedo of
+// each surface. Same field and view as above.
+TEST_CASE("isosurface: per-isovalue and uniform attributes reach the material") {
+    const std::vector<float> isovalues = {0.125f, 0.3f};
+    const uint32_t n = 5;
+    std::vector<float> voxels;
+    for (uint32_t k = 0; k < n; ++k)
+        for (uint32_t j = 0; j < n; ++j)
+            for (uint32_t i = 0; i < n; ++i) voxels.push_back(float(i) / (n - 1) * float(j) / (n - 1) * float(k) / (n - 1));
+    const std::vector<glm::vec4> perIsovalue = {{0.9f, 0.1f, 0.2f, 1.0f}, {0.1f, 0.3f, 0.8f, 1.0f}};
+    const glm::vec4 uniform(0.2f, 0.7f, 0.4f, 1.0f);
+    for (const bool perPrimitive : {true, false}) {
+        CAPTURE(perPrimitive);
+        RenderSession s;
+        ANARISpatialField field = floatField(s, glm::uvec3(n), voxels, glm::vec3(0.0f), glm::vec3(1.0f / (n - 1)));
+        ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
+        s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
+        s.setObject(iso, "isovalue", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, isovalues));
+        if (perPrimitive) s.setObject(iso, "primitive.attribute1", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, perIsovalue));
+        else s.set(iso, "attribute2", uniform);
+        s.commit(iso);
+        ANARIMaterial material = s.keep(anariNewMaterial(s.device, "matte"));
+        anariSetParameter(s.device, material, "color", ANARI_STRING, perPrimitive ? "attribute1" : "attribute2");
+        s.commit(material);
+        ANARICamera camera = s.orthographic(glm::vec3(0.5f, 0.5f, 3.0f), glm::vec3(0, 0, -1));
+        const uint32_t size = 16;
+        ANARIFrame frame = s.frame(s.world({s.surface(iso, material)}, {}), camera, s.renderer(1, 1), {size, size},
+                                   ANARI_FLOAT32_VEC4, true);
+        setChannel(s, frame, "channel.primitiveId", ANARI_UINT32);
+        setChannel(s, frame, "channel.albedo", ANARI_FLOAT32_VEC3);
+        s.commit(frame);
+        s.render(frame);
+        const auto primitive = mapChannel<uint32_t>(s, frame, "channel.primitiveId", ANARI_UINT32);
+        const auto albedo = mapChannel<glm::vec3>(s, frame, "channel.albedo", ANARI_FLOAT32_VEC3);
+        CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+        uint32_t seen[2] = {0, 0};
+        for (size_t i = 0; i < size_t(size) * size; ++i) {
+            if (primitive[i] == kNoId) continue;
+            REQUIRE(primitive[i] < 2);
+            const glm::vec3 expected = perPrimitive ? glm::vec3(perIsovalue[primitive[i]]) : glm::vec3(uniform);
+            INFO("pixel " << i << " on isovalue " << primitive[i]);
+            CHECK(glm::length(albedo[i] - expected) < 1e-5f);
+            ++seen[primitive[i]];
+        }
+        CHECK(seen[0] > 20);
+        CHECK(seen[1] > 20);
+    }
+}
+
 TEST_CASE("isosurface hostile input: a missing field or isovalue, a NaN isovalue, the wrong element type") {
     struct Case {
         const char* name;

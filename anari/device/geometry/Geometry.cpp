@@ -157,7 +157,7 @@ core::GeometryAttributes Geometry::pullAttributes(size_t vertexCount, size_t pri
     for (size_t a = 0; a < attributes.size(); ++a) {
         const std::string n = std::to_string(a);
         core::GeometryAttribute& attribute = attributes[a];
-        attribute = {Rate::Vertex, pullVectors("vertex.attribute" + n, vertexCount)};
+        if (vertexCount > 0) attribute = {Rate::Vertex, pullVectors("vertex.attribute" + n, vertexCount)};
         if (attribute.values.empty()) attribute = {Rate::Primitive, pullVectors("primitive.attribute" + n, primitiveCount)};
         if (attribute.values.empty()) {
             if (const std::optional<glm::vec4> uniform = getOptional<glm::vec4>("attribute" + n))

@@ -42,7 +42,8 @@ protected:
     // "primitive.color" nor "vertex.color" is given.
     std::vector<glm::vec4> pullUniformColor(size_t count);
     // attribute0..3: "vertex.attributeN" (its first vertexCount elements), else "primitive.attributeN" (first
-    // primitiveCount), else the uniform "attributeN"; unset ones stay empty.
+    // primitiveCount), else the uniform "attributeN"; unset ones stay empty. A vertexCount of 0 (a geometry
+    // without vertices: isosurface) reads no "vertex.attributeN".
     core::GeometryAttributes pullAttributes(size_t vertexCount, size_t primitiveCount);
     // Cylinders and cones: two vertices per primitive, consecutive or from "primitive.index".
     struct Segments {

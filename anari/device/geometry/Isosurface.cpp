@@ -1,7 +1,8 @@
 // Geometry subtype "isosurface" (KHR_GEOMETRY_ISOSURFACE): the surfaces where a structuredRegular field
 // ("field") equals each of the isovalues ("isovalue": one FLOAT32 or an ARRAY1D of them), intersected
 // exactly with the field's trilinear interpolant (shaders/intersect.glsl). Colour: "primitive.color" (one
-// per isovalue) or the uniform "color"; the primitive id a frame reports is the isovalue's index.
+// per isovalue) or the uniform "color"; attribute0..3 likewise ("primitive.attributeN" or the uniform
+// "attributeN"); the primitive id a frame reports is the isovalue's index.
 #include "anari/device/geometry/Geometry.h"
 #include "anari/device/object/ArrayChecks.h"
 #include "anari/device/scene/ArrayConversion.h"
@@ -66,6 +67,7 @@ private:
         set.spacing = field->spacing();
         set.colors = pullVectors("primitive.color", set.isovalues.size());
         if (set.colors.empty()) set.colors = pullUniformColor(set.isovalues.size());
+        set.attributes = pullAttributes(0, set.isovalues.size());
         return set;
     }
 };
