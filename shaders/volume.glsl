@@ -60,7 +60,7 @@ bool volumeChance(inout VolumeRng r, float p) {
 }
 
 float voxel(VolumeRecord v, VolumeDataRef data, uvec3 i) {
-    return data.values[v.voxelOffset + (i.z * v.dimY + i.y) * v.dimX + i.x];
+    return VolumeDataRef(v.voxels).values[(i.z * v.dimY + i.y) * v.dimX + i.x];
 }
 
 // The field at grid-space point g (voxel i at i), clamped to the grid.

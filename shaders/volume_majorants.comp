@@ -32,7 +32,7 @@ void main() {
     VolumeRecord v = VolumesRef(params.volumes).volumes[params.volume];
     uint cell = params.firstCell + gl_GlobalInvocationID.x;
     if (cell >= v.macroX * v.macroY * v.macroZ) return;
-    VolumeDataRef data = VolumeDataRef(params.volumeData);
+    VolumeDataRef data = VolumeDataRef(params.volumeData), voxels = VolumeDataRef(v.voxels);
     uvec3 macro = uvec3(cell % v.macroX, (cell / v.macroX) % v.macroY, cell / (v.macroX * v.macroY));
     uvec3 extent = uvec3(v.dimX - 1u, v.dimY - 1u, v.dimZ - 1u);
     uvec3 first = macro * VOLUME_MACROCELL;
@@ -40,9 +40,9 @@ void main() {
     float lowest = 3.402823e38, highest = -3.402823e38;
     for (uint z = first.z; z <= last.z; ++z)
         for (uint y = first.y; y <= last.y; ++y) {
-            uint row = v.voxelOffset + (z * v.dimY + y) * v.dimX;
+            uint row = (z * v.dimY + y) * v.dimX;
             for (uint x = first.x; x <= last.x; ++x) {
-                float value = data.values[row + x];
+                float value = voxels.values[row + x];
                 lowest = min(lowest, value);
                 highest = max(highest, value);
             }

@@ -61,10 +61,12 @@ core::SceneDescription litScene() {
     return scene;
 }
 
-core::Volume volumeOf(uint32_t n, const std::vector<float>& values, std::vector<float> opacities, float unitDistance) {
+core::Volume volumeOf(uint32_t n, std::shared_ptr<const std::vector<float>> values, std::vector<float> opacities,
+                      float unitDistance) {
     core::Volume v;
     v.dims = glm::uvec3(n);
-    v.values = values;
+    v.values = std::move(values);
+    v.voxelIdentity = {1, 1};  // one field, never changed: a transfer-function edit reuses its voxels
     v.origin = glm::vec3(-1.0f);
     v.spacing = glm::vec3(2.0f / float(n - 1));
     v.colors = {{0.15f, 0.2f, 0.6f}, {0.2f, 0.7f, 0.8f}, {0.95f, 0.85f, 0.4f}, {0.95f, 0.35f, 0.15f}};
@@ -74,7 +76,7 @@ core::Volume volumeOf(uint32_t n, const std::vector<float>& values, std::vector<
 }
 
 std::vector<Case> cases(uint32_t n) {
-    const std::vector<float> values = quantisedField(n);
+    const auto values = std::make_shared<const std::vector<float>>(quantisedField(n));
     std::vector<Case> out;
     {
         core::SceneDescription scene = litScene();
@@ -92,7 +94,7 @@ std::vector<Case> cases(uint32_t n) {
         core::SceneDescription scene = litScene();
         core::IsosurfaceSet iso;
         iso.dims = glm::uvec3(n);
-        iso.values = values;
+        iso.values = *values;
         iso.origin = glm::vec3(-1.0f);
         iso.spacing = glm::vec3(2.0f / float(n - 1));
         iso.isovalues = {0.5f};

@@ -22,6 +22,14 @@
 
 namespace ripple::core {
 
+// A volume's voxels on the device (VolumeRecord::voxels), with the identity that lets a later scene reuse them.
+struct VolumeVoxels {
+    GeometryIdentity identity;
+    size_t count = 0;
+    vk::Buffer buffer;
+};
+
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -375,7 +383,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     const bvh::Bvh tlas = bvh::buildBinnedSah(instanceBoxes, tlasOptions);
     report_.tlasBuildSeconds = secondsSince(tlasStart);
     bounds_ = tlas.bounds;
-    const VolumeTable volumes = buildVolumeTable(description.volumes);
+    VolumeTable volumes = buildVolumeTable(description.volumes);
     report_.volumesKept = volumes.records.size();
     report_.volumesSkipped = volumes.skipped;
     report_.messages.insert(report_.messages.end(), volumes.messages.begin(), volumes.messages.end());
@@ -489,6 +497,37 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.textures = upload(textures_, shading.textures, "scene textures");
     desc.texels = upload(texels_, shading.texels, "scene texels");
     desc.lights = upload(lights_, shading.lights, "scene lights");
+    // Each kept volume's voxels in a buffer of their own: taken from `previous` (or an earlier record of this
+    // scene: one field in several volumes) when the voxel identity matches, else uploaded.
+    for (size_t r = 0; r < volumes.records.size(); ++r) {
+        const Volume& v = description.volumes[volumes.sources[r]];
+        const auto same = [&](const std::shared_ptr<const VolumeVoxels>& kept) {
+            return v.voxelIdentity.key != 0 && kept->identity.key == v.voxelIdentity.key &&
+                   kept->identity.version == v.voxelIdentity.version && kept->count == v.values->size();
+        };
+        std::shared_ptr<const VolumeVoxels> voxels;
+        if (const auto it = std::find_if(volumeVoxels_.begin(), volumeVoxels_.end(), same); it != volumeVoxels_.end())
+            voxels = *it;
+        else if (previous)
+            if (const auto at = std::find_if(previous->volumeVoxels_.begin(), previous->volumeVoxels_.end(), same);
+                at != previous->volumeVoxels_.end())
+                voxels = *at;
+        if (voxels) {
+            ++report_.volumeVoxelsReused;
+        } else {
+            auto made = std::make_shared<VolumeVoxels>();
+            made->identity = v.voxelIdentity;
+            made->count = v.values->size();
+            made->buffer = vk::Buffer(context, made->count * sizeof(float), "volume voxels");
+            made->buffer.upload(v.values->data(), made->count * sizeof(float));
+            voxels = std::move(made);
+            ++report_.volumeVoxelsUploaded;
+        }
+        if (std::find(volumeVoxels_.begin(), volumeVoxels_.end(), voxels) == volumeVoxels_.end())
+            report_.gpuBytes += voxels->buffer.size();
+        volumes.records[r].voxels = voxels->buffer.address();
+        volumeVoxels_.push_back(std::move(voxels));
+    }
     desc.volumes = upload(volumes_, volumes.records, "scene volumes");
     desc.volumeData = upload(volumeData_, volumes.data, "scene volume data");
     desc.volumeCount = static_cast<uint32_t>(volumes.records.size());

@@ -5,8 +5,10 @@
 // Rebuilding only what changed: pass the Scene built from the previous state of the world as `previous`.
 // Each geometry whose GeometryIdentity has a nonzero key and the same (key, version) as a geometry of
 // `previous` (of the same kind, built with the same bvh::BuildOptions) reuses that geometry's validation
-// and BLAS instead of building them again; everything else (attributes, TLAS, materials, upload) is redone.
-// `previous` is only read during construction and may be destroyed afterwards.
+// and BLAS instead of building them again; each volume whose voxelIdentity matches one of `previous`'s
+// reuses its device buffer of voxels (a transfer-function edit uploads none); everything else (attributes,
+// TLAS, materials, transfer-function tables, majorants, upload) is redone. `previous` is only read during
+// construction and may be destroyed afterwards.
 //
 // With ray-query traversal (core/render/Traversal.h; Auto resolves as the trace kernels do) the Scene also
 // builds Vulkan acceleration structures over the same primitives (AccelerationStructures.h); a reused
@@ -27,6 +29,7 @@
 namespace ripple::core {
 
 class AccelerationStructures;
+struct VolumeVoxels;
 
 // What validation dropped or repaired, and why; nothing bad ever reaches a kernel.
 struct SceneReport {
@@ -49,6 +52,8 @@ struct SceneReport {
     uint64_t lightsSkipped = 0;        // NaN/Inf or negative values, zero direction or area
     uint64_t volumesKept = 0;
     uint64_t volumesSkipped = 0;       // NaN/Inf voxels or settings, wrong value count, bad transform
+    uint64_t volumeVoxelsUploaded = 0; // kept volumes whose voxels were uploaded
+    uint64_t volumeVoxelsReused = 0;   // ... whose voxel buffer was taken from `previous` (or an earlier volume)
     double volumeMajorantSeconds = 0.0; // the macrocell majorants, computed on the device
     uint64_t blasBuilt = 0;
     uint64_t blasReused = 0;           // taken from `previous` (see the header comment)
@@ -106,6 +111,8 @@ private:
     std::vector<std::shared_ptr<const PreparedGeometry>> reusable_;
     Traversal traversal_ = Traversal::Software;
     std::unique_ptr<AccelerationStructures> accelerationStructures_;  // RayQuery only
+    // Each kept volume's voxels (in VolumeTable record order), shared with the scenes that reuse them.
+    std::vector<std::shared_ptr<const VolumeVoxels>> volumeVoxels_;
     vk::Buffer nodes_, triangles_, spheres_, cylinders_, cones_, isoCells_, instances_, instanceShading_, geometries_, primSlots_,
         vertexIndices_, attributes_, materials_, textures_, texels_, lights_, volumes_, volumeData_, desc_;
 };

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -237,7 +238,11 @@ struct Light {
 // world units (extinction -ln(1 - o) / unitDistance); the colour is the single-scattering albedo.
 struct Volume {
     glm::uvec3 dims{0};
-    std::vector<float> values;            // dims.x * dims.y * dims.z, x fastest
+    // dims.x * dims.y * dims.z, x fastest; shared with whoever made them (never changed once shared).
+    std::shared_ptr<const std::vector<float>> values;
+    // Nonzero key: the same (key, version) as a volume of a Scene's `previous` means the same values, and
+    // their device buffer is reused (a transfer-function edit uploads no voxels). Zero: always uploaded.
+    GeometryIdentity voxelIdentity;
     glm::vec3 origin{0.0f};
     glm::vec3 spacing{1.0f};
     bool linearFilter = true;             // false: nearest voxel

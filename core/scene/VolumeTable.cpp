@@ -26,12 +26,13 @@ T resampled(const std::vector<T>& values, float x) {
 std::optional<std::string> problemOf(const Volume& v) {
     const uint64_t voxels = uint64_t(v.dims.x) * v.dims.y * v.dims.z;
     if (v.dims.x == 0 || v.dims.y == 0 || v.dims.z == 0) return "a dimension is 0";
-    if (voxels != v.values.size())
-        return "holds " + std::to_string(v.values.size()) + " values for " + std::to_string(v.dims.x) + "x" +
+    const size_t count = v.values ? v.values->size() : 0;
+    if (voxels != count)
+        return "holds " + std::to_string(count) + " values for " + std::to_string(v.dims.x) + "x" +
                std::to_string(v.dims.y) + "x" + std::to_string(v.dims.z) + " voxels";
     if (voxels > (uint64_t(1) << 31)) return "has more than 2^31 voxels";
-    for (size_t i = 0; i < v.values.size(); ++i)
-        if (!std::isfinite(v.values[i])) return "voxel " + std::to_string(i) + " is not finite";
+    for (size_t i = 0; i < count; ++i)
+        if (!std::isfinite((*v.values)[i])) return "voxel " + std::to_string(i) + " is not finite";
     if (!glm::all(glm::greaterThan(v.spacing, glm::vec3(0.0f))) || !std::isfinite(v.spacing.x + v.spacing.y + v.spacing.z))
         return "spacing is not finite and positive";
     if (!std::isfinite(v.origin.x + v.origin.y + v.origin.z)) return "origin is not finite";
@@ -69,8 +70,7 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         const size_t entries = transferTableSize(v);
         const glm::uvec3 macroCells =
             glm::max((v.dims - 1u + gpu::VOLUME_MACROCELL - 1u) / gpu::VOLUME_MACROCELL, glm::uvec3(1u));
-        const uint64_t floatsNeeded =
-            4 * uint64_t(entries) + v.values.size() + uint64_t(macroCells.x) * macroCells.y * macroCells.z;
+        const uint64_t floatsNeeded = 4 * uint64_t(entries) + uint64_t(macroCells.x) * macroCells.y * macroCells.z;
         if (table.data.size() + floatsNeeded > uint64_t(UINT32_MAX)) {
             table.messages.push_back("volume " + std::to_string(index) + ": the scene's volumes hold more than 2^32 floats "
                                      "with this one; skipped");
@@ -107,9 +107,6 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
             table.data.insert(table.data.end(), {albedo.r, albedo.g, albedo.b, extinction});
         }
 
-        record.voxelOffset = static_cast<uint32_t>(table.data.size());
-        table.data.insert(table.data.end(), v.values.begin(), v.values.end());
-
         // Majorants: one float per macrocell, filled on the device once the data is uploaded
         // (VolumeMajorants.h).
         record.majorantOffset = static_cast<uint32_t>(table.data.size());
@@ -126,6 +123,7 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         table.bounds.extend(box);
         table.boxes.push_back(box);
         table.records.push_back(record);
+        table.sources.push_back(index);
     }
     return table;
 }

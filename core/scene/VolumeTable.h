@@ -1,7 +1,8 @@
 // The volumes the kernels read (shaders/shared/volume.h): each valid Volume of a description becomes a
-// VolumeRecord, and its voxels, transfer-function table (albedo, extinction) and room for its macrocell
-// majorants (zeros, filled on the device: VolumeMajorants.h) are appended to one float array. Volumes
-// with bad data are skipped and reported, never uploaded.
+// VolumeRecord, and its transfer-function table (albedo, extinction) and room for its macrocell majorants
+// (zeros, filled on the device: VolumeMajorants.h) are appended to one float array. Its voxels go to a
+// buffer of their own (the Scene sets VolumeRecord::voxels). Volumes with bad data are skipped and
+// reported, never uploaded.
 #pragma once
 
 #include "core/bvh/Aabb.h"
@@ -15,6 +16,7 @@ namespace ripple::core {
 
 struct VolumeTable {
     std::vector<gpu::VolumeRecord> records;
+    std::vector<size_t> sources;          // the description's index of each record's volume
     std::vector<float> data;
     bvh::Aabb bounds;                     // world box of the kept volumes
     std::vector<bvh::Aabb> boxes;         // world box of each kept volume, as records

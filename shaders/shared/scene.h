@@ -166,7 +166,7 @@ struct SceneDesc {
     uint64_t accelerationStructure; // the TLAS for ray-query traversal (accelerationStructureEXT); 0 when
                                     // the scene was built without one or has no instances
     uint64_t volumes;         // VolumeRecord[] (shared/volume.h)
-    uint64_t volumeData;      // float[]: voxels, macrocell majorants and transfer-function tables
+    uint64_t volumeData;      // float[]: macrocell majorants and transfer-function tables (voxels: VolumeRecord.voxels)
     uint64_t isoCells;        // IsoCellPrim[]
 };
 

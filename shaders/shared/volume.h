@@ -29,14 +29,15 @@ struct VolumeRecord {
     uint macroY;
     uint macroZ;
     uint tableSize;        // entries of the transfer function table (>= 2)
-    uint voxelOffset;      // first float of this field in SceneDesc.volumeData
-    uint majorantOffset;   // first float of its macrocell majorants (world-space extinction per unit length)
-    uint tableOffset;      // first float of its table: tableSize entries of 4 floats (albedo rgb, extinction)
+    uint majorantOffset;   // first float of its macrocell majorants in SceneDesc.volumeData (world-space
+                           // extinction per unit length)
+    uint tableOffset;      // first float of its table there: tableSize entries of 4 floats (albedo rgb, extinction)
     uint objectId;         // the application's ids for the objectId and instanceId channels (~0u: unset)
     uint instanceId;
+    uint64_t voxels;       // device address of the field's float values (a buffer of its own, which a later
+                           // scene reuses while the field is unchanged)
     uint pad0;
     uint pad1;
-    uint pad2;
 };
 
 // Push constants of volume_majorants.comp: the majorants of macrocells firstCell.. of one volume.

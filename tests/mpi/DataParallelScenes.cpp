@@ -179,7 +179,7 @@ core::SceneDescription volumePart(uint32_t rank, uint32_t ranks) {
     if (!slab.values.empty()) {
         core::Volume v;
         v.dims = slab.dims;
-        v.values = std::move(slab.values);
+        v.values = std::make_shared<const std::vector<float>>(std::move(slab.values));
         v.origin = slab.origin;
         v.spacing = slab.spacing;
         v.colors = {{0.9f, 0.6f, 0.3f}, {0.8f, 0.85f, 0.9f}};

@@ -331,6 +331,8 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
         results.sceneBuilds = sync_.builds();
         results.blasBuilt = scene.report().blasBuilt;
         results.blasReused = scene.report().blasReused;
+        results.volumeVoxelsUploaded = scene.report().volumeVoxelsUploaded;
+        results.volumeVoxelsReused = scene.report().volumeVoxelsReused;
         results.sceneBytes = scene.report().gpuBytes;
         if (exchange) {
             results.raysSent = exchange->stats().raysSent;
@@ -442,6 +444,8 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
     const std::pair<std::string_view, const uint64_t*> counters[] = {{"ripple.sceneBuilds", &results_.sceneBuilds},
                                                                      {"ripple.blasBuilt", &results_.blasBuilt},
                                                                      {"ripple.blasReused", &results_.blasReused},
+                                                                     {"ripple.volumeVoxelsUploaded", &results_.volumeVoxelsUploaded},
+                                                                     {"ripple.volumeVoxelsReused", &results_.volumeVoxelsReused},
                                                                      {"ripple.raysSent", &results_.raysSent},
                                                                      {"ripple.bytesSent", &results_.bytesSent},
                                                                      {"ripple.raysReceived", &results_.raysReceived},

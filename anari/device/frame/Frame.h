@@ -31,7 +31,8 @@ public:
     // "duration" (FLOAT32 seconds of the last frame), "numSamples" (UINT32 accumulated samples per pixel),
     // "ripple.raysPerSecond" (FLOAT32, closest-hit and shadow rays of the last frame), and for tests of
     // what a change rebuilds: "ripple.sceneBuilds" (UINT64, scenes built so far) and "ripple.blasBuilt" /
-    // "ripple.blasReused" (UINT64, of the latest scene build); "ripple.raysSent", "ripple.bytesSent" (UINT64,
+    // "ripple.blasReused", "ripple.volumeVoxelsUploaded" / "ripple.volumeVoxelsReused" (UINT64, of the latest
+    // scene build); "ripple.raysSent", "ripple.bytesSent" (UINT64,
     // rays and bytes this rank passed on in the last frame), "ripple.raysReceived" (UINT64, other ranks' rays
     // it traced), "ripple.raysTraced" (UINT64, its own closest-hit and shadow rays), "ripple.exchangeRounds"
     // (UINT64, the exchange's hops or rounds), "ripple.visitMicroseconds" (UINT64, time tracing others' rays) and "ripple.sceneBytes" (UINT64, its scene's GPU memory);
@@ -79,6 +80,8 @@ private:
         uint64_t sceneBuilds = 0;
         uint64_t blasBuilt = 0;
         uint64_t blasReused = 0;
+        uint64_t volumeVoxelsUploaded = 0;
+        uint64_t volumeVoxelsReused = 0;
         uint64_t raysSent = 0;                 // data-parallel traffic of this rank in the last frame
         uint64_t bytesSent = 0;                // rays, answers and world boxes
         uint64_t raysReceived = 0;             // other ranks' rays traced here

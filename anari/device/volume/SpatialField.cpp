@@ -36,7 +36,7 @@ bool convertVoxels(const Array& array, std::vector<float>& out) {
 
 void SpatialField::commit() {
     forgetDependencies();
-    values_.clear();
+    values_.reset();
     dims_ = glm::uvec3(0);
     Array* data = getArray("data", ANARI_ARRAY3D);
     if (!data) {
@@ -50,17 +50,18 @@ void SpatialField::commit() {
                    std::to_string(dims.z) + ")");
         return;
     }
-    if (!convertVoxels(*data, values_)) {
+    std::vector<float> values;
+    if (!convertVoxels(*data, values)) {
         invalidate(std::string("parameter 'data' has element type ") + ripple_anari::typeName(data->elementType()) +
                    "; a structuredRegular field takes UFIXED8, FIXED16, UFIXED16, FLOAT32 or FLOAT64");
         return;
     }
-    for (size_t i = 0; i < values_.size(); ++i)
-        if (!std::isfinite(values_[i])) {
+    for (size_t i = 0; i < values.size(); ++i)
+        if (!std::isfinite(values[i])) {
             invalidate("parameter 'data' element " + std::to_string(i) + " is not finite");
-            values_.clear();
             return;
         }
+    values_ = std::make_shared<const std::vector<float>>(std::move(values));
     dims_ = dims;
     origin_ = get<glm::vec3>("origin", glm::vec3(0.0f));
     spacing_ = get<glm::vec3>("spacing", glm::vec3(1.0f));
@@ -77,7 +78,7 @@ void SpatialField::commit() {
 
 bvh::Aabb SpatialField::bounds() const {
     bvh::Aabb box;
-    if (!isValid() || values_.empty()) return box;
+    if (!isValid() || values().empty()) return box;
     box.extend(origin_);
     box.extend(origin_ + glm::vec3(dims_ - 1u) * spacing_);
     return box;

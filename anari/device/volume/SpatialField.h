@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include <memory>
 #include <vector>
 
 namespace ripple::device {
@@ -19,7 +20,10 @@ public:
     void commit() override;
 
     glm::uvec3 dims() const { return dims_; }
-    const std::vector<float>& values() const { return values_; }  // x fastest
+    // x fastest; empty when the field is not valid. A commit makes a new array (a scene being built or
+    // rendered keeps the one it took: sharedValues).
+    const std::vector<float>& values() const { return values_ ? *values_ : kNoValues; }
+    std::shared_ptr<const std::vector<float>> sharedValues() const { return values_; }
     glm::vec3 origin() const { return origin_; }
     glm::vec3 spacing() const { return spacing_; }
     bool linearFilter() const { return linearFilter_; }
@@ -28,7 +32,8 @@ public:
 
 private:
     glm::uvec3 dims_{0};
-    std::vector<float> values_;
+    static inline const std::vector<float> kNoValues;
+    std::shared_ptr<const std::vector<float>> values_;
     glm::vec3 origin_{0.0f};
     glm::vec3 spacing_{1.0f};
     bool linearFilter_ = true;
