@@ -137,8 +137,6 @@ std::optional<VoxelType> voxelTypeNamed(const std::string& name) {
     return std::nullopt;
 }
 
-// Converts the samples of `slab` at `offset` in `dataFile` (whose size is checked for the whole field) to
-// floats.
 // The bytes of a field's samples, from `offset` in a file on: raw, or a gzip stream decompressed on the way
 // (whose first `skip` decompressed bytes are passed over: NRRD's byte skip of compressed data).
 class SampleBytes {
@@ -175,17 +173,21 @@ public:
         for (uint64_t done = 0; done < count;) {
             const unsigned ask = unsigned(std::min<uint64_t>(count - done, uint64_t(1) << 30));
             const int got = gzread(gzip_, bytes + done, ask);
-            if (got < 0) {
-                int code = 0;
-                const char* why = gzerror(gzip_, &code);
-                fail(label_, "its gzip data is corrupt (" + std::string(why ? why : "zlib error") + ")");
-            }
+            if (got < 0) failCorrupt();
             if (gzdirect(gzip_)) fail(label_, "its encoding is gzip but its data is not gzip-compressed");
             if (got == 0)
                 fail(label_, "its gzip data holds " + std::to_string(before + done) + " bytes after decompression, but the " +
                                  "field needs " + std::to_string(needed));
             done += uint64_t(got);
         }
+    }
+
+    // After the field's last sample: a gzip stream's end, where zlib checks its CRC-32 and length (data
+    // after the field, as in a raw file, is allowed).
+    void checkEnd() {
+        if (!gzip_) return;
+        unsigned char next = 0;
+        if (gzread(gzip_, &next, 1) < 0) failCorrupt();
     }
 
     // Passes over `count` bytes.
@@ -203,13 +205,23 @@ public:
     }
 
 private:
+    // zlib's message, without the "<fd:N>: " it names the stream by.
+    [[noreturn]] void failCorrupt() const {
+        int code = 0;
+        const char* text = gzerror(gzip_, &code);
+        std::string why = text ? text : "zlib error";
+        if (why.rfind("<fd:", 0) == 0 && why.find(": ") != std::string::npos) why = why.substr(why.find(": ") + 2);
+        fail(label_, "its gzip data is corrupt (" + why + ")");
+    }
+
     std::filesystem::path label_, dataFile_;
     std::ifstream raw_;
     gzFile gzip_ = nullptr;
 };
 
-// The field's samples (or slab's) from `dataFile`: raw from `offset` on, or (`gzip`) decompressed from a gzip
-// stream starting at `offset`, past its first `gzipSkip` decompressed bytes.
+// Converts the samples of `slab` to floats: raw from `offset` in `dataFile` on (whose size is checked for the
+// whole field), or (`gzip`) decompressed from a gzip stream starting at `offset`, past its first `gzipSkip`
+// decompressed bytes.
 VolumeData readSamples(const std::filesystem::path& label, const std::filesystem::path& dataFile, uint64_t offset,
                        glm::uvec3 dims, VoxelType type, bool bigEndian, VolumeSlab slab, bool gzip = false,
                        uint64_t gzipSkip = 0) {
@@ -271,6 +283,7 @@ VolumeData readSamples(const std::filesystem::path& label, const std::filesystem
         }
         done += count;
     }
+    if (zLast == cells) in.checkEnd();
     if (nonFinite > 0)
         fail(label, std::to_string(nonFinite) + " of " + std::to_string(slabVoxels) +
                         " voxels are NaN or infinite (or beyond float range); refusing the field");

@@ -413,7 +413,7 @@ int main(int argc, char** argv) {
     CLI::App app{"ripple-view: view a glTF 2.0 file, a volume file or a built-in demo scene interactively through an "
                  "ANARI library.\n"
                  "Mouse: left drag orbits, right or middle drag pans, the wheel zooms. Keys: W/A/S/D/Q/E fly (shift: "
-                 "faster), F frames the scene, P writes a screenshot (ripple-view-NNN.png; shift+P: .exr, linear HDR), V saves the view (camera, "
+                 "faster), F frames the scene, P writes a screenshot (ripple-view-NNN.png; shift+P: .exr, linear HDR), V saves the view (camera, panel values, "
                  "settings, size) for ripple-render --view. Panels: Renderer, Camera, Lights, Volumes.\n"
                  "Under mpirun every rank holds its share of a file (--partition, or --volume slabs); rank 0 shows the "
                  "window."};

@@ -302,6 +302,12 @@ TEST_CASE("malformed volume files are refused with the file and the problem name
         header("few.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 3\nencoding: gz", gzipped(eight));
         expected = "its gzip data holds 8 bytes after decompression, but the field needs 12";
     }
+    SUBCASE("gzip data whose checksum does not match") {
+        std::vector<uint8_t> packed = gzipped(std::vector<uint8_t>(4096, 9));
+        packed[packed.size() - 8] ^= 0x01;  // the CRC-32 in the stream's trailer
+        header("crc.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16 16\nencoding: gzip", packed);
+        expected = "its gzip data is corrupt (incorrect data check)";
+    }
     SUBCASE("corrupt gzip data") {
         std::vector<uint8_t> packed = gzipped(std::vector<uint8_t>(4096, 9));
         for (size_t i = 12; i < packed.size() - 8; ++i) packed[i] ^= 0x5A;
