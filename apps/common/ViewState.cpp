@@ -88,6 +88,7 @@ void readSceneEdits(const Reader& r, const Json& root, ViewState& state) {
                 if (!(lengthSquared > 0.0f) || !std::isfinite(lengthSquared))
                     r.fail("\"" + name + ".direction\" must not be zero or overflow");
             }
+            light.rotationDegrees = std::nanf("");
             if (const auto v = record.find("rotation"); v != record.end()) light.rotationDegrees = r.number(*v, name + ".rotation");
             state.lights->push_back(std::move(light));
         }
@@ -214,7 +215,8 @@ ViewState readViewState(const std::filesystem::path& file) {
         if (const auto v = renderer.find("background"); v != renderer.end())
             state.background = r.vector<4>(*v, "renderer.background");
         if (const auto t = renderer.find("traversal"); t != renderer.end()) {
-            if (!t->is_string() || t->get<std::string>().empty()) r.fail("\"renderer.traversal\" must be a non-empty string");
+            if (!t->is_string() || (*t != "auto" && *t != "software" && *t != "rayQuery"))
+                r.fail("\"renderer.traversal\" must be \"auto\", \"software\" or \"rayQuery\"");
             state.traversal = t->get<std::string>();
         }
     }
@@ -294,7 +296,7 @@ SceneEditRequests applyViewEdits(const ViewState& state, SceneEdits& edits, bool
             light.color = saved.color;
             light.intensity = saved.intensity;
             if (light.direction && saved.direction) light.direction = saved.direction;
-            light.rotationDegrees = saved.rotationDegrees;
+            if (!std::isnan(saved.rotationDegrees)) light.rotationDegrees = saved.rotationDegrees;
             changed.lights.insert(i);
         }
     }

@@ -43,7 +43,7 @@ struct ViewState {
     std::optional<glm::uvec2> size;
     std::optional<std::string> traversal;      // the device parameter "traversal"
     // The panels' values (handles unset); each list only where the file has it.
-    std::optional<std::vector<EditableLight>> lights;
+    std::optional<std::vector<EditableLight>> lights;  // a light without "rotation" in the file: NaN (keeps the scene's)
     std::optional<std::vector<EditableVolume>> volumes;
     std::optional<std::vector<EditableIsosurface>> isosurfaces;
 };
@@ -55,7 +55,8 @@ ViewState readViewState(const std::filesystem::path& file);
 void writeViewState(const std::filesystem::path& file, const ViewState& state);
 
 // Copies the file's light, volume and iso-surface values into the scene's records and returns which changed
-// (to be committed). `withLights`: whether this rank holds the scene's lights (under mpirun rank 0 alone
+// (to be committed). They replace the scene's as built, including --environment-intensity and
+// --environment-rotation (a light without "rotation" keeps its turn). `withLights`: whether this rank holds the scene's lights (under mpirun rank 0 alone
 // does; elsewhere the file's lights are skipped). Throws naming the file when a list differs from the
 // scene's in length or in a label.
 SceneEditRequests applyViewEdits(const ViewState& state, SceneEdits& edits, bool withLights,

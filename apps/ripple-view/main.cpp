@@ -240,8 +240,10 @@ int run(const Options& options, const mpi::Communicator& ranks, Session& s) {
                 anariSetParameter(s.device, s.device, "traversal", ANARI_STRING, ui.traversal.c_str());
                 anariCommitParameters(s.device, s.device);
             } else if (!options.quiet) {
-                std::fprintf(stderr, "[ripple-view] WARNING: %s: traversal \"%s\" is not one this device offers here; "
-                             "the device's default stays\n", options.view.c_str(), savedView->traversal->c_str());
+                std::fprintf(stderr, "[ripple-view] WARNING: %s: traversal \"%s\" %s; the device's default stays\n",
+                             options.view.c_str(), savedView->traversal->c_str(),
+                             ranks.distributed() ? "is not chosen under mpirun (every rank would have to switch)"
+                                                 : "is not one this device offers");
             }
         }
     }

@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <string>
 
 using namespace ripple::test;
@@ -78,7 +79,8 @@ TEST_CASE("view state: the panels' values written and read back") {
         CHECK(a.color == b.color);
         CHECK(a.intensity == b.intensity);
         CHECK(a.direction == b.direction);
-        CHECK(a.rotationDegrees == b.rotationDegrees);
+        if (b.subtype == "hdri") CHECK(a.rotationDegrees == b.rotationDegrees);
+        else CHECK(std::isnan(a.rotationDegrees));  // not written: the scene's turn stays
     }
     REQUIRE(back.volumes);
     REQUIRE(back.volumes->size() == 1);
@@ -96,14 +98,16 @@ TEST_CASE("view state: the panels' values written and read back") {
 }
 
 // The scene's records as a scene builder lists them, on fake objects.
+// `withLights` false: as a data-parallel rank other than 0 holds it, without the scene's lights.
 struct EditableScene {
     ANARIDevice device = newFakeDevice();
     ripple::apps::SceneEdits edits{device};
     ANARILight sun = anariNewLight(device, "directional");
     ANARIVolume volume = anariNewVolume(device, "transferFunction1D");
     ANARIGeometry isosurface = anariNewGeometry(device, "isosurface");
-    EditableScene() {
-        edits.add(ripple::apps::EditableLight{sun, "sun", "directional", glm::vec3(1.0f), 1.0f, glm::vec3(0.0f, -1.0f, 0.0f), 0.0f});
+    explicit EditableScene(bool withLights = true) {
+        if (withLights)
+            edits.add(ripple::apps::EditableLight{sun, "sun", "directional", glm::vec3(1.0f), 1.0f, glm::vec3(0.0f, -1.0f, 0.0f), 0.0f});
         edits.add(ripple::apps::EditableVolume{volume, "volume 0", {glm::vec3(0.5f)}, {1.0f}, {0.0f, 1.0f}, 1.0f, {0.0f, 1.0f}, {}, ""});
         edits.add(ripple::apps::EditableIsosurface{isosurface, "isosurface 0", 0.5f, {0.0f, 1.0f}});
     }
@@ -149,10 +153,32 @@ TEST_CASE("view state: the file's light, volume and iso-surface values are set o
     CHECK(fakeObject(scene.isosurface)->parameters.at("isovalue").as<float>() == 0.125f);
 
     // A rank without the scene's lights skips the file's.
-    EditableScene other;
+    EditableScene other(false);
     const ripple::apps::SceneEditRequests withoutLights = ripple::apps::applyViewEdits(state, other.edits, false, file);
     CHECK(withoutLights.lights.empty());
     CHECK(withoutLights.volumes.size() == 1);
+}
+
+// An environment's turn comes from the file where it has one; a record without "rotation" keeps the scene's
+// (--environment-rotation), while its intensity replaces --environment-intensity.
+TEST_CASE("view state: an environment light keeps its turn unless the file gives one") {
+    TempFolder dir;
+    for (const bool turned : {false, true}) {
+        CAPTURE(turned);
+        const auto file = dir / "v.json";
+        writeText(file, std::string(R"({"ripple-view-state": 1,
+            "camera": {"type": "perspective", "position": [0, 0, 3], "direction": [0, 0, -1], "up": [0, 1, 0], "fovy": 0.7},
+            "lights": [{"label": "environment", "color": [1, 1, 1], "intensity": 2)") +
+                            (turned ? R"(, "rotation": 90}]})" : "}]}"));
+        ANARIDevice device = newFakeDevice();
+        ripple::apps::SceneEdits edits(device);
+        ANARILight environment = anariNewLight(device, "hdri");
+        edits.add(ripple::apps::EditableLight{environment, "environment", "hdri", glm::vec3(1.0f), 1.0f, std::nullopt, 30.0f});
+        anariRelease(device, environment);
+        ripple::apps::applyViewEdits(ripple::apps::readViewState(file), edits, true, file);
+        CHECK(edits.lights[0].intensity == 2.0f);
+        CHECK(edits.lights[0].rotationDegrees == (turned ? 90.0f : 30.0f));
+    }
 }
 
 TEST_CASE("view state: panel values for another scene are refused, naming the list") {
@@ -270,6 +296,10 @@ TEST_CASE("view state: malformed files are refused, naming the file and the memb
     SUBCASE("an isovalue past a float") {
         text = "{\"ripple-view-state\": 1, " + camera + ", \"isosurfaces\": [{\"label\": \"i\", \"isovalue\": 1e300}]}";
         expected = "\"isosurfaces[0].isovalue\" must be finite";
+    }
+    SUBCASE("an unknown traversal") {
+        text = "{\"ripple-view-state\": 1, " + camera + ", \"renderer\": {\"traversal\": \"fast\"}}";
+        expected = "\"renderer.traversal\" must be \"auto\", \"software\" or \"rayQuery\"";
     }
     SUBCASE("a size of zero") {
         text = "{\"ripple-view-state\": 1, " + camera + ", \"size\": [0, 10]}";

@@ -138,10 +138,10 @@ TEST_CASE("ripple-view: over 2 ranks it shows the Cornell box as ripple-render r
 }
 
 // Both from volume_view.json (a camera, another isovalue and transfer function); the view file's edits
-// change the image (it is not the one without them).
+// change the image (it is not the one from the same camera without them, volume_camera.json).
 TEST_CASE("ripple-view: over 2 ranks it shows a volume file's slabs as ripple-render renders them") {
     checkSameImage("view_volume_2.pfm", "volume_view_2.pfm");
-    const FloatImage edited = readPfm(imageFolder() / "volume_view_2.pfm"), plain = readPfm(imageFolder() / "volume_2.pfm");
+    const FloatImage edited = readPfm(imageFolder() / "volume_view_2.pfm"), plain = readPfm(imageFolder() / "volume_camera_2.pfm");
     REQUIRE(edited.pixels.size() == plain.pixels.size());
     size_t differing = 0;
     for (size_t i = 0; i < plain.pixels.size(); ++i) differing += edited.pixels[i] != plain.pixels[i] ? 1 : 0;
