@@ -74,6 +74,19 @@ ANARISpatialField floatField(RenderSession& s, glm::uvec3 dims, const std::vecto
     return field;
 }
 
+// A committed 2x2x2 UFIXED8 field of value 255 (1.0 after normalisation) spanning [-1, 1]^2 x [0, 1].
+ANARISpatialField unitSlabField(RenderSession& s) {
+    ANARIArray3D voxels = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_UFIXED8, 2, 2, 2));
+    std::memset(anariMapArray(s.device, voxels), 255, 8);
+    anariUnmapArray(s.device, voxels);
+    ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
+    s.setObject(field, "data", ANARI_ARRAY3D, voxels);
+    s.set(field, "origin", glm::vec3(-1.0f, -1.0f, 0.0f));
+    s.set(field, "spacing", glm::vec3(2.0f, 2.0f, 1.0f));
+    s.commit(field);
+    return field;
+}
+
 // A committed sampler of `image` (image1D or image2D) with the given filter and outTransform.
 ANARISampler imageSampler(RenderSession& s, const char* subtype, ANARIObject image, const char* filter,
                           const glm::mat4& outTransform = glm::mat4(1.0f)) {
@@ -562,14 +575,7 @@ TEST_CASE("volume transferFunction1D over a structuredRegular field: transmittan
     for (const ANARIDataType rangeType : {ANARI_FLOAT32_BOX1, ANARI_FLOAT32_VEC2, ANARI_FLOAT64_BOX1, ANARI_FLOAT64_VEC2}) {
     CAPTURE(rangeType);
     RenderSession s;
-    ANARIArray3D voxels = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_UFIXED8, 2, 2, 2));
-    std::memset(anariMapArray(s.device, voxels), 255, 8);
-    anariUnmapArray(s.device, voxels);
-    ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
-    s.setObject(field, "data", ANARI_ARRAY3D, voxels);
-    s.set(field, "origin", glm::vec3(-1.0f, -1.0f, 0.0f));
-    s.set(field, "spacing", glm::vec3(2.0f, 2.0f, 1.0f));
-    s.commit(field);
+    ANARISpatialField field = unitSlabField(s);
     ANARIVolume volume = s.keep(anariNewVolume(s.device, "transferFunction1D"));
     s.setObject(volume, "value", ANARI_SPATIAL_FIELD, field);
     s.set(volume, "color", glm::vec3(0.0f));
@@ -606,14 +612,7 @@ TEST_CASE("volume transferFunction1D over a structuredRegular field: transmittan
 // black absorber against a white background, as above). Committing the field again uploads them.
 TEST_CASE("volume: a transfer-function edit reuses the field's voxels on the device; a field commit uploads them") {
     RenderSession s;
-    ANARIArray3D voxels = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_UFIXED8, 2, 2, 2));
-    std::memset(anariMapArray(s.device, voxels), 255, 8);
-    anariUnmapArray(s.device, voxels);
-    ANARISpatialField field = s.keep(anariNewSpatialField(s.device, "structuredRegular"));
-    s.setObject(field, "data", ANARI_ARRAY3D, voxels);
-    s.set(field, "origin", glm::vec3(-1.0f, -1.0f, 0.0f));
-    s.set(field, "spacing", glm::vec3(2.0f, 2.0f, 1.0f));
-    s.commit(field);
+    ANARISpatialField field = unitSlabField(s);
     ANARIVolume volume = s.keep(anariNewVolume(s.device, "transferFunction1D"));
     s.setObject(volume, "value", ANARI_SPATIAL_FIELD, field);
     s.set(volume, "color", glm::vec3(0.0f));
