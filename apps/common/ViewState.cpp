@@ -42,8 +42,13 @@ public:
         return v;
     }
 
+    // Member `key` of the list entry called `name` ("lights[0]").
+    const Json& entry(const Json& record, const char* key, const std::string& name) const {
+        return member(record, key, " in \"" + name + "\"");
+    }
+
     std::string label(const Json& record, const std::string& name) const {
-        const Json& value = member(record, "label", " in \"" + name + "\"");
+        const Json& value = entry(record, "label", name);
         if (!value.is_string()) fail("\"" + name + ".label\" must be a string");
         return value.get<std::string>();
     }
@@ -78,8 +83,8 @@ void readSceneEdits(const Reader& r, const Json& root, ViewState& state) {
             if (!record.is_object()) r.fail("\"" + name + "\" must be an object");
             EditableLight light;
             light.label = r.label(record, name);
-            light.color = r.vector<3>(r.member(record, "color", " in \"" + name + "\""), name + ".color");
-            light.intensity = r.number(r.member(record, "intensity", " in \"" + name + "\""), name + ".intensity");
+            light.color = r.vector<3>(r.entry(record, "color", name), name + ".color");
+            light.intensity = r.number(r.entry(record, "intensity", name), name + ".intensity");
             if (light.color.r < 0.0f || light.color.g < 0.0f || light.color.b < 0.0f || light.intensity < 0.0f)
                 r.fail("\"" + name + "\" must not have a negative colour or intensity");
             if (const auto v = record.find("direction"); v != record.end()) {
@@ -104,21 +109,21 @@ void readSceneEdits(const Reader& r, const Json& root, ViewState& state) {
                 if (!v->is_string()) r.fail("\"" + name + ".colorMap\" must be a string");
                 volume.colorMap = v->get<std::string>();
             }
-            const Json& colors = r.list(r.member(record, "colors", " in \"" + name + "\""), name + ".colors", kMaxTableEntries);
+            const Json& colors = r.list(r.entry(record, "colors", name), name + ".colors", kMaxTableEntries);
             for (const Json& c : colors) {
                 volume.colors.push_back(r.vector<3>(c, name + ".colors[" + std::to_string(volume.colors.size()) + "]"));
                 const glm::vec3& rgb = volume.colors.back();
                 if (rgb.r < 0.0f || rgb.g < 0.0f || rgb.b < 0.0f) r.fail("\"" + name + ".colors\" must not be negative");
             }
-            const Json& opacities = r.list(r.member(record, "opacities", " in \"" + name + "\""), name + ".opacities", kMaxTableEntries);
+            const Json& opacities = r.list(r.entry(record, "opacities", name), name + ".opacities", kMaxTableEntries);
             for (const Json& o : opacities) {
                 volume.opacities.push_back(r.number(o, name + ".opacities[" + std::to_string(volume.opacities.size()) + "]"));
                 if (volume.opacities.back() < 0.0f || volume.opacities.back() > 1.0f)
                     r.fail("\"" + name + ".opacities\" must lie within 0..1");
             }
-            volume.valueRange = r.vector<2>(r.member(record, "valueRange", " in \"" + name + "\""), name + ".valueRange");
+            volume.valueRange = r.vector<2>(r.entry(record, "valueRange", name), name + ".valueRange");
             if (!(volume.valueRange.x <= volume.valueRange.y)) r.fail("\"" + name + ".valueRange\" must not be inverted");
-            volume.unitDistance = r.number(r.member(record, "unitDistance", " in \"" + name + "\""), name + ".unitDistance");
+            volume.unitDistance = r.number(r.entry(record, "unitDistance", name), name + ".unitDistance");
             if (!(volume.unitDistance > 0.0f)) r.fail("\"" + name + ".unitDistance\" must be positive");
             state.volumes->push_back(std::move(volume));
         }
@@ -130,7 +135,7 @@ void readSceneEdits(const Reader& r, const Json& root, ViewState& state) {
             if (!record.is_object()) r.fail("\"" + name + "\" must be an object");
             EditableIsosurface isosurface;
             isosurface.label = r.label(record, name);
-            isosurface.isovalue = r.number(r.member(record, "isovalue", " in \"" + name + "\""), name + ".isovalue");
+            isosurface.isovalue = r.number(r.entry(record, "isovalue", name), name + ".isovalue");
             state.isosurfaces->push_back(std::move(isosurface));
         }
     }

@@ -29,7 +29,6 @@ struct VolumeVoxels {
     vk::Buffer buffer;
 };
 
-
 namespace {
 
 using Clock = std::chrono::steady_clock;

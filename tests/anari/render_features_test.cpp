@@ -74,6 +74,17 @@ ANARISpatialField floatField(RenderSession& s, glm::uvec3 dims, const std::vecto
     return field;
 }
 
+// f(x, y, z) = x y z sampled on a 5^3 grid over the unit cube (trilinear in every cell, so the interpolant is
+// f itself), as a committed field.
+ANARISpatialField xyzField(RenderSession& s) {
+    const uint32_t n = 5;
+    std::vector<float> voxels;
+    for (uint32_t k = 0; k < n; ++k)
+        for (uint32_t j = 0; j < n; ++j)
+            for (uint32_t i = 0; i < n; ++i) voxels.push_back(float(i) / (n - 1) * float(j) / (n - 1) * float(k) / (n - 1));
+    return floatField(s, glm::uvec3(n), voxels, glm::vec3(0.0f), glm::vec3(1.0f / (n - 1)));
+}
+
 // A committed 2x2x2 UFIXED8 field of value 255 (1.0 after normalisation) spanning [-1, 1]^2 x [0, 1].
 ANARISpatialField unitSlabField(RenderSession& s) {
     ANARIArray3D voxels = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_UFIXED8, 2, 2, 2));
@@ -818,13 +829,8 @@ TEST_CASE("isosurface: exact crossing of the trilinear interpolant, its gradient
     // interpolant is f itself and the surfaces f = c are known exactly. Seen straight down from z = 3, the ray
     // at (x, y) meets f = c at z = c / (x y) when x y > c: the higher isovalue first.
     const std::vector<float> isovalues = {0.125f, 0.3f};
-    const uint32_t n = 5;
-    std::vector<float> voxels;
-    for (uint32_t k = 0; k < n; ++k)
-        for (uint32_t j = 0; j < n; ++j)
-            for (uint32_t i = 0; i < n; ++i) voxels.push_back(float(i) / (n - 1) * float(j) / (n - 1) * float(k) / (n - 1));
     RenderSession s;
-    ANARISpatialField field = floatField(s, glm::uvec3(n), voxels, glm::vec3(0.0f), glm::vec3(1.0f / (n - 1)));
+    ANARISpatialField field = xyzField(s);
     ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
     s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
     s.setObject(iso, "isovalue", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, isovalues));
@@ -885,17 +891,12 @@ TEST_CASE("isosurface: exact crossing of the trilinear interpolant, its gradient
 // each surface. Same field and view as above.
 TEST_CASE("isosurface: per-isovalue and uniform attributes reach the material") {
     const std::vector<float> isovalues = {0.125f, 0.3f};
-    const uint32_t n = 5;
-    std::vector<float> voxels;
-    for (uint32_t k = 0; k < n; ++k)
-        for (uint32_t j = 0; j < n; ++j)
-            for (uint32_t i = 0; i < n; ++i) voxels.push_back(float(i) / (n - 1) * float(j) / (n - 1) * float(k) / (n - 1));
     const std::vector<glm::vec4> perIsovalue = {{0.9f, 0.1f, 0.2f, 1.0f}, {0.1f, 0.3f, 0.8f, 1.0f}};
     const glm::vec4 uniform(0.2f, 0.7f, 0.4f, 1.0f);
     for (const bool perPrimitive : {true, false}) {
         CAPTURE(perPrimitive);
         RenderSession s;
-        ANARISpatialField field = floatField(s, glm::uvec3(n), voxels, glm::vec3(0.0f), glm::vec3(1.0f / (n - 1)));
+        ANARISpatialField field = xyzField(s);
         ANARIGeometry iso = s.keep(anariNewGeometry(s.device, "isosurface"));
         s.setObject(iso, "field", ANARI_SPATIAL_FIELD, field);
         s.setObject(iso, "isovalue", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, isovalues));
