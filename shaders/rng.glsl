@@ -20,16 +20,45 @@ uvec4 pcg4d(uvec4 v) {
 }
 
 // Dimension groups: each consumer of random numbers has its own, so no two read the same ones.
-const uint RNG_CAMERA = 0u;     // pixel jitter (xy)
+const uint RNG_CAMERA = 0u;     // lens (zw); the pixel jitter is cameraJitter's
 const uint RNG_LIGHT = 1u;      // light choice (x), point on the light (yz), opacity (w)
 const uint RNG_BSDF = 2u;       // lobe choice (x), direction (yz), Russian roulette (w)
 const uint RNG_VOLUME = 3u;     // free-flight sampling: a stream (volume.glsl), counter in the high bits
 const uint RNG_VOLUME_SHADOW = 4u; // ratio tracking of shadow rays: a stream likewise
+const uint RNG_CAMERA_JITTER = 5u; // the scrambles of cameraJitter's sequences (below)
 
 // Four uniform numbers in [0, 1), 24 bits each (so 1.0 is never returned).
 vec4 random4(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {
     uvec4 h = pcg4d(uvec4(pixel, sampleIndex, (bounce << 4u) | group, seed));
     return vec4(h >> 8u) * (1.0 / 16777216.0);
+}
+
+// The camera's pixel jitter: the point `cameraSample >> 1` of an Owen-scrambled 2D Sobol sequence of its
+// own for each pixel and seed, and for each of two sequences (`cameraSample & 1`; PathTracer::render deals
+// the accumulation's even and odd frames to the two, so that halves of frames taken in turns stay
+// independent). Any 2^k consecutive points from the start stratify the pixel into 2^k cells of every shape
+// 2^i x 2^(k-i), so a pixel's edges and textures converge faster than with independent jitter, while each
+// point alone is uniform over the pixel (unbiased). Sobol's first two dimensions (van der Corput, and the
+// one from x + 1, whose direction numbers are v ^ (v >> 1)) form a (0, 2)-sequence; the scramble is the
+// hash-based nested uniform scramble of Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020).
+uint owenScramble(uint x, uint seed) {
+    x = bitfieldReverse(x);
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return bitfieldReverse(x);
+}
+
+vec2 cameraJitter(uint pixel, uint cameraSample, uint seed) {
+    uint index = cameraSample >> 1u;
+    uint x = bitfieldReverse(index);
+    uint y = 0u;
+    for (uint v = 1u << 31u; index != 0u; index >>= 1u, v ^= v >> 1u)
+        if ((index & 1u) != 0u) y ^= v;
+    uvec4 scramble = pcg4d(uvec4(pixel, cameraSample & 1u, RNG_CAMERA_JITTER, seed));
+    return vec2(uvec2(owenScramble(x, scramble.x), owenScramble(y, scramble.y)) >> 8u) * (1.0 / 16777216.0);
 }
 
 #endif
