@@ -73,6 +73,16 @@ def main():
             if m is None:
                 o.data.materials[i] = default_material
 
+    # Ripple's GGX lobes are compensated for multiple scattering between microfacets (a white rough metal
+    # keeps all the light it receives; the white furnace test checks it at roughness 1), Blender's Principled
+    # BSDF by default is not (its "GGX" loses up to about 40% at roughness 1): use its "Multiscatter GGX", so
+    # that rough metals are the same image in both.
+    for m in bpy.data.materials:
+        if m.use_nodes:
+            for node in m.node_tree.nodes:
+                if node.type == "BSDF_PRINCIPLED":
+                    node.distribution = "MULTI_GGX"
+
     # Camera: the file's first, else ripple-render's framing of the bounds (in glTF coordinates).
     cameras = [o for o in scene.objects if o.type == "CAMERA"]
     if cameras:

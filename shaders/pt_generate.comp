@@ -36,7 +36,7 @@ void main() {
     uvec2 xy = uvec2(pixel % f.width, pixel / f.width);  // row 0 is the bottom row
 
     vec4 u = random4(pixel, params.sampleIndex, 0u, RNG_CAMERA, f.seed);
-    vec2 onImage = (vec2(xy) + cameraJitter(pixel, params.cameraSample, f.seed)) / vec2(f.width, f.height);
+    vec2 onImage = (vec2(xy) + stratified2D(pixel, params.stratifiedSample, RNG_CAMERA_JITTER, f.seed)) / vec2(f.width, f.height);
     vec2 screen = mix(f.imageRegion.xy, f.imageRegion.zw, onImage);
     vec2 centered = 2.0 * screen - 1.0;  // [-1, 1] over the screen
 

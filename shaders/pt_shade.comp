@@ -173,6 +173,7 @@ void main() {
 
     if (depth >= f.maxPathLength) return;
     vec4 uBsdf = random4(path.pixel, params.sampleIndex, params.bounce, RNG_BSDF, f.seed);
+    if (path.depth == 0u) uBsdf.yz = stratified2D(path.pixel, params.stratifiedSample, RNG_FIRST_BSDF, f.seed);
     vec3 wi;
     vec3 weight;
     float pdf;

@@ -76,7 +76,7 @@ struct PathTracer::Impl {
     vk::Buffer hits, surfaces, shadowRays, shadowRequests, occlusion; // per path in flight
     uint32_t capacity = 0;
     bool lengthsOnDevice = false;                                   // one rank: see the header comment
-    uint32_t cameraSample = 0;                                      // the sample's StageParams::cameraSample
+    uint32_t stratifiedSample = 0;                                      // the sample's StageParams::stratifiedSample
     LocalRayExchange localExchange;
     PipelineCache pipelines;                                        // variants of `surface` per FeatureSet
     SurfaceChannels channels;                                       // albedo, normal and id channels
@@ -228,7 +228,7 @@ struct PathTracer::Impl {
             p.rays = queues[current].rays.address() + uint64_t(part.queueOffset) * sizeof(gpu::Ray);
             p.firstPixel = part.pixels.first;
             p.sampleIndex = sampleIndex;
-            p.cameraSample = cameraSample;
+            p.stratifiedSample = stratifiedSample;
             p.results = channels.tableAddress();
             dispatch(cmd, generate, p, part.pixels.count);
         }
@@ -310,6 +310,7 @@ struct PathTracer::Impl {
         p.shadowRequests = shadowRequests.address();
         p.bounce = bounce;
         p.sampleIndex = sampleIndex;
+        p.stratifiedSample = stratifiedSample;
         dispatchQueue(cmd, shade, p, gpu::COUNT_PATH_QUEUE, count);
         mark(cmd, Stage::Shade);
     }
@@ -470,7 +471,7 @@ void PathTracer::resize(glm::uvec2 size, const FrameChannels& channels) {
 void PathTracer::resetAccumulation() {
     accumulatedSamples_ = 0;
     accumulatedFrames_ = 0;
-    jitterSamples_[0] = jitterSamples_[1] = 0;
+    stratifiedSamples_[0] = stratifiedSamples_[1] = 0;
     if (size_.x == 0) return;
     const Impl& m = *impl_;
     m.context.submitAndWait([&](VkCommandBuffer cmd) {
@@ -511,10 +512,10 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     const std::vector<Wave> waves = packWaves(owned, m.capacity);
     const uint64_t waveCount = ranks.max(waves.size());
     m.lengthsOnDevice = ranks.rankCount() == 1;
-    const uint32_t jitterSequence = accumulatedFrames_ % 2;
+    const uint32_t sequence = accumulatedFrames_ % 2;
     for (uint32_t s = 0; s < settings.pixelSamples; ++s) {
         const uint32_t sampleIndex = accumulatedSamples_;
-        m.cameraSample = (jitterSamples_[jitterSequence]++ << 1) | jitterSequence;
+        m.stratifiedSample = (stratifiedSamples_[sequence]++ << 1) | sequence;
         for (uint64_t w = 0; w < waveCount; ++w) {
             const Wave* wave = w < waves.size() ? &waves[w] : nullptr;  // this rank may have fewer waves
             if (m.lengthsOnDevice)

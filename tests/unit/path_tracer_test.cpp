@@ -347,12 +347,12 @@ TEST_CASE("path tracer: same seed, same image, bit for bit, whatever the wave si
 }
 
 // The pixel jitter is stratified over the frames of an accumulation, in two independent sequences (even
-// and odd frames; cameraJitter in shaders/rng.glsl). A straight edge crosses the image at a slant, and a
+// and odd frames; stratified2D in shaders/rng.glsl). A straight edge crosses the image at a slant, and a
 // sample's alpha says whether it hit the surface. Against each pixel's exact coverage c, n independent
 // samples miss by c (1 - c) / n in variance. Over 64 frames of one sample the RMS error must be far below
-// independent sampling's (under 0.6 of it; measured 0.34), each half alone too (0.34),
+// independent sampling's (under 0.6 of it; measured 0.34), each half alone too (0.35),
 // and the halves must stay independent: (A - B)^2 / 4 summed over the edge's pixels must match the full
-// image's squared error (ratio 0.6 to 1.6; measured 1.06), which is what the error estimate from frames dealt
+// image's squared error (ratio 0.6 to 1.6; measured 1.05), which is what the error estimate from frames dealt
 // into two halves assumes (apps/common/ErrorEstimate.h). One Sobol sequence over all frames would fail it:
 // its even and odd points fall in opposite halves of the pixel.
 TEST_CASE("path tracer: pixel jitter stratifies over frames, in two independent halves") {
