@@ -1,7 +1,8 @@
 #version 460
 // Stage 1 of a sample pass: one camera ray per pixel of the wave (perspective with an optional thin lens,
-// orthographic, or omnidirectional equirectangular, through the image region, jittered within the pixel by a stratified sequence),
-// a fresh path state beside it, and the pixel's sample radiance, depth and surface channels cleared.
+// orthographic, or omnidirectional equirectangular, through the image region, jittered within the pixel by
+// a stratified sequence), a fresh path state beside it, and the pixel's sample radiance, depth and surface
+// channels cleared.
 #extension GL_GOOGLE_include_directive : require
 #include "pt_common.glsl"
 #include "rng.glsl"
@@ -36,7 +37,8 @@ void main() {
     uvec2 xy = uvec2(pixel % f.width, pixel / f.width);  // row 0 is the bottom row
 
     vec4 u = random4(pixel, params.sampleIndex, 0u, RNG_CAMERA, f.seed);
-    vec2 onImage = (vec2(xy) + stratified2D(pixel, params.stratifiedSample, RNG_CAMERA_JITTER, f.seed)) / vec2(f.width, f.height);
+    vec2 jitter = stratified2D(pixel, params.stratifiedSample, RNG_CAMERA_JITTER, f.seed);
+    vec2 onImage = (vec2(xy) + jitter) / vec2(f.width, f.height);
     vec2 screen = mix(f.imageRegion.xy, f.imageRegion.zw, onImage);
     vec2 centered = 2.0 * screen - 1.0;  // [-1, 1] over the screen
 

@@ -76,7 +76,7 @@ struct PathTracer::Impl {
     vk::Buffer hits, surfaces, shadowRays, shadowRequests, occlusion; // per path in flight
     uint32_t capacity = 0;
     bool lengthsOnDevice = false;                                   // one rank: see the header comment
-    uint32_t stratifiedSample = 0;                                      // the sample's StageParams::stratifiedSample
+    uint32_t stratifiedSample = 0;                                  // the sample's StageParams::stratifiedSample
     LocalRayExchange localExchange;
     PipelineCache pipelines;                                        // variants of `surface` per FeatureSet
     SurfaceChannels channels;                                       // albedo, normal and id channels

@@ -166,7 +166,7 @@ struct StageParams {
     uint countSource;      // COUNT_*: the queue stages' item count (count, or a queue length on the device)
     uint resumeRound;      // pt_volume, pt_shadow_volume: 0 for the stage's items, r > 0 for the marches
                            // parked in round r - 1 (VolumeParkingHeader)
-    uint stratifiedSample;     // pt_generate, pt_shade: this pass's point in its pixel's stratified sequences,
+    uint stratifiedSample; // pt_generate, pt_shade: this pass's point in its pixel's stratified sequences,
                            // (index << 1) | sequence (PathTracer::render; stratified2D in rng.glsl)
     uint64_t volumeParking; // pt_volume, pt_shadow_volume: VolumeParkingHeader then its pools (VolumeParking::run)
 };
