@@ -4,7 +4,8 @@
 #   relMSE x spp = N * mean over pixels and channels of s^2 / (m^2 + 0.01),
 # s^2 the pixel's unbiased variance across the K images, m the median of the K images (robust to the
 # fireflies that the variance measures) and 0.01 ripple-imgdiff's epsilon. Lower is better; for
-# independent samples it does not depend on N. Also printed: the same without the 10 pixels of largest
+# independent samples it does not depend on N (Ripple stratifies its pixel jitter and first bounce over the
+# frames, so its figure falls a little as N grows: compare renderers at the same N). Also printed: the same without the 10 pixels of largest
 # error, and those 10 pixels' share of it (how much fireflies dominate), and the same without the worst 1% of
 # the pixels (the steadiest figure when a few glints decide the rest). One line of text, one of JSON.
 #

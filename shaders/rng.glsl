@@ -1,6 +1,8 @@
 // Random numbers keyed by what they are for, never by thread: (pixel, sample index, bounce, dimension
 // group, seed) -> four uniforms. The same pixel sample gets the same numbers however the work is split
-// across invocations, queues or ranks, so images are reproducible bit for bit. The hash is pcg4d of
+// across invocations, queues or ranks, so images are reproducible bit for bit. The pixel jitter and the
+// first BSDF direction (stratified2D below) are keyed by the sample's place in the sequence of its frame's
+// parity instead, so an image also depends on how its samples were grouped into frames. The hash is pcg4d of
 // Jarzynski & Olano, "Hash Functions for GPU Rendering" (JCGT 2020).
 #ifndef RIPPLE_RNG_GLSL
 #define RIPPLE_RNG_GLSL
@@ -25,6 +27,8 @@ const uint RNG_LIGHT = 1u;      // light choice (x), point on the light (yz), op
 const uint RNG_BSDF = 2u;       // lobe choice (x), direction (yz), Russian roulette (w)
 const uint RNG_VOLUME = 3u;     // free-flight sampling: a stream (volume.glsl), counter in the high bits
 const uint RNG_VOLUME_SHADOW = 4u; // ratio tracking of shadow rays: a stream likewise
+// 5 and 6 are stratified2D's (RNG_CAMERA_JITTER, RNG_FIRST_BSDF below), keyed (pixel, 0 or 1, group, seed):
+// random4 must not use them.
 
 // Four uniform numbers in [0, 1), 24 bits each (so 1.0 is never returned).
 vec4 random4(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {

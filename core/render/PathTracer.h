@@ -9,7 +9,9 @@
 // rays do not see quad and ring lights. Emissive surfaces emit from both sides. Shadow rays treat every
 // surface as opaque (light through partly transparent surfaces reaches a point only by BSDF rays). Random numbers
 // are keyed by (pixel, sample index, bounce, dimension, seed), so the same inputs give the same image bit
-// for bit, however the frame is split into waves.
+// for bit, however the frame is split into waves; the pixel jitter and the first BSDF direction are
+// stratified over the accumulation's frames (shaders/rng.glsl), so the image also depends on how many
+// samples each render() call adds.
 #pragma once
 
 #include "core/render/RayExchange.h"

@@ -2,7 +2,8 @@
 // quick-look renderer ("eyeLight") unless the settings turn it off, and a still pass with the path tracer;
 // the picture of another channel when the settings show one.
 // Each is compared with a frame rendered directly through ANARI with that renderer, the same camera and
-// size: the random numbers are keyed by pixel and sample, so equal means bit-identical.
+// size: the random numbers are keyed by pixel and sample (the stratified ones by the sample's place in its
+// pass's sequence, the same in both here), so equal means bit-identical.
 #include "apps/common/AnariParams.h"
 #include "apps/common/AnariScene.h"
 #include "apps/common/AnariSession.h"

@@ -109,7 +109,8 @@ TEST_CASE("xvfb: ripple-view --screenshot renders the Cornell demo as ripple-ren
 }
 
 // A view-state file (what V writes) read by both programs: the same camera, settings and size give the same
-// image, pixel for pixel (the random numbers are keyed by pixel and sample).
+// image, pixel for pixel (the random numbers are keyed by pixel and sample, the stratified ones by the
+// sample's place in its pass's sequence: both programs add one sample per pass here).
 TEST_CASE("xvfb: a view file renders the same image in ripple-view and ripple-render") {
     TempFolder dir;
     const auto viewFile = dir / "view.json", viewed = dir / "view.png", rendered = dir / "render.png";
