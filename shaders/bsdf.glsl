@@ -138,7 +138,13 @@ float visibleNormalPdf(float nv, float nh, float vh, float a2) {
     return vh > 0.0 ? ggxD(nh, a2) * vh / (nv * (1.0 + ggxLambda(nv, a2))) : 0.0;
 }
 
-// A GGX reflection lobe: f * cos (without F0 compensation or weight) and its pdf.
+// A very rough GGX reflection lobe is sampled by its visible normals or, with this chance, by the cosine:
+// a defensive mixture. Near alpha 1 many visible normals mirror wo below the surface (weight 0) and G2 / G1
+// spreads the rest, while f * cos is close to a cosine lobe; the mixture's weight f * cos / pdf has about
+// half the relative spread (docs/sampling.md). Smoother lobes keep pure visible-normal sampling.
+float cosineShare(float alpha) { return 0.5 * clamp(2.0 * alpha - 1.0, 0.0, 1.0); }
+
+// A GGX reflection lobe: f * cos (without F0 compensation or weight) and its pdf (sampleGgxReflection's).
 vec3 ggxReflection(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi, out float pdf) {
     float nl = dot(n, wi), nv = dot(n, wo);
     vec3 h = normalize(wo + wi);
@@ -147,7 +153,8 @@ vec3 ggxReflection(vec3 f0, float alpha, vec3 n, vec3 wo, vec3 wi, out float pdf
     float D = ggxD(nh, a2);
     float lambdaV = ggxLambda(nv, a2);
     float G2 = 1.0 / (1.0 + lambdaV + ggxLambda(nl, a2));
-    pdf = visibleNormalPdf(nv, nh, vh, a2) / (4.0 * max(vh, 1e-12));
+    float q = cosineShare(alpha);
+    pdf = (1.0 - q) * visibleNormalPdf(nv, nh, vh, a2) / (4.0 * max(vh, 1e-12)) + q * max(nl, 0.0) / PI;
     return schlick(f0, vh) * (D * G2 / (4.0 * nv));  // times nl / nl
 }
 
@@ -227,6 +234,15 @@ vec3 sampleVisibleNormal(vec3 v, float alpha, vec2 u) {
     return normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0, nh.z)));
 }
 
+// wi of a GGX reflection lobe seen from v (local frame), with the density ggxReflection gives: the cosine
+// where u.x < cosineShare(alpha), else the mirror direction about a visible normal. The choice splits u.x
+// and rescales it, so that stratified u stay stratified within each branch.
+vec3 sampleGgxReflection(vec3 v, float alpha, vec2 u) {
+    float q = cosineShare(alpha);
+    if (u.x < q) return sampleCosineHemisphere(vec2(u.x / q, u.y));
+    return reflect(-v, sampleVisibleNormal(v, alpha, vec2((u.x - q) / (1.0 - q), u.y)));
+}
+
 // Samples wi; weight = f * |cos| / pdf, and its pdf (0 for a delta lobe's direction, whose weight is its
 // albedo over its chance). False when the sample carries nothing.
 bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec3 weight, out float pdf) {
@@ -249,14 +265,14 @@ bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec
             weight = vec3(l.coatAlbedo / l.coat);
             return true;
         }
-        wi = toWorld(reflect(-v, sampleVisibleNormal(v, m.clearcoatAlpha, u.yz)), n);
+        wi = toWorld(sampleGgxReflection(v, m.clearcoatAlpha, u.yz), n);
     } else if ((pick -= l.coat) < l.specular) {
         if (isSmooth(m.alpha)) {
             wi = reflect(-wo, n);
             weight = l.specularAlbedo / l.specular;
             return true;
         }
-        wi = toWorld(reflect(-v, sampleVisibleNormal(v, m.alpha, u.yz)), n);
+        wi = toWorld(sampleGgxReflection(v, m.alpha, u.yz), n);
     } else if ((pick -= l.specular) < l.diffuse) {
         wi = toWorld(sampleCosineHemisphere(u.yz), n);
     } else if (l.transmission > 0.0) {
