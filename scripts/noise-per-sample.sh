@@ -5,9 +5,10 @@
 # s^2 the pixel's unbiased variance across the K images, m the median of the K images (robust to the
 # fireflies that the variance measures) and 0.01 ripple-imgdiff's epsilon. Lower is better; for
 # independent samples it does not depend on N (Ripple stratifies its pixel jitter and first bounce over the
-# frames, so its figure falls a little as N grows: compare renderers at the same N). Also printed: the same without the 10 pixels of largest
-# error, and those 10 pixels' share of it (how much fireflies dominate), and the same without the worst 1% of
-# the pixels (the steadiest figure when a few glints decide the rest). One line of text, one of JSON.
+# frames, so its figure falls a little as N grows: compare renderers at the same N). Also printed: the same
+# without the 10 pixels of largest error, and those 10 pixels' share of it (how much fireflies dominate),
+# and the same without the worst 1% of the pixels (the steadiest figure when a few glints decide the
+# rest). One line of text, one of JSON.
 #
 #   scripts/noise-per-sample.sh [options] SCENE.glb
 #
@@ -137,6 +138,7 @@ result = {
 print("%s %s: relMSE x spp %.4g (without the 10 worst pixels %.4g; they hold %.0f%%; without the worst 1%% %.4g), "
       "%d images of %d spp%s"
       % (renderer, scene, result["relmse_x_spp"], result["relmse_x_spp_without_top10"], 100 * result["top10_share"],
-         result["relmse_x_spp_without_top1pct"], len(stack), spp, ", %.1f s each" % seconds if seconds >= 0 else " (reused)"))
+         result["relmse_x_spp_without_top1pct"], len(stack), spp,
+         ", %.1f s each" % seconds if seconds >= 0 else " (reused)"))
 print(json.dumps(result))
 PY
