@@ -56,6 +56,24 @@ Span finalRegion(uint32_t rank, uint64_t pixels, const std::vector<uint32_t>& ro
     return region;
 }
 
+// Bit i of the result is kept[i] (each 0 or 1): eight flags at a time, gathered by a multiplication.
+uint64_t packBits(const uint8_t (&kept)[kPixelsPerWord]) {
+    uint64_t mask = 0;
+    for (unsigned byte = 0; byte < 8; ++byte) {
+        uint64_t flags = 0;  // kept[byte * 8 + i] in byte i (one load on a little-endian machine)
+        for (unsigned i = 0; i < 8; ++i) flags |= uint64_t(kept[byte * 8 + i]) << (8 * i);
+        mask |= ((flags * 0x0102040810204080ull) >> 56) << (byte * 8);
+    }
+    return mask;
+}
+
+// `marks ? fragment : otherwise` (marks 0 or 1) by a mask: compilers turn a condition into a branch, which
+// mispredicts half the time where the ranks' pixels are scattered.
+const uint8_t* select(uint64_t marks, const uint8_t* fragment, const uint8_t* otherwise) {
+    const auto a = reinterpret_cast<uintptr_t>(fragment), b = reinterpret_cast<uintptr_t>(otherwise);
+    return reinterpret_cast<const uint8_t*>(b ^ ((a ^ b) & (0 - uintptr_t(marks))));
+}
+
 template <class T>
 T load(const uint8_t* at) {
     T value;
@@ -171,9 +189,15 @@ void walkParts(const std::vector<PartView>& sources, uint64_t count, OnWord onWo
         uint64_t word;
     };
     std::vector<Source> cursor;
-    for (const PartView& v : sources)
+    // One fragment per marked pixel in every source (always in the first round, so at 2 ranks): each
+    // pixel's fragments are gathered without a branch per source.
+    bool oneEach = true;
+    for (const PartView& v : sources) {
         cursor.push_back({v.counts, v.fragments, v.fragments + v.fragmentCount * sizeof(Fragment), 0});
+        oneEach = oneEach && v.fragmentCount == v.marked;
+    }
     std::vector<Fragment> pixel(sources.size());
+    static constexpr Fragment unused{};  // read, never kept, when a source does not mark the pixel
     for (uint64_t w = 0; w < wordsFor(count); ++w) {
         uint64_t any = 0;
         for (size_t s = 0; s < sources.size(); ++s) any |= cursor[s].word = sources[s].word(w);
@@ -181,6 +205,17 @@ void walkParts(const std::vector<PartView>& sources, uint64_t count, OnWord onWo
         for (uint64_t bits = any; bits != 0; bits &= bits - 1) {
             const int bit = std::countr_zero(bits);
             size_t n = 0;
+            if (oneEach) {
+                for (Source& source : cursor) {
+                    const uint64_t marks = (source.word >> bit) & 1u;
+                    const uint8_t* from = select(marks, source.fragments, reinterpret_cast<const uint8_t*>(&unused));
+                    std::memcpy(pixel.data() + n, from, sizeof(Fragment));
+                    n += marks;
+                    source.fragments += marks * sizeof(Fragment);
+                }
+                onPixel(w * kPixelsPerWord + uint64_t(bit), pixel.data(), n);
+                continue;
+            }
             for (Source& source : cursor) {
                 if (!((source.word >> bit) & 1u)) continue;
                 const auto k = load<uint16_t>(source.counts);
@@ -218,19 +253,24 @@ void mergeParts(const std::vector<PartView>& sources, uint64_t first, uint64_t c
               });
 }
 
-// Front-to-back blend of one pixel's fragments, sorted by depth in place (stable: equal depths keep rank
-// order).
-Fragment blend(Fragment* pixel, size_t n) {
-    if (n == 1) return pixel[0];  // blending over nothing gives the fragment itself
+// Front-to-back blend of one pixel's n >= 1 fragments, sorted by depth in place (stable: equal depths keep
+// rank order), written as 4 floats of premultiplied color at `rgba` and a float at `depth`.
+[[gnu::always_inline]] inline void blend(Fragment* pixel, size_t n, void* rgba, void* depth) {
+    if (n == 1) {  // blending over nothing gives the fragment itself
+        std::memcpy(rgba, pixel[0].rgba, 16);
+        std::memcpy(depth, &pixel[0].depth, 4);
+        return;
+    }
     for (size_t a = 1; a < n; ++a)
         for (size_t b = a; b > 0 && pixel[b - 1].depth > pixel[b].depth; --b) std::swap(pixel[b - 1], pixel[b]);
-    Fragment blended{{0.0f, 0.0f, 0.0f, 0.0f}, INFINITY};
+    float color[4] = {0.0f, 0.0f, 0.0f, 0.0f}, nearest = INFINITY;
     for (const Fragment& f : std::span(pixel, n)) {
-        const float transmitted = 1.0f - blended.rgba[3];
-        for (int c = 0; c < 4; ++c) blended.rgba[c] += transmitted * f.rgba[c];
-        blended.depth = std::min(blended.depth, f.depth);
+        const float transmitted = 1.0f - color[3];
+        for (int c = 0; c < 4; ++c) color[c] += transmitted * f.rgba[c];
+        nearest = std::min(nearest, f.depth);
     }
-    return blended;
+    std::memcpy(rgba, color, 16);
+    std::memcpy(depth, &nearest, 4);
 }
 
 // The last round: every source's fragments of a part of `count` pixels blended, as the message to rank 0
@@ -249,8 +289,7 @@ uint64_t blendParts(const std::vector<PartView>& sources, uint64_t count, std::v
     uint8_t* fragment = out.data() + words * 8;
     walkParts(sources, count, [&](uint64_t w, uint64_t mask) { std::memcpy(out.data() + w * 8, &mask, 8); },
               [&](uint64_t, Fragment* pixel, size_t n) {
-                  const Fragment blended = blend(pixel, n);
-                  std::memcpy(fragment, &blended, sizeof(Fragment));
+                  blend(pixel, n, fragment, fragment + 16);
                   fragment += sizeof(Fragment);
               });
     return bytes;
@@ -266,9 +305,7 @@ void blendInto(const std::vector<PartView>& sources, uint64_t count, float* rgba
                   std::fill(depth + first, depth + last, INFINITY);
               },
               [&](uint64_t p, Fragment* pixel, size_t n) {
-                  const Fragment blended = blend(pixel, n);
-                  std::memcpy(rgba + p * 4, blended.rgba, 16);
-                  depth[p] = blended.depth;
+                  blend(pixel, n, rgba + p * 4, depth + p);
               });
 }
 
@@ -366,21 +403,22 @@ void Compositor::composite(std::span<const float> rgba, std::span<const float> d
     mine_.count = pixels;
     mine_.words.assign(wordsFor(pixels), 0);
     growTo(mine_.counts, pixels);
-    // Branch-free: every pixel's fragment is written at the next slot, which advances only for a marked one.
-    growTo(mine_.fragments, pixels + 1);
+    growTo(mine_.fragments, pixels);
     uint64_t marked = 0;
     for (uint64_t w = 0; w < mine_.words.size(); ++w) {
-        uint64_t mask = 0;
         const uint64_t first = w * kPixelsPerWord, last = std::min(pixels, first + kPixelsPerWord);
-        for (uint64_t p = first; p < last; ++p) {
-            const float* c = rgba.data() + p * 4;
-            const bool kept = !std::isinf(depth[p]) || (keepBackground && c[3] != 0.0f);
-            std::memcpy(mine_.fragments[marked].rgba, c, 16);
-            mine_.fragments[marked].depth = depth[p];
-            mask |= uint64_t(kept) << (p - first);
-            marked += kept;
-        }
+        uint8_t kept[kPixelsPerWord] = {};
+        const float* d = depth.data() + first;
+        for (uint64_t i = 0; i < last - first; ++i) kept[i] = std::fabs(d[i]) != INFINITY;
+        if (keepBackground)
+            for (uint64_t i = 0; i < last - first; ++i) kept[i] |= rgba[(first + i) * 4 + 3] != 0.0f;
+        const uint64_t mask = packBits(kept);
         mine_.words[w] = mask;
+        for (uint64_t bits = mask; bits != 0; bits &= bits - 1) {  // only what travels is copied
+            const uint64_t p = first + uint64_t(std::countr_zero(bits));
+            std::memcpy(mine_.fragments[marked].rgba, rgba.data() + p * 4, 16);
+            mine_.fragments[marked++].depth = depth[p];
+        }
     }
     std::fill(mine_.counts.begin(), mine_.counts.begin() + long(marked), uint16_t(1));
     mine_.marked = mine_.fragmentCount = marked;
@@ -443,6 +481,7 @@ void Compositor::composite(std::span<const float> rgba, std::span<const float> d
 
     // Every pixel lies in one rank's region and is written once: blended, or background (0, +infinity);
     // rank 0's own region already is.
+    static constexpr Fragment background{{0.0f, 0.0f, 0.0f, 0.0f}, INFINITY};
     for (uint32_t r = 1; r < rankCount; ++r) {
         const Span region = finalRegion(r, pixels, rounds_);
         const uint8_t* bytes = received_.data() + receivedOffsets_[r];
@@ -457,16 +496,11 @@ void Compositor::composite(std::span<const float> rgba, std::span<const float> d
             const uint64_t first = region.first + w * kPixelsPerWord;
             const uint64_t last = std::min(region.first + region.count, first + kPixelsPerWord);
             for (uint64_t p = first; p < last; ++p) {
-                float* color = rgba_.data() + p * 4;
-                if ((bits >> (p - first)) & 1u) {
-                    const auto f = load<Fragment>(fragment);
-                    fragment += sizeof(Fragment);
-                    std::memcpy(color, f.rgba, 16);
-                    depth_[p] = f.depth;
-                } else {
-                    std::memset(color, 0, 16);
-                    depth_[p] = INFINITY;
-                }
+                const uint64_t marks = (bits >> (p - first)) & 1u;
+                const auto f = load<Fragment>(select(marks, fragment, reinterpret_cast<const uint8_t*>(&background)));
+                fragment += marks * sizeof(Fragment);
+                std::memcpy(rgba_.data() + p * 4, f.rgba, 16);
+                depth_[p] = f.depth;
             }
         }
     }
