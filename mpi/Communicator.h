@@ -75,12 +75,24 @@ public:
     // with one rank, where it throws MpiError instead.
     void abort(const std::string& message) const;
 
+    // A copy whose collectives refuse buffers over `bytes` (at most MPI's int count, 2^31 - 1, the default),
+    // on every rank alike: a rank whose messages do not fit throws MpiError on every rank instead of
+    // leaving the others waiting. Tests lower it to check that agreement without gigabyte buffers.
+    Communicator withMessageLimit(uint64_t bytes) const;
+
 private:
     struct Handle;
     explicit Communicator(std::shared_ptr<Handle> handle);
+    void checkMessagesFit(uint64_t largest, const char* call) const;
+    void allgatherSizes(uint64_t mine, std::vector<int>& counts, std::vector<int>& offsets, const char* call) const;
+    uint64_t exchangeCounts(std::span<const uint64_t> sendSizes, std::vector<int>& sendCounts,
+                            std::vector<int>& sendOffsets, std::vector<int>& receiveCounts,
+                            std::vector<int>& receiveOffsets, const char* call) const;
+
     std::shared_ptr<Handle> handle_;
     int rank_ = 0;
     int size_ = 1;
+    uint64_t maxMessageBytes_ = 2147483647;  // MPI's int count
 };
 
 }  // namespace ripple::mpi

@@ -36,6 +36,23 @@ int countOf(size_t bytes) {
 
 }  // namespace
 
+// Messages and buffer offsets are MPI ints. A rank that found its own too large and threw alone would leave
+// the others waiting in the collective forever, so each collective that moves bytes first makes every rank
+// know the largest any rank needs (from counts it exchanges anyway, or by one reduction), and all throw
+// alike.
+void Communicator::checkMessagesFit(uint64_t largest, const char* call) const {
+    if (largest <= maxMessageBytes_) return;
+    throw MpiError(std::string(call) + ": a rank's messages need " + std::to_string(largest) +
+                   " bytes in one buffer, more than the " + std::to_string(maxMessageBytes_) +
+                   " one MPI call can move (every rank stops)");
+}
+
+Communicator Communicator::withMessageLimit(uint64_t bytes) const {
+    Communicator limited = *this;
+    limited.maxMessageBytes_ = std::min<uint64_t>(bytes, maxMessageBytes_);
+    return limited;
+}
+
 struct Communicator::Handle {
     MPI_Comm comm = MPI_COMM_NULL;
     ~Handle() {
@@ -116,16 +133,53 @@ void Communicator::minMax(std::span<const uint64_t> values, std::span<uint64_t> 
     }
 }
 
+// Every rank's size on every rank (64-bit), their total checked alike on all; sets `counts` and `offsets`
+// as MPI ints.
+void Communicator::allgatherSizes(uint64_t mine, std::vector<int>& counts, std::vector<int>& offsets,
+                                                   const char* call) const {
+    std::vector<uint64_t> sizes(static_cast<size_t>(size_));
+    RIPPLE_MPI_CHECK(MPI_Allgather(&mine, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, handle_->comm));
+    uint64_t total = 0;
+    for (const uint64_t size : sizes) total += size;
+    checkMessagesFit(total, call);
+    counts.assign(sizes.size(), 0);
+    offsets.assign(sizes.size(), 0);
+    for (size_t r = 0, at = 0; r < sizes.size(); at += sizes[r], ++r) {
+        counts[r] = int(sizes[r]);
+        offsets[r] = int(at);
+    }
+}
+
+// MPI_Alltoall of 64-bit counts, then one reduction so that every rank knows whether any rank's send or
+// receive buffer is too large: sets the MPI int counts and offsets, returns this rank's receive total.
+uint64_t Communicator::exchangeCounts(std::span<const uint64_t> sendSizes, std::vector<int>& sendCounts,
+                                      std::vector<int>& sendOffsets, std::vector<int>& receiveCounts,
+                                      std::vector<int>& receiveOffsets, const char* call) const {
+    const size_t ranks = size_t(size_);
+    std::vector<uint64_t> receiveSizes(ranks);
+    RIPPLE_MPI_CHECK(
+        MPI_Alltoall(sendSizes.data(), 1, MPI_UINT64_T, receiveSizes.data(), 1, MPI_UINT64_T, handle_->comm));
+    uint64_t sent = 0, received = 0;
+    for (size_t r = 0; r < ranks; ++r) {
+        sent += sendSizes[r];
+        received += receiveSizes[r];
+    }
+    checkMessagesFit(max(std::max(sent, received)), call);
+    for (size_t r = 0, sendAt = 0, receiveAt = 0; r < ranks; sendAt += sendSizes[r], receiveAt += receiveSizes[r], ++r) {
+        sendCounts[r] = int(sendSizes[r]);
+        sendOffsets[r] = int(sendAt);
+        receiveCounts[r] = int(receiveSizes[r]);
+        receiveOffsets[r] = int(receiveAt);
+    }
+    return received;
+}
+
 std::vector<std::vector<uint8_t>> Communicator::allgather(std::span<const uint8_t> bytes) const {
     if (!distributed()) return {std::vector<uint8_t>(bytes.begin(), bytes.end())};
-    const int mine = countOf(bytes.size());
-    std::vector<int> counts(static_cast<size_t>(size_)), offsets(static_cast<size_t>(size_));
-    RIPPLE_MPI_CHECK(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, handle_->comm));
-    size_t total = 0;
-    for (int r = 0; r < size_; ++r) {
-        offsets[size_t(r)] = countOf(total);
-        total += size_t(counts[size_t(r)]);
-    }
+    std::vector<int> counts, offsets;
+    allgatherSizes(bytes.size(), counts, offsets, "allgather");
+    const int mine = counts[size_t(rank_)];
+    const size_t total = size_t(offsets.back()) + size_t(counts.back());
     std::vector<uint8_t> all(std::max<size_t>(total, 1));
     RIPPLE_MPI_CHECK(MPI_Allgatherv(bytes.data(), mine, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
                                     handle_->comm));
@@ -137,14 +191,10 @@ std::vector<std::vector<uint8_t>> Communicator::allgather(std::span<const uint8_
 
 std::vector<std::vector<uint8_t>> Communicator::gatherToRoot(std::span<const uint8_t> bytes) const {
     if (!distributed()) return {std::vector<uint8_t>(bytes.begin(), bytes.end())};
-    const int mine = countOf(bytes.size());
-    std::vector<int> counts(static_cast<size_t>(size_)), offsets(static_cast<size_t>(size_));
-    RIPPLE_MPI_CHECK(MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, handle_->comm));
-    size_t total = 0;
-    for (int r = 0; r < size_ && rank_ == 0; ++r) {
-        offsets[size_t(r)] = countOf(total);
-        total += size_t(counts[size_t(r)]);
-    }
+    std::vector<int> counts, offsets;
+    allgatherSizes(bytes.size(), counts, offsets, "gatherToRoot");
+    const int mine = counts[size_t(rank_)];
+    const size_t total = rank_ == 0 ? size_t(offsets.back()) + size_t(counts.back()) : 0;
     std::vector<uint8_t> all(std::max<size_t>(total, 1));
     RIPPLE_MPI_CHECK(MPI_Gatherv(bytes.data(), mine, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, 0,
                                  handle_->comm));
@@ -172,19 +222,12 @@ std::vector<std::vector<uint8_t>> Communicator::alltoallv(const std::vector<std:
                        std::to_string(size_) + " ranks");
     if (!distributed()) return {outgoing.front()};
     const size_t ranks = size_t(size_);
+    std::vector<uint64_t> sizes(ranks);
     std::vector<int> sendCounts(ranks), sendOffsets(ranks), receiveCounts(ranks), receiveOffsets(ranks);
+    for (size_t r = 0; r < ranks; ++r) sizes[r] = outgoing[r].size();
+    const uint64_t total = exchangeCounts(sizes, sendCounts, sendOffsets, receiveCounts, receiveOffsets, "alltoallv");
     std::vector<uint8_t> sendBuffer;
-    for (size_t r = 0; r < ranks; ++r) {
-        sendCounts[r] = countOf(outgoing[r].size());
-        sendOffsets[r] = countOf(sendBuffer.size());
-        sendBuffer.insert(sendBuffer.end(), outgoing[r].begin(), outgoing[r].end());
-    }
-    RIPPLE_MPI_CHECK(MPI_Alltoall(sendCounts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, handle_->comm));
-    size_t total = 0;
-    for (size_t r = 0; r < ranks; ++r) {
-        receiveOffsets[r] = countOf(total);
-        total += size_t(receiveCounts[r]);
-    }
+    for (size_t r = 0; r < ranks; ++r) sendBuffer.insert(sendBuffer.end(), outgoing[r].begin(), outgoing[r].end());
     sendBuffer.resize(std::max<size_t>(sendBuffer.size(), 1));
     std::vector<uint8_t> all(std::max<size_t>(total, 1));
     RIPPLE_MPI_CHECK(MPI_Alltoallv(sendBuffer.data(), sendCounts.data(), sendOffsets.data(), MPI_BYTE, all.data(),
@@ -201,25 +244,18 @@ void Communicator::alltoallv(std::span<const uint8_t> send, std::span<const uint
     if (sendCounts.size() != ranks)
         throw MpiError("alltoallv: " + std::to_string(sendCounts.size()) + " send counts for " + std::to_string(ranks) +
                        " ranks");
-    std::vector<int> counts(ranks), offsets(ranks), receiveCounts(ranks), receiveOffsets(ranks);
-    size_t at = 0;
-    for (size_t r = 0; r < ranks; ++r) {
-        counts[r] = countOf(sendCounts[r]);
-        offsets[r] = countOf(at);
-        at += sendCounts[r];
-    }
-    if (at > send.size()) throw MpiError("alltoallv: send counts exceed the send buffer");
+    uint64_t at = 0;
+    for (const uint64_t count : sendCounts) at += count;
+    if (at > send.size()) throw MpiError("alltoallv: send counts exceed the send buffer");  // the caller's bug
     if (!distributed()) {
         received.assign(send.begin(), send.begin() + long(at));
         receivedOffsets = {0, at};
         return;
     }
-    RIPPLE_MPI_CHECK(MPI_Alltoall(counts.data(), 1, MPI_INT, receiveCounts.data(), 1, MPI_INT, handle_->comm));
+    std::vector<int> counts(ranks), offsets(ranks), receiveCounts(ranks), receiveOffsets(ranks);
+    exchangeCounts(sendCounts, counts, offsets, receiveCounts, receiveOffsets, "alltoallv");
     receivedOffsets.assign(ranks + 1, 0);
-    for (size_t r = 0; r < ranks; ++r) {
-        receiveOffsets[r] = countOf(receivedOffsets[r]);
-        receivedOffsets[r + 1] = receivedOffsets[r] + uint64_t(receiveCounts[r]);
-    }
+    for (size_t r = 0; r < ranks; ++r) receivedOffsets[r + 1] = receivedOffsets[r] + uint64_t(receiveCounts[r]);
     received.resize(std::max<size_t>(receivedOffsets[ranks], 1));
     static const uint8_t none = 0;
     RIPPLE_MPI_CHECK(MPI_Alltoallv(send.empty() ? &none : send.data(), counts.data(), offsets.data(), MPI_BYTE,
@@ -234,14 +270,11 @@ void Communicator::gatherToRoot(std::span<const uint8_t> bytes, std::vector<uint
         offsets = {0, bytes.size()};
         return;
     }
-    const int mine = countOf(bytes.size());
-    std::vector<int> counts(static_cast<size_t>(size_)), displacements(static_cast<size_t>(size_));
-    RIPPLE_MPI_CHECK(MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, handle_->comm));
+    std::vector<int> counts, displacements;
+    allgatherSizes(bytes.size(), counts, displacements, "gatherToRoot");
+    const int mine = counts[size_t(rank_)];
     offsets.assign(rank_ == 0 ? size_t(size_) + 1 : 0, 0);
-    for (int r = 0; r < size_ && rank_ == 0; ++r) {
-        displacements[size_t(r)] = countOf(offsets[size_t(r)]);
-        offsets[size_t(r) + 1] = offsets[size_t(r)] + uint64_t(counts[size_t(r)]);
-    }
+    for (int r = 0; r < size_ && rank_ == 0; ++r) offsets[size_t(r) + 1] = offsets[size_t(r)] + uint64_t(counts[size_t(r)]);
     all.resize(rank_ == 0 ? std::max<size_t>(offsets.back(), 1) : 1);
     static const uint8_t none = 0;
     RIPPLE_MPI_CHECK(MPI_Gatherv(bytes.empty() ? &none : bytes.data(), mine, MPI_BYTE, all.data(), counts.data(),
@@ -255,6 +288,7 @@ std::vector<uint8_t> Communicator::ringShift(std::span<const uint8_t> bytes) con
     uint64_t outgoing = bytes.size(), incoming = 0;
     RIPPLE_MPI_CHECK(MPI_Sendrecv(&outgoing, 1, MPI_UINT64_T, next, kRingTag, &incoming, 1, MPI_UINT64_T, previous,
                                   kRingTag, handle_->comm, MPI_STATUS_IGNORE));
+    checkMessagesFit(max(std::max(outgoing, incoming)), "ringShift");
     std::vector<uint8_t> received(incoming);
     RIPPLE_MPI_CHECK(MPI_Sendrecv(bytes.data(), countOf(bytes.size()), MPI_BYTE, next, kRingTag + 1, received.data(),
                                   countOf(received.size()), MPI_BYTE, previous, kRingTag + 1, handle_->comm,

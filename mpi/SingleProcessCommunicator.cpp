@@ -53,6 +53,7 @@ void Communicator::broadcast(std::span<uint8_t>) const {}
 void Communicator::barrier() const {}
 void Communicator::barrierOrAbort(double, const std::string&) const {}
 void Communicator::abort(const std::string& message) const { throw MpiError(message); }
+Communicator Communicator::withMessageLimit(uint64_t) const { return *this; }
 
 }  // namespace ripple::mpi
 
