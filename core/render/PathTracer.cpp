@@ -25,6 +25,8 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <future>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -67,7 +69,7 @@ struct PathTracer::Impl {
     PathTracerOptions options;
     TraceKernels trace;
     vk::ComputePipeline generate, surface, shade, shadowResolve, accumulate, resolve, queueAdvance;
-    vk::ComputePipeline volume, shadowVolume;                       // frames whose world has volumes
+    vk::ComputePipeline volume, shadowVolume;                       // built for the first world with volumes
     VolumeParking parking;                                          // their marches' resume rounds
     vk::Buffer frame, counters;                                     // FrameConstants, PathCounters
     vk::Buffer sampleRadiance, accumulation, sampleCount, depth, color;  // per pixel
@@ -85,28 +87,64 @@ struct PathTracer::Impl {
     VisitorTracer visitors;                                         // traces rays from other ranks
     StageProfile profile;                                           // GPU time per stage
     StageSeconds stageSeconds{};                                    // of the frame being rendered
+    // The kernels every frame runs compile on a thread of their own while the caller builds its scene
+    // (lavapipe compiles each with LLVM: 0.1 s together on the main job); kernelsBuilt() waits for them.
+    // Last member, so that it is joined before the pipelines it writes are destroyed.
+    std::optional<uint32_t> kernelFeatures;  // what selectKernels last selected for
+    std::future<void> fixedKernels;
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
         : context(ctx), options(opts), trace(ctx, traceOptions), parking(ctx, opts.volumeParking), pipelines(ctx),
           channels(ctx, opts.workgroupSize), visitors(ctx, trace, opts.workgroupSize), profile(ctx) {
         if (options.queueCapacity == 0 || options.workgroupSize == 0)
             throw std::invalid_argument("PathTracerOptions: queueCapacity and workgroupSize must be positive");
-        const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options.workgroupSize}};
-        const auto bytes = static_cast<uint32_t>(sizeof(gpu::StageParams));
-        generate = vk::ComputePipeline(ctx, shaders::pt_generate, "pt_generate", bytes, constants);
-        shade = vk::ComputePipeline(ctx, shaders::pt_shade, "pt_shade", bytes, constants);
-        shadowResolve = vk::ComputePipeline(ctx, shaders::pt_shadow_resolve, "pt_shadow_resolve", bytes, constants);
-        accumulate = vk::ComputePipeline(ctx, shaders::pt_accumulate, "pt_accumulate", bytes, constants);
-        resolve = vk::ComputePipeline(ctx, shaders::pt_resolve, "pt_resolve", bytes, constants);
-        volume = vk::ComputePipeline(ctx, shaders::pt_volume, "pt_volume", bytes, constants);
-        shadowVolume = vk::ComputePipeline(ctx, shaders::pt_shadow_volume, "pt_shadow_volume", bytes, constants);
-        queueAdvance = vk::ComputePipeline(ctx, shaders::pt_queue_advance, "pt_queue_advance",
-                                           static_cast<uint32_t>(sizeof(gpu::QueueAdvanceParams)));
+        fixedKernels = std::async(std::launch::async, [this] {
+            generate = stageKernel(shaders::pt_generate, "pt_generate");
+            shade = stageKernel(shaders::pt_shade, "pt_shade");
+            shadowResolve = stageKernel(shaders::pt_shadow_resolve, "pt_shadow_resolve");
+            accumulate = stageKernel(shaders::pt_accumulate, "pt_accumulate");
+            resolve = stageKernel(shaders::pt_resolve, "pt_resolve");
+            queueAdvance = vk::ComputePipeline(context, shaders::pt_queue_advance, "pt_queue_advance",
+                                               static_cast<uint32_t>(sizeof(gpu::QueueAdvanceParams)));
+        });
         frame = vk::Buffer(ctx, sizeof(gpu::FrameConstants), "path tracer frame constants");
         // Host-visible on every device: the host reads the queue counts (after each bounce with several
         // ranks, after a wave with one). Also the indirect dispatch sizes of the queue stages.
         counters = vk::Buffer(ctx, sizeof(gpu::PathCounters), "path tracer counters", VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                               vk::Buffer::Placement::HostStaging);
+    }
+
+    vk::ComputePipeline stageKernel(std::span<const uint32_t> spirv, const char* name) const {
+        const vk::SpecializationConstant constants[] = {{kWorkgroupSizeConstant, options.workgroupSize}};
+        return vk::ComputePipeline(context, spirv, name, static_cast<uint32_t>(sizeof(gpu::StageParams)), constants);
+    }
+
+    // Before the first use of a fixed kernel; rethrows a failure to build one.
+    void kernelsBuilt() {
+        if (fixedKernels.valid()) fixedKernels.get();
+    }
+
+    // The kernels the FeatureSet `bits` specialise, and the volume kernels when it has volumes, built where missing:
+    // the trace kernels on a thread of their own while this one builds pt_surface (the largest).
+    void selectKernels(uint32_t bits) {
+        if (kernelFeatures == bits) return;
+        auto traced = std::async(std::launch::async, [&] { trace.useFeatures(bits); });
+        try {
+            pipelines.select({shaders::pt_surface, "pt_surface", static_cast<uint32_t>(sizeof(gpu::StageParams)),
+                              options.workgroupSize,
+                              gpu::FEATURE_GEOMETRY | gpu::FEATURE_TEXTURES | gpu::FEATURE_SURFACE_CHANNELS},
+                             bits, surface);
+            if ((bits & gpu::FEATURE_VOLUMES) && volume.handle() == VK_NULL_HANDLE) {
+                volume = stageKernel(shaders::pt_volume, "pt_volume");
+                shadowVolume = stageKernel(shaders::pt_shadow_volume, "pt_shadow_volume");
+            }
+        } catch (...) {
+            traced.wait();  // it refers to this frame's locals
+            throw;
+        }
+        traced.get();
+        kernelsBuilt();
+        kernelFeatures = bits;
     }
 
     // Camera and settings plus the frame's buffer addresses. resize() uploads it too (with no camera), so
@@ -492,10 +530,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     m.features = m.options.specialize ? FeatureSet{scene.features() | m.channelBits |
                                                    (m.exchange().rankCount() > 1 ? gpu::FEATURE_MULTI_RANK : 0u)}
                                       : FeatureSet::all();
-    m.trace.useFeatures(m.features.bits);
-    m.pipelines.select({shaders::pt_surface, "pt_surface", static_cast<uint32_t>(sizeof(gpu::StageParams)),
-                        m.options.workgroupSize, gpu::FEATURE_GEOMETRY | gpu::FEATURE_TEXTURES | gpu::FEATURE_SURFACE_CHANNELS},
-                       m.features.bits, m.surface);
+    m.selectKernels(m.features.bits);
 
     FrameStats stats;
     // Bounces a path can take: its interactions plus pass-throughs, plus the one that resolves the last
@@ -555,6 +590,7 @@ void PathTracer::readColor(ColorFormat format, void* destination) const {
     Impl& m = *impl_;
     const uint64_t pixels = uint64_t(size_.x) * size_.y;
     if (!m.color) m.color = vk::Buffer(m.context, pixels * sizeof(gpu::vec4), "frame color");
+    m.kernelsBuilt();
     gpu::StageParams p = m.params(nullptr);
     p.results = m.color.address();
     p.mode = static_cast<uint32_t>(format);
