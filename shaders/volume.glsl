@@ -129,11 +129,12 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
     // DDA over macrocells, starting in the one holding the entry point.
     ivec3 macroDims = ivec3(v.macroX, v.macroY, v.macroZ);
     vec3 entry = o + t0 * d;
-    ivec3 cell = clamp(ivec3(floor(entry / float(VOLUME_MACROCELL))), ivec3(0), macroDims - 1);
+    float macrocell = float(v.macrocell);
+    ivec3 cell = clamp(ivec3(floor(entry / macrocell)), ivec3(0), macroDims - 1);
     ivec3 stepDir = ivec3(sign(d));
-    vec3 nextBoundary = vec3(cell + max(stepDir, ivec3(0))) * float(VOLUME_MACROCELL);
+    vec3 nextBoundary = vec3(cell + max(stepDir, ivec3(0))) * macrocell;
     vec3 tNext = mix(vec3(INFINITY), (nextBoundary - o) * inv, notEqual(stepDir, ivec3(0)));
-    vec3 tDelta = abs(float(VOLUME_MACROCELL) * inv);
+    vec3 tDelta = abs(macrocell * inv);
     // A march resumed on a macrocell face (where it parked after crossing it) may round into the cell behind
     // the face: step past faces at or behind t0, or it would cross the same face again with every budget.
     for (int k = 0; k < 3; ++k) {

@@ -1,9 +1,11 @@
 #version 460
-// The macrocell grid of one volume (shared/volume.h), one invocation per macrocell: the largest extinction
+// A macrocell grid of one volume (shared/volume.h), one invocation per macrocell: the largest extinction
 // its transfer-function table gives over the range of voxel values in the cell (its corner planes
 // included: trilinear interpolation never leaves that range). A piecewise-linear table peaks at an end of
 // that range or at an entry inside it, so the bound is exact; it is raised by 1e-5 so that float rounding
-// in the tracking kernels stays under it. Run when a scene is built (core/scene/VolumeMajorants.cpp).
+// in the tracking kernels stays under it. Run when a scene is built (core/scene/VolumeMajorants.cpp) for
+// the coarse and the fine grid, then in its second mode to sum the fine majorants under each coarse
+// macrocell, from which the host chooses the grid.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
@@ -16,6 +18,7 @@ layout(push_constant) uniform Push { MajorantParams params; };
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer VolumesRef { VolumeRecord volumes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer VolumeDataRef { float values[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer SumsRef { float values[]; };
 
 float tableExtinction(VolumeRecord v, VolumeDataRef data, uint entry) {
     return data.values[v.tableOffset + 4u * entry + 3u];
@@ -31,12 +34,23 @@ float extinctionAt(VolumeRecord v, VolumeDataRef data, float position) {
 void main() {
     VolumeRecord v = VolumesRef(params.volumes).volumes[params.volume];
     uint cell = params.firstCell + gl_GlobalInvocationID.x;
-    if (cell >= v.macroX * v.macroY * v.macroZ) return;
+    if (cell >= params.gridX * params.gridY * params.gridZ) return;
     VolumeDataRef data = VolumeDataRef(params.volumeData), voxels = VolumeDataRef(v.voxels);
-    uvec3 macro = uvec3(cell % v.macroX, (cell / v.macroX) % v.macroY, cell / (v.macroX * v.macroY));
+    uvec3 macro = uvec3(cell % params.gridX, (cell / params.gridX) % params.gridY, cell / (params.gridX * params.gridY));
     uvec3 extent = uvec3(v.dimX - 1u, v.dimY - 1u, v.dimZ - 1u);
-    uvec3 first = macro * VOLUME_MACROCELL;
-    uvec3 last = min(first + VOLUME_MACROCELL, extent);
+    if (params.childSums != 0ul) {
+        uvec3 fineDims = max((extent + VOLUME_MACROCELL_FINE - 1u) / VOLUME_MACROCELL_FINE, uvec3(1u));
+        uint ratio = VOLUME_MACROCELL_COARSE / VOLUME_MACROCELL_FINE;
+        uvec3 from = macro * ratio, to = min(from + ratio, fineDims);
+        float sum = 0.0;
+        for (uint z = from.z; z < to.z; ++z)
+            for (uint y = from.y; y < to.y; ++y)
+                for (uint x = from.x; x < to.x; ++x) sum += data.values[v.fineOffset + (z * fineDims.y + y) * fineDims.x + x];
+        SumsRef(params.childSums).values[cell] = sum;
+        return;
+    }
+    uvec3 first = macro * params.macrocell;
+    uvec3 last = min(first + params.macrocell, extent);
     float lowest = 3.402823e38, highest = -3.402823e38;
     for (uint z = first.z; z <= last.z; ++z)
         for (uint y = first.y; y <= last.y; ++y) {
@@ -56,5 +70,5 @@ void main() {
     // iterations, and a table may be longer than that.
     for (uint chunk = uint(ceil(p0)); float(chunk) < p1; chunk += 32768u)
         for (uint e = chunk; e < chunk + 32768u && float(e) < p1; ++e) majorant = max(majorant, tableExtinction(v, data, e));
-    data.values[v.majorantOffset + cell] = majorant * (1.0 + 1e-5);
+    data.values[params.gridOffset + cell] = majorant * (1.0 + 1e-5);
 }

@@ -530,7 +530,9 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.volumes = upload(volumes_, volumes.records, "scene volumes");
     desc.volumeData = upload(volumeData_, volumes.data, "scene volume data");
     desc.volumeCount = static_cast<uint32_t>(volumes.records.size());
-    report_.volumeMajorantSeconds = buildMajorantsOnDevice(context, desc.volumes, desc.volumeData, volumes.records);
+    const MajorantGrids grids = buildMajorantsOnDevice(context, volumes_, volumeData_, volumes.records);
+    report_.volumeMajorantSeconds = grids.seconds;
+    report_.volumesOnFineGrid = grids.fineVolumes;
     desc.instanceCount = instanceCount_;
     desc.lightCount = lightCount_;
     desc.materialCount = static_cast<uint32_t>(shading.materials.size());

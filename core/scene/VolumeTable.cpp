@@ -56,6 +56,10 @@ size_t transferTableSize(const Volume& volume) {
     return std::max<size_t>({kMinTransferEntries, volume.colors.size(), volume.opacities.size()});
 }
 
+glm::uvec3 macrocellsPerAxis(glm::uvec3 dims, uint32_t macrocell) {
+    return glm::max((dims - 1u + macrocell - 1u) / macrocell, glm::uvec3(1u));
+}
+
 VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
     VolumeTable table;
     for (size_t index = 0; index < volumes.size(); ++index) {
@@ -68,9 +72,10 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         // The kernels index the one float array with 32-bit offsets: a volume that would reach past them is
         // skipped (the majorants would otherwise be written over another volume's data).
         const size_t entries = transferTableSize(v);
-        const glm::uvec3 macroCells =
-            glm::max((v.dims - 1u + gpu::VOLUME_MACROCELL - 1u) / gpu::VOLUME_MACROCELL, glm::uvec3(1u));
-        const uint64_t floatsNeeded = 4 * uint64_t(entries) + uint64_t(macroCells.x) * macroCells.y * macroCells.z;
+        const glm::uvec3 macroCells = macrocellsPerAxis(v.dims, gpu::VOLUME_MACROCELL_COARSE);
+        const glm::uvec3 fineCells = macrocellsPerAxis(v.dims, gpu::VOLUME_MACROCELL_FINE);
+        const uint64_t floatsNeeded = 4 * uint64_t(entries) + uint64_t(macroCells.x) * macroCells.y * macroCells.z +
+                                      uint64_t(fineCells.x) * fineCells.y * fineCells.z;
         if (table.data.size() + floatsNeeded > uint64_t(UINT32_MAX)) {
             table.messages.push_back("volume " + std::to_string(index) + ": the scene's volumes hold more than 2^32 floats "
                                      "with this one; skipped");
@@ -92,6 +97,7 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         record.filterMode = v.linearFilter ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
         record.objectId = v.objectId;
         record.instanceId = v.instanceId;
+        record.macrocell = gpu::VOLUME_MACROCELL_COARSE;
         record.macroX = macroCells.x;
         record.macroY = macroCells.y;
         record.macroZ = macroCells.z;
@@ -107,10 +113,12 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
             table.data.insert(table.data.end(), {albedo.r, albedo.g, albedo.b, extinction});
         }
 
-        // Majorants: one float per macrocell, filled on the device once the data is uploaded
-        // (VolumeMajorants.h).
+        // Majorants: one float per macrocell of the coarse grid, then of the fine grid, filled on the device
+        // once the data is uploaded, which also chooses the grid (VolumeMajorants.h).
         record.majorantOffset = static_cast<uint32_t>(table.data.size());
         table.data.resize(table.data.size() + size_t(macroCells.x) * macroCells.y * macroCells.z, 0.0f);
+        record.fineOffset = static_cast<uint32_t>(table.data.size());
+        table.data.resize(table.data.size() + size_t(fineCells.x) * fineCells.y * fineCells.z, 0.0f);
 
         // World bounds: the grid box's corners.
         const glm::vec3 hiCorner = v.origin + glm::vec3(extent) * v.spacing;

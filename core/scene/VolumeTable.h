@@ -26,6 +26,9 @@ struct VolumeTable {
 
 VolumeTable buildVolumeTable(const std::vector<Volume>& volumes);
 
+// Macrocells per axis of a grid of `macrocell`^3 cells over a field of `dims` voxels (dims - 1 cells).
+glm::uvec3 macrocellsPerAxis(glm::uvec3 dims, uint32_t macrocell);
+
 // Entries of the transfer-function table for `volume`: the longer of its colour and opacity arrays, at
 // least kMinTransferEntries (the arrays are resampled linearly). The colour and the opacity are linear
 // between array entries, as the other ANARI devices take them; extinction -ln(1 - opacity) / unitDistance

@@ -1,8 +1,9 @@
 // Volumes as the kernels read them: a structured-regular scalar field (voxel values as float32) seen
 // through a 1D transfer function, placed in the world by an affine transform. The transfer function is a
 // table of (linear RGB albedo, extinction) over the value range; a macrocell grid holds, per block of
-// VOLUME_MACROCELL^3 cells, the largest extinction the field can reach there (the majorant of delta and
-// ratio tracking). Built by core/scene/VolumeTable.cpp.
+// macrocell^3 cells, the largest extinction the field can reach there (the majorant of delta and ratio
+// tracking). Built by core/scene/VolumeTable.cpp; the grid's size is chosen per volume by
+// core/scene/VolumeMajorants.cpp.
 #ifndef RIPPLE_SHARED_VOLUME_H
 #define RIPPLE_SHARED_VOLUME_H
 #include "common.h"
@@ -10,7 +11,11 @@
 
 RIPPLE_GPU_BEGIN
 
-RIPPLE_CONST uint VOLUME_MACROCELL = 8u;      // cells per macrocell edge
+// Cells per macrocell edge: the coarse grid, or the fine one where it bounds the extinction at least
+// VOLUME_FINE_GAIN times as tightly overall (a thin feature of the transfer function, as a shell).
+RIPPLE_CONST uint VOLUME_MACROCELL_COARSE = 8u;
+RIPPLE_CONST uint VOLUME_MACROCELL_FINE = 2u;
+RIPPLE_CONST float VOLUME_FINE_GAIN = 2.0f;
 RIPPLE_CONST uint VOLUME_FILTER_NEAREST = 0u;
 RIPPLE_CONST uint VOLUME_FILTER_LINEAR = 1u;
 // Opacity o over the transfer function's unitDistance d means transmittance 1 - o over d: extinction
@@ -25,27 +30,35 @@ struct VolumeRecord {
     uint dimY;
     uint dimZ;
     uint filterMode;       // VOLUME_FILTER_*
-    uint macroX;           // macrocells per axis
+    uint macroX;           // macrocells per axis (of the grid in use)
     uint macroY;
     uint macroZ;
     uint tableSize;        // entries of the transfer function table (>= 2)
-    uint majorantOffset;   // first float of its macrocell majorants in SceneDesc.volumeData (world-space
+    uint majorantOffset;   // first float of the macrocell majorants in use in SceneDesc.volumeData (world-space
                            // extinction per unit length)
     uint tableOffset;      // first float of its table there: tableSize entries of 4 floats (albedo rgb, extinction)
     uint objectId;         // the application's ids for the objectId and instanceId channels (~0u: unset)
     uint instanceId;
     uint64_t voxels;       // device address of the field's float values (a buffer of its own, which a later
                            // scene reuses while the field is unchanged)
-    uint pad0;
-    uint pad1;
+    uint macrocell;        // cells per macrocell edge of the grid in use: VOLUME_MACROCELL_COARSE or _FINE
+    uint fineOffset;       // first float of the fine grid (the coarse one is at majorantOffset until chosen)
 };
 
-// Push constants of volume_majorants.comp: the majorants of macrocells firstCell.. of one volume.
+// Push constants of volume_majorants.comp: the majorants of macrocells firstCell.. of one grid of one
+// volume, or (childSums set) for each coarse macrocell the sum of its fine macrocells' majorants.
 struct MajorantParams {
     uint64_t volumes;      // VolumeRecord[]
     uint64_t volumeData;   // the floats VolumeRecord's offsets index (SceneDesc.volumeData)
+    uint64_t childSums;    // 0, or float per coarse macrocell: the sums (the fine grid already built)
     uint volume;           // which record
     uint firstCell;        // macrocell of invocation 0 (a grid may need more than one dispatch)
+    uint macrocell;        // cells per macrocell edge of this grid
+    uint gridOffset;       // its first float in volumeData
+    uint gridX;            // its macrocells per axis
+    uint gridY;
+    uint gridZ;
+    uint pad0;
 };
 
 // Marches that spend their step budget (pt_volume, pt_shadow_volume) are parked with their state and

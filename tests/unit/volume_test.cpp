@@ -207,14 +207,15 @@ TEST_CASE("volumes: single scattering under the Henyey-Greenstein phase function
 }
 
 TEST_CASE("volumes: extinction from 1e-6 to 1e6 in one macrocell completes without flagged rays and stays unbiased") {
-    // One macrocell (9^3 voxels) of depth 0.5 whose extinction is 1e-6 everywhere except next to one corner
-    // voxel, where it reaches 1e6: its majorant is 1e6, so a ray through the thin part makes about 5e5 null
+    // One macrocell (3^3 voxels: one macrocell of the coarse grid and of the fine one, so neither can
+    // separate the extremes) of depth 0.5 whose extinction is 1e-6 everywhere except next to one corner voxel,
+    // where it reaches 1e6: its majorant is 1e6, so a ray through the thin part makes about 5e5 null
     // collisions (lavapipe stops a single loop at 65,535 iterations; the march's nested loops allow about a
     // million steps). Rays far from the dense corner must see transmittance exp(-1e-6 * 0.5), i.e. 1.
     test::ValidationGuard guard;
-    core::Volume v = boxVolume(0.5f, 0.0f, 1.0f, false, glm::vec3(0.0f));
+    core::Volume v = boxVolume(0.5f, 0.0f, 1.0f, false, glm::vec3(0.0f), 3);
     std::vector<float> values(v.values->size(), 0.0f);
-    values.back() = 1.0f;  // voxel (8, 8, 8): x = y = 1, z = 0.5
+    values.back() = 1.0f;  // voxel (2, 2, 2): x = y = 1, z = 0.5; its cells reach down to x = y = 0
     v.values = std::make_shared<const std::vector<float>>(std::move(values));
     // Opacity o over unitDistance u gives extinction -ln(1 - o) / u: o = 0.999999 (the cap) over
     // u = 13.8155 / 1e6 is 1e6; the low end is 1e-6 per unit.
@@ -345,11 +346,11 @@ TEST_CASE("volumes: Henyey-Greenstein sampling agrees with its evaluation: phase
     }
 }
 
-// The majorant grid the device computes (volume_majorants.comp) against a reference computed here from the
-// same table: each macrocell's largest table extinction over the range of its voxels (upper planes
-// included), raised by the kernel's 1e-5. Odd sizes (partial macrocells), a second volume with nearest
-// filtering, a constant field and an empty value range, and a table longer than the default.
-TEST_CASE("volumes: the device's majorant grid equals a reference computed on the host") {
+// The majorant grids the device computes (volume_majorants.comp), coarse and fine, against a reference
+// computed here from the same table: each macrocell's largest table extinction over the range of its voxels
+// (upper planes included), raised by the kernel's 1e-5. Odd sizes (partial macrocells), a second volume
+// with nearest filtering, a constant field and an empty value range, and a table longer than the default.
+TEST_CASE("volumes: the device's majorant grids equal a reference computed on the host") {
     test::ValidationGuard guard;
     core::SceneDescription description;
     core::Volume a;
@@ -385,31 +386,74 @@ TEST_CASE("volumes: the device's majorant grid equals a reference computed on th
             return extinction(i) * (1.0f - w) + extinction(i + 1) * w;
         };
         const float top = float(r.tableSize - 1), scale = top * r.valueRange.y;
-        for (uint32_t mz = 0; mz < r.macroZ; ++mz)
-            for (uint32_t my = 0; my < r.macroY; ++my)
-                for (uint32_t mx = 0; mx < r.macroX; ++mx) {
-                    const glm::uvec3 first = glm::uvec3(mx, my, mz) * gpu::VOLUME_MACROCELL;
-                    const glm::uvec3 last = glm::min(first + gpu::VOLUME_MACROCELL, dims - 1u);
-                    float lowest = 1e30f, highest = -1e30f;
-                    for (uint32_t z = first.z; z <= last.z; ++z)
-                        for (uint32_t y = first.y; y <= last.y; ++y)
-                            for (uint32_t x = first.x; x <= last.x; ++x) {
-                                const float value = (*description.volumes[k].values)[(size_t(z) * dims.y + y) * dims.x + x];
-                                lowest = std::min(lowest, value);
-                                highest = std::max(highest, value);
-                            }
-                    const float p0 = std::clamp((lowest - r.valueRange.x) * scale, 0.0f, top);
-                    const float p1 = std::clamp((highest - r.valueRange.x) * scale, 0.0f, top);
-                    float expected = std::max(extinctionAt(p0), extinctionAt(p1));
-                    for (size_t e = size_t(std::ceil(p0)); float(e) < p1; ++e) expected = std::max(expected, extinction(e));
-                    const size_t cell = (size_t(mz) * r.macroY + my) * r.macroX + mx;
-                    CAPTURE(k);
-                    CAPTURE(cell);
-                    CHECK(device[r.majorantOffset + cell] == doctest::Approx(expected * (1.0f + 1e-5f)).epsilon(1e-6));
-                    ++compared;
-                }
+        for (const auto& [macrocell, offset] : {std::pair(gpu::VOLUME_MACROCELL_COARSE, r.majorantOffset),
+                                               std::pair(gpu::VOLUME_MACROCELL_FINE, r.fineOffset)}) {
+            const glm::uvec3 cells = core::macrocellsPerAxis(dims, macrocell);
+            for (uint32_t mz = 0; mz < cells.z; ++mz)
+                for (uint32_t my = 0; my < cells.y; ++my)
+                    for (uint32_t mx = 0; mx < cells.x; ++mx) {
+                        const glm::uvec3 first = glm::uvec3(mx, my, mz) * macrocell;
+                        const glm::uvec3 last = glm::min(first + macrocell, dims - 1u);
+                        float lowest = 1e30f, highest = -1e30f;
+                        for (uint32_t z = first.z; z <= last.z; ++z)
+                            for (uint32_t y = first.y; y <= last.y; ++y)
+                                for (uint32_t x = first.x; x <= last.x; ++x) {
+                                    const float value = (*description.volumes[k].values)[(size_t(z) * dims.y + y) * dims.x + x];
+                                    lowest = std::min(lowest, value);
+                                    highest = std::max(highest, value);
+                                }
+                        const float p0 = std::clamp((lowest - r.valueRange.x) * scale, 0.0f, top);
+                        const float p1 = std::clamp((highest - r.valueRange.x) * scale, 0.0f, top);
+                        float expected = std::max(extinctionAt(p0), extinctionAt(p1));
+                        for (size_t e = size_t(std::ceil(p0)); float(e) < p1; ++e) expected = std::max(expected, extinction(e));
+                        const size_t cell = (size_t(mz) * cells.y + my) * cells.x + mx;
+                        CAPTURE(k);
+                        CAPTURE(macrocell);
+                        CAPTURE(cell);
+                        CHECK(device[offset + cell] == doctest::Approx(expected * (1.0f + 1e-5f)).epsilon(1e-6));
+                        ++compared;
+                    }
+        }
     }
-    CHECK(compared == 2 * 2 * 2 + 1);  // 12 x 9 x 16 cells in 8^3 macrocells, and one
+    // 12 x 9 x 16 cells in 8^3 macrocells and in 2^3 ones, and 8^3 cells in one and in 4^3.
+    CHECK(compared == 2 * 2 * 2 + 1 + 6 * 5 * 8 + 4 * 4 * 4);
+}
+
+// A thin shell: the field rises linearly along z and the transfer function is opaque only in a band of
+// 17 of its 257 entries around 0.5. The coarse grid gives the band's peak to the half of the depth whose
+// macrocells reach into it, the fine grid to an eighth, so the scene takes the fine grid; a smooth ramp
+// keeps the coarse one. Through the shell the transmittance is exp(-depth * mean extinction), the mean
+// of the table's piecewise-linear extinction over the value range; and null collisions stay below twice the
+// real ones (about 6.5 times over the coarse grid).
+TEST_CASE("volumes: a thin shell is tracked over the fine macrocell grid, and its transmittance stays exact") {
+    test::ValidationGuard guard;
+    constexpr uint32_t n = 33;
+    core::Volume shell = boxVolume(1.0f, 0.0f, 0.1f, true, glm::vec3(0.0f), n);
+    shell.opacities.assign(257, 0.0f);
+    for (size_t e = 120; e <= 136; ++e) shell.opacities[e] = 1.0f - std::exp(-1.506f);
+    double extinctionSum = 0.0;
+    for (const float o : shell.opacities) extinctionSum += -std::log1p(-double(o)) / shell.unitDistance;
+    const double expected = std::exp(-extinctionSum / 256.0);  // depth 1; the table's ends are 0
+
+    core::SceneDescription scene;
+    scene.volumes.push_back(shell);
+    CHECK(core::Scene(test::testContext(), scene).report().volumesOnFineGrid == 1);
+    core::SceneDescription smooth;
+    smooth.volumes.push_back(boxVolume(1.0f, 1.0f - std::exp(-1.0f), 1.0f, true, glm::vec3(0.0f), n));
+    CHECK(core::Scene(test::testContext(), smooth).report().volumesOnFineGrid == 0);
+
+    core::RenderSettings settings;
+    settings.background = glm::vec4(1.0f);
+    settings.maxPathLength = 1;
+    settings.pixelSamples = 64;
+    const test::Rendered image = test::render(scene, test::lookingDown(2.0f, 1.8f), settings, {32, 32});
+    const Mean m = meanRed(image);
+    MESSAGE("shell: transmittance " << m.mean << " +- " << m.standardError << ", expected " << expected << "; null "
+                                    << image.stats.nullCollisions << ", real " << image.stats.realCollisions);
+    CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
+    CHECK(image.stats.flaggedRays == 0);
+    CHECK(image.stats.realCollisions > 0);
+    CHECK(image.stats.nullCollisions < 2 * image.stats.realCollisions);
 }
 
 // A transfer-function edit (same voxels, another opacity): the scene built with the previous one as
