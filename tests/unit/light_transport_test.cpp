@@ -112,10 +112,10 @@ TEST_CASE("light transport: white furnace per material and roughness") {
         cases.push_back({"metal", physicallyBased(1.0f, roughness)});
         cases.push_back({"dielectric", physicallyBased(0.0f, roughness)});
         // Rough glass keeps single-scattering losses (refractions leaving on the wrong side of the surface
-        // end the path): 0.93 at roughness 0.6, 0.78 at 1, and at 0.3 a mean of 0.987 over seeds 0-5
-        // (0.980-0.995 each; this test's seed 0 gave 0.987, inside the 1% only by its 4 standard errors):
-        // tested where it is within 1%, and at 0.3 below.
-        if (roughness <= 0.05f) {
+        // end the path): 0.93 at roughness 0.6, 0.78 at 1. At 0.3 it is 0.987 (the mean of seeds 0-5, each
+        // 0.980-0.995): outside the 1%, inside the test's 4 standard errors (0.0145 on seed 0), so a change of
+        // sampling alone can make it fail here (docs/sampling.md).
+        if (roughness <= 0.3f) {
             core::Material glass = physicallyBased(0.0f, roughness);
             glass.transmission = 1.0f;
             cases.push_back({"glass", glass});
@@ -134,13 +134,6 @@ TEST_CASE("light transport: white furnace per material and roughness") {
         CHECK(std::abs(m.mean - 1.0) <= std::max(0.01, 4.0 * m.standardError));
         CHECK(std::abs(m.mean - 1.0) <= 0.01 + 4.0 * m.standardError);
     }
-    // Glass of roughness 0.3: its single-scattering loss (1.3%) stays under 3%, and it creates no energy.
-    core::Material glass = physicallyBased(0.0f, 0.3f);
-    glass.transmission = 1.0f;
-    const MeanAndError m = surfaceMean(test::render(oneSphere(glass), camera, settings, {24, 24}));
-    MESSAGE("glass roughness 0.3: " << m.mean << " +- " << m.standardError);
-    CHECK(m.mean >= 0.97 - 4.0 * m.standardError);
-    CHECK(m.mean <= 1.0 + 4.0 * m.standardError);
 }
 
 // A spot light of intensity I at height h pointing straight down, openingAngle 2 * 0.6, falloffAngle
