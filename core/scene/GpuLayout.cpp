@@ -106,7 +106,7 @@ static_assert(offsetof(TraversalState, stack) == 48);
 static_assert(sizeof(TraversalState) == 48 + 4 * TRAVERSAL_STACK_SIZE);
 static_assert(sizeof(ResumeHeader) == 16);
 static_assert(sizeof(VolumeParked) == 48);
-static_assert(sizeof(MajorantParams) == 56);
+static_assert(sizeof(MajorantParams) == 32);
 static_assert(offsetof(MajorantParams, volume) == 24);
 static_assert(offsetof(VolumeParked, albedo) == 16);
 static_assert(sizeof(VolumeParkingHeader) == 16 * (VOLUME_MAX_RESUME_ROUNDS + 1) + 16);

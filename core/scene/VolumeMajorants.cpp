@@ -1,4 +1,5 @@
-// Dispatches volume_majorants.comp over each volume's macrocells and chooses the grid (VolumeMajorants.h).
+// Dispatches volume_majorants.comp over each volume's coarse macrocells and chooses the grid
+// (VolumeMajorants.h).
 #include "core/scene/VolumeMajorants.h"
 
 #include "core/scene/VolumeTable.h"
@@ -32,26 +33,18 @@ MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& vol
         sums.emplace_back(context, cellCount(macrocellsPerAxis(dimsOf(r), gpu::VOLUME_MACROCELL_COARSE)) * sizeof(float),
                           "volume fine majorant sums");
     context.submitAndWait([&](VkCommandBuffer cmd) {
-        const auto grid = [&](uint32_t volume, uint32_t macrocell, uint32_t offset, VkDeviceAddress childSums) {
-            const glm::uvec3 cells = macrocellsPerAxis(dimsOf(records[volume]), macrocell);
-            for (uint64_t first = 0; first < cellCount(cells); first += cellsPerDispatch) {
-                const gpu::MajorantParams params{volumes.address(), volumeData.address(), childSums, volume,
-                                                 static_cast<uint32_t>(first), macrocell, offset, cells.x, cells.y,
-                                                 cells.z, 0};
-                pipeline.pushConstants(cmd, &params, sizeof(params));
-                const uint64_t count = std::min(cellsPerDispatch, cellCount(cells) - first);
-                vkCmdDispatch(cmd, static_cast<uint32_t>((count + kWorkgroup - 1) / kWorkgroup), 1, 1);
-            }
-        };
         vk::computeBarrier(cmd);  // after the uploads
         pipeline.bind(cmd);
         for (uint32_t i = 0; i < records.size(); ++i) {
-            grid(i, gpu::VOLUME_MACROCELL_COARSE, records[i].majorantOffset, 0);
-            grid(i, gpu::VOLUME_MACROCELL_FINE, records[i].fineOffset, 0);
+            const uint64_t cells = cellCount(macrocellsPerAxis(dimsOf(records[i]), gpu::VOLUME_MACROCELL_COARSE));
+            for (uint64_t first = 0; first < cells; first += cellsPerDispatch) {
+                const gpu::MajorantParams params{volumes.address(), volumeData.address(), sums[i].address(), i,
+                                                 static_cast<uint32_t>(first)};
+                pipeline.pushConstants(cmd, &params, sizeof(params));
+                const uint64_t count = std::min(cellsPerDispatch, cells - first);
+                vkCmdDispatch(cmd, static_cast<uint32_t>((count + kWorkgroup - 1) / kWorkgroup), 1, 1);
+            }
         }
-        vk::computeBarrier(cmd);  // the fine grids, before they are summed
-        for (uint32_t i = 0; i < records.size(); ++i)
-            grid(i, gpu::VOLUME_MACROCELL_COARSE, 0, sums[i].address());
     });
 
     bool changed = false;

@@ -45,20 +45,14 @@ struct VolumeRecord {
     uint fineOffset;       // first float of the fine grid (the coarse one is at majorantOffset until chosen)
 };
 
-// Push constants of volume_majorants.comp: the majorants of macrocells firstCell.. of one grid of one
-// volume, or (childSums set) for each coarse macrocell the sum of its fine macrocells' majorants.
+// Push constants of volume_majorants.comp: both grids' majorants of coarse macrocells firstCell.. of one
+// volume (at the record's majorantOffset and fineOffset), and the sums of the fine ones under each.
 struct MajorantParams {
     uint64_t volumes;      // VolumeRecord[]
     uint64_t volumeData;   // the floats VolumeRecord's offsets index (SceneDesc.volumeData)
-    uint64_t childSums;    // 0, or float per coarse macrocell: the sums (the fine grid already built)
+    uint64_t fineSums;     // float per coarse macrocell
     uint volume;           // which record
-    uint firstCell;        // macrocell of invocation 0 (a grid may need more than one dispatch)
-    uint macrocell;        // cells per macrocell edge of this grid
-    uint gridOffset;       // its first float in volumeData
-    uint gridX;            // its macrocells per axis
-    uint gridY;
-    uint gridZ;
-    uint pad0;
+    uint firstCell;        // coarse macrocell of invocation 0 (a grid may need more than one dispatch)
 };
 
 // Marches that spend their step budget (pt_volume, pt_shadow_volume) are parked with their state and
