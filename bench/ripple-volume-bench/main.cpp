@@ -1,11 +1,13 @@
 // ripple-volume-bench: what volumes and iso-surfaces cost. A Marschner-Lobb field (Marschner & Lobb 1994,
 // alpha 0.25, f_M 6) quantised to 8 bits on an N^3 grid (default 256^3, as a uint8 file would give it) is
-// rendered three ways under a sun and a sky: as a thin scattering shell around the value 0.5 (the demo's
-// transfer function), as a smooth medium (opacity rising with the value), and as the iso-surface at 0.5.
+// rendered four ways under a sun and a sky: as a thin scattering shell around the value 0.5 (the demo's
+// transfer function), as a smooth medium (opacity rising with the value), as a stiff medium (extinction
+// from 1e-6 to 1e6 per unit over the values), and as the iso-surface at 0.5.
 // Per case it prints the scene build (the majorant grid for volumes, the BLAS over crossed cells for the
 // iso-surface), bytes per voxel on the GPU, the time of a 512^2 16-spp render (one sample per frame, as
 // ripple-render renders), free-flight samples (tentative collisions of delta tracking) per CPU-second, the
-// null/real collision ratio, and the GPU time per frame of the main stages; --json writes the same. Core
+// null/real collision ratio, the GPU time per frame of the main stages and the majorant grid each volume
+// was given (core/scene/VolumeMajorants.h); --json writes the same. Core
 // only: no ANARI, no files.
 #include "bench/ripple-bench/Timing.h"
 #include "core/render/PathTracer.h"
@@ -89,6 +91,19 @@ std::vector<Case> cases(uint32_t n) {
         core::SceneDescription scene = litScene();
         scene.volumes.push_back(volumeOf(n, values, {0.0f, 0.05f, 0.2f, 0.5f}, 0.05f));
         out.push_back({"volume, smooth", std::move(scene)});
+    }
+    {
+        // Stiff: extinction from 1e-6 to 1e6 per unit, log-spaced over the value range (the opacity cap
+        // 0.999999 over unitDistance 13.8e-6 is 1e6 per unit).
+        core::SceneDescription scene = litScene();
+        const float unitDistance = float(-std::log(1e-6) / 1e6);
+        std::vector<float> stiff(256);
+        for (size_t e = 0; e < stiff.size(); ++e) {
+            const double extinction = std::pow(10.0, -6.0 + 12.0 * double(e) / double(stiff.size() - 1));
+            stiff[e] = float(-std::expm1(-extinction * unitDistance));
+        }
+        scene.volumes.push_back(volumeOf(n, values, stiff, unitDistance));
+        out.push_back({"volume, stiff", std::move(scene)});
     }
     {
         core::SceneDescription scene = litScene();
@@ -193,6 +208,10 @@ int main(int argc, char** argv) {
                 if (ms >= 0.05 * frameSeconds * 1e3) std::printf(" %s %.1f", core::stageName(core::Stage(i)), ms);
             }
             std::printf("\n");
+            const bool fineGrid = scene.report().volumesOnFineGrid > 0;
+            if (!c.scene.volumes.empty())
+                std::printf("  majorant grid: %s (macrocells of %u^3 cells)\n", fineGrid ? "fine" : "coarse",
+                            fineGrid ? gpu::VOLUME_MACROCELL_FINE : gpu::VOLUME_MACROCELL_COARSE);
             if (total.parkedMarches > 0)
                 std::printf("  %llu marches spent a dispatch's step budget and were resumed\n",
                             (unsigned long long)total.parkedMarches);
@@ -217,6 +236,7 @@ int main(int argc, char** argv) {
                                {"freeFlightPerCpuSecond", perCpu * 1e6}, {"nullPerReal", ratio},
                                {"flaggedRays", total.flaggedRays}, {"parkedMarches", total.parkedMarches},
                                {"stageMillisecondsPerFrame", stageMilliseconds},
+                               {"fineMajorantGrid", fineGrid},
                                {"transferFunctionEditSeconds", editSeconds}});
         }
         if (!jsonFile.empty()) {
