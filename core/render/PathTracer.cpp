@@ -25,6 +25,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <future>
 #include <optional>
 #include <stdexcept>
@@ -91,6 +92,7 @@ struct PathTracer::Impl {
     // (lavapipe compiles each with LLVM: 0.1 s together on the main job); kernelsBuilt() waits for them.
     // Last member, so that it is joined before the pipelines it writes are destroyed.
     std::optional<uint32_t> kernelFeatures;  // what selectKernels last selected for
+    std::exception_ptr kernelFailure;        // a fixed kernel's build failed
     std::future<void> fixedKernels;
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
@@ -119,9 +121,17 @@ struct PathTracer::Impl {
         return vk::ComputePipeline(context, spirv, name, static_cast<uint32_t>(sizeof(gpu::StageParams)), constants);
     }
 
-    // Before the first use of a fixed kernel; rethrows a failure to build one.
+    // Before any use of a fixed kernel; rethrows a failure to build one, at every call (the frame that
+    // reported it may be followed by others on the same tracer).
     void kernelsBuilt() {
-        if (fixedKernels.valid()) fixedKernels.get();
+        if (fixedKernels.valid()) {
+            try {
+                fixedKernels.get();
+            } catch (...) {
+                kernelFailure = std::current_exception();
+            }
+        }
+        if (kernelFailure) std::rethrow_exception(kernelFailure);
     }
 
     // The kernels the FeatureSet `bits` specialise, and the volume kernels when it has volumes, built where missing:

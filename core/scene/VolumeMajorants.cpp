@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 namespace ripple::core {
 
@@ -21,6 +22,9 @@ MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& vol
                                      std::vector<gpu::VolumeRecord>& records) {
     MajorantGrids result;
     if (records.empty()) return result;
+    for (const gpu::VolumeRecord& r : records)  // the kernel writes the coarse grid at majorantOffset
+        if (r.macrocell != gpu::VOLUME_MACROCELL_COARSE)
+            throw std::logic_error("buildMajorantsOnDevice: a volume record whose grid was already chosen");
     const auto start = std::chrono::steady_clock::now();
     constexpr uint32_t kWorkgroup = 64;  // volume_majorants.comp's local_size_x
     const vk::ComputePipeline pipeline(context, shaders::volume_majorants, "volume_majorants",

@@ -107,11 +107,18 @@ VkBool32 VKAPI_PTR Context::onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEX
                                            void* user) {
     auto* self = static_cast<Context*>(user);
     if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+        const std::string message = data->pMessage ? data->pMessage : "";
+        std::fprintf(stderr, "ripple: Vulkan validation: %s\n", message.c_str());
+        std::lock_guard lock(self->validationMutex_);
+        self->lastValidationMessage_ = message;
         self->validationMessages_++;
-        self->lastValidationMessage_ = data->pMessage ? data->pMessage : "";
-        std::fprintf(stderr, "ripple: Vulkan validation: %s\n", self->lastValidationMessage_.c_str());
     }
     return VK_FALSE;
+}
+
+std::string Context::lastValidationMessage() const {
+    std::lock_guard lock(validationMutex_);
+    return lastValidationMessage_;
 }
 
 Context::Context(const ContextOptions& options) {

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -74,7 +75,7 @@ public:
 
     // Validation messages seen so far (warnings and errors); tests require zero.
     uint64_t validationMessageCount() const { return validationMessages_.load(); }
-    const std::string& lastValidationMessage() const { return lastValidationMessage_; }
+    std::string lastValidationMessage() const;
 
 private:
     static VkBool32 VKAPI_PTR onDebugMessage(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
@@ -104,7 +105,8 @@ private:
     AccelerationStructureFunctions asFunctions_;
     VkDeviceSize scratchAlignment_ = 256;
     std::atomic<uint64_t> validationMessages_{0};
-    std::string lastValidationMessage_;
+    mutable std::mutex validationMutex_;  // the callback runs on whichever thread made the call (pipelines
+    std::string lastValidationMessage_;   // are built on several at once)
 };
 
 }  // namespace ripple::vk
