@@ -9,7 +9,7 @@
 // Energy: single-scattering GGX loses energy at high roughness; the specular lobes are scaled by
 // 1 + F0 (1 - E) / E (Turquin, "Practical multiple scattering compensation for microfacet models", 2019),
 // and each layer below passes on exactly 1 - (the directional albedo of the layers above), read from
-// tables of E(mu, alpha) computed on the host (core/scene/BsdfTables.h). So a white material reflects all
+// tables of E(mu, alpha) integrated at build time (core/scene/BsdfTables.h). So a white material reflects all
 // it receives at any roughness (the white furnace test). The transmission lobe's value is its weight
 // times its sampling density, so it conserves energy exactly too. GGX lobes are sampled by their visible
 // normals (Heitz, JCGT 2018); a lobe is picked in proportion to its albedo and the lobes combined in one

@@ -1,6 +1,6 @@
 // Directional albedo tables of the GGX lobe that shaders/bsdf.glsl reads to conserve energy: E(mu, alpha)
 // with F = 1, and W(mu, alpha) weighted by Schlick's (1 - v.h)^5, so a lobe with Schlick F0 reflects
-// F0 (E - W) + W of what arrives from mu. Computed once per process, the same on every machine.
+// F0 (E - W) + W of what arrives from mu. Integrated once, at build time (BsdfTablesIntegrate.cpp).
 #pragma once
 
 #include <cstdint>
