@@ -88,11 +88,11 @@ struct PathTracer::Impl {
     VisitorTracer visitors;                                         // traces rays from other ranks
     StageProfile profile;                                           // GPU time per stage
     StageSeconds stageSeconds{};                                    // of the frame being rendered
+    std::optional<uint32_t> kernelFeatures;  // what selectKernels last selected for
+    std::exception_ptr kernelFailure;        // a fixed kernel's build failed
     // The kernels every frame runs compile on a thread of their own while the caller builds its scene
     // (lavapipe compiles each with LLVM: 0.1 s together on the main job); kernelsBuilt() waits for them.
     // Last member, so that it is joined before the pipelines it writes are destroyed.
-    std::optional<uint32_t> kernelFeatures;  // what selectKernels last selected for
-    std::exception_ptr kernelFailure;        // a fixed kernel's build failed
     std::future<void> fixedKernels;
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
@@ -134,8 +134,8 @@ struct PathTracer::Impl {
         if (kernelFailure) std::rethrow_exception(kernelFailure);
     }
 
-    // The kernels the FeatureSet `bits` specialise, and the volume kernels when it has volumes, built where missing:
-    // the trace kernels on a thread of their own while this one builds pt_surface (the largest).
+    // The kernels the FeatureSet `bits` specialise, and the volume kernels when it has volumes, built where
+    // missing: the trace kernels on a thread of their own while this one builds pt_surface (the largest).
     void selectKernels(uint32_t bits) {
         if (kernelFeatures == bits) return;
         auto traced = std::async(std::launch::async, [&] { trace.useFeatures(bits); });
