@@ -136,7 +136,7 @@ void Communicator::minMax(std::span<const uint64_t> values, std::span<uint64_t> 
 // Every rank's size on every rank (64-bit), their total checked alike on all; sets `counts` and `offsets`
 // as MPI ints.
 void Communicator::allgatherSizes(uint64_t mine, std::vector<int>& counts, std::vector<int>& offsets,
-                                                   const char* call) const {
+                                  const char* call) const {
     std::vector<uint64_t> sizes(static_cast<size_t>(size_));
     RIPPLE_MPI_CHECK(MPI_Allgather(&mine, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, handle_->comm));
     uint64_t total = 0;
@@ -165,7 +165,8 @@ uint64_t Communicator::exchangeCounts(std::span<const uint64_t> sendSizes, std::
         received += receiveSizes[r];
     }
     checkMessagesFit(max(std::max(sent, received)), call);
-    for (size_t r = 0, sendAt = 0, receiveAt = 0; r < ranks; sendAt += sendSizes[r], receiveAt += receiveSizes[r], ++r) {
+    for (size_t r = 0, sendAt = 0, receiveAt = 0; r < ranks;
+         sendAt += sendSizes[r], receiveAt += receiveSizes[r], ++r) {
         sendCounts[r] = int(sendSizes[r]);
         sendOffsets[r] = int(sendAt);
         receiveCounts[r] = int(receiveSizes[r]);
