@@ -255,7 +255,7 @@ void mergeParts(const std::vector<PartView>& sources, uint64_t first, uint64_t c
 
 // Front-to-back blend of one pixel's n >= 1 fragments, sorted by depth in place (stable: equal depths keep
 // rank order), written as 4 floats of premultiplied color at `rgba` and a float at `depth`.
-[[gnu::always_inline]] inline void blend(Fragment* pixel, size_t n, void* rgba, void* depth) {
+void blend(Fragment* pixel, size_t n, void* rgba, void* depth) {
     if (n == 1) {  // blending over nothing gives the fragment itself
         std::memcpy(rgba, pixel[0].rgba, 16);
         std::memcpy(depth, &pixel[0].depth, 4);

@@ -71,7 +71,7 @@ MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& vol
                     coarseTotal += double(coarse[cell]) * cellCount(under);
                     fineTotal += double(fineSums[cell]);
                 }
-        if (coarseTotal > 0.0 && fineTotal * gpu::VOLUME_FINE_GAIN <= coarseTotal) {
+        if (coarseTotal > 0.0 && fineTotal * kFineGridGain <= coarseTotal) {
             r.macrocell = gpu::VOLUME_MACROCELL_FINE;
             r.macroX = fineCells.x;
             r.macroY = fineCells.y;

@@ -17,12 +17,13 @@ struct MajorantGrids {
 };
 
 // Fills both majorant grids of every record in `volumeData` and chooses each volume's grid: the fine one
-// where its majorants, summed over its cells, are at most 1 / VOLUME_FINE_GAIN of the coarse majorants
+// where its majorants, summed over its cells, are at most 1 / kFineGridGain of the coarse majorants
 // over the same cells. A transfer function whose extinction is high in a narrow band of values (a thin
 // shell) gives coarse macrocells the band's peak wherever the band passes, so most of their tentative
 // collisions are null; a smooth one gains little from the finer grid and keeps the coarse one, whose
 // macrocells cost fewer crossings. The choice is written into `records`, which are uploaded again to
 // `volumes`. Waits for the device.
+inline constexpr double kFineGridGain = 2.0;
 MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& volumes, const vk::Buffer& volumeData,
                                      std::vector<gpu::VolumeRecord>& records);
 

@@ -11,11 +11,10 @@
 
 RIPPLE_GPU_BEGIN
 
-// Cells per macrocell edge: the coarse grid, or the fine one where it bounds the extinction at least
-// VOLUME_FINE_GAIN times as tightly overall (a thin feature of the transfer function, as a shell).
+// Cells per macrocell edge: the coarse grid, or the fine one where it bounds the extinction much more
+// tightly (core/scene/VolumeMajorants.h chooses).
 RIPPLE_CONST uint VOLUME_MACROCELL_COARSE = 8u;
 RIPPLE_CONST uint VOLUME_MACROCELL_FINE = 2u;
-RIPPLE_CONST float VOLUME_FINE_GAIN = 2.0f;
 RIPPLE_CONST uint VOLUME_FILTER_NEAREST = 0u;
 RIPPLE_CONST uint VOLUME_FILTER_LINEAR = 1u;
 // Opacity o over the transfer function's unitDistance d means transmittance 1 - o over d: extinction
