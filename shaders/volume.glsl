@@ -1,7 +1,8 @@
 // Volumes (shared/volume.h): the field and its transfer function at a point, and the two estimators that
 // march a ray through a volume's macrocell grid by a 3D DDA: delta tracking (where the ray first collides,
 // for free-flight sampling) and ratio tracking (its transmittance, for shadow rays). Both are unbiased for
-// any majorant that bounds the extinction, which the macrocells do. Every step of both counts against the
+// any majorant that bounds the extinction, which the macrocells do, and, in macrocells crossed cell by
+// cell, the bounds of the interpolant along the ray in each cell. Every step of both counts against the
 // invocation's step budget (lavapipe silently ends a loop after 65,535 iterations); a march that spends it
 // stops where it is and is parked for a resume round (VolumeParking below), never given a wrong answer.
 // Needs pt_common.glsl and rng.glsl.
@@ -80,7 +81,8 @@ float fieldValue(VolumeRecord v, VolumeDataRef data, vec3 g) {
 
 // (albedo rgb, extinction per world unit) of a field value, linearly interpolated in the table.
 vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
-    float x = clamp((value - v.valueRange.x) * v.valueRange.y, 0.0, 1.0) * float(v.tableSize - 1u);
+    float x = (value - v.valueRange.x) * v.valueRange.y;
+    x = (x >= 0.0 ? min(x, 1.0) : 0.0) * float(v.tableSize - 1u);  // a NaN value reads the first entry
     uint i0 = min(uint(x), v.tableSize - 2u);
     float w = x - float(i0);
     uint at = v.tableOffset + 4u * i0;
@@ -89,8 +91,68 @@ vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
     return mix(a, b, w);
 }
 
+// The largest extinction the table gives over voxel values [lowest, highest] (lowest <= highest), from the
+// range-maximum table after it (core/scene/VolumeTable.cpp): the entries around the range, so at least the
+// interpolated table's maximum there; raised by 1e-5 so that float rounding stays under it.
+float extinctionMax(VolumeRecord v, VolumeDataRef data, float lowest, float highest) {
+    float top = float(v.tableSize - 1u);
+    float scale = top * v.valueRange.y;
+    float p0 = (lowest - v.valueRange.x) * scale, p1 = (highest - v.valueRange.x) * scale;
+    // Clamped to the table; a NaN (from values near the float limit) widens the range to all of it.
+    p0 = p0 >= 0.0 ? min(p0, top) : 0.0;
+    p1 = p1 <= top ? max(p1, p0) : top;
+    uint first = uint(p0), last = uint(ceil(p1));
+    uint level = findMSB(last - first + 1u);
+    uint at = v.tableOffset + 4u * v.tableSize + level * v.tableSize;
+    return max(data.values[at + first], data.values[at + last + 1u - (1u << level)]) * (1.0 + 1e-5);
+}
+
+// The trilinear interpolant inside one cell along a ray segment [entry, exit] is a cubic in s = 0..1 over
+// the segment: its power coefficients (x + y s + z s^2 + w s^3), from its values at s = 0, 1/3, 2/3, 1.
+vec4 cellCubic(VolumeRecord v, VolumeDataRef data, ivec3 cell, vec3 o, vec3 d, float entry, float exit) {
+    uvec3 i0 = uvec3(cell), i1 = min(i0 + 1u, uvec3(v.dimX - 1u, v.dimY - 1u, v.dimZ - 1u));
+    vec4 below = vec4(voxel(v, data, uvec3(i0.x, i0.y, i0.z)), voxel(v, data, uvec3(i1.x, i0.y, i0.z)),
+                      voxel(v, data, uvec3(i0.x, i1.y, i0.z)), voxel(v, data, uvec3(i1.x, i1.y, i0.z)));
+    vec4 above = vec4(voxel(v, data, uvec3(i0.x, i0.y, i1.z)), voxel(v, data, uvec3(i1.x, i0.y, i1.z)),
+                      voxel(v, data, uvec3(i0.x, i1.y, i1.z)), voxel(v, data, uvec3(i1.x, i1.y, i1.z)));
+    vec4 f;
+    for (int j = 0; j < 4; ++j) {
+        vec3 w = o + mix(entry, exit, float(j) / 3.0) * d - vec3(cell);
+        vec4 z = mix(below, above, w.z);
+        vec2 y = mix(z.xz, z.yw, w.x);
+        f[j] = mix(y.x, y.y, w.y);
+    }
+    // Newton's forward differences on the nodes, expanded in powers of s.
+    float d1 = f[1] - f[0], d2 = f[2] - 2.0 * f[1] + f[0], d3 = f[3] - 3.0 * f[2] + 3.0 * f[1] - f[0];
+    return vec4(f[0], 3.0 * d1 - 1.5 * d2 + d3, 4.5 * (d2 - d3), 4.5 * d3);
+}
+
+float cubicAt(vec4 a, float s) {
+    return a.x + s * (a.y + s * (a.z + s * a.w));
+}
+
+// The range of cubic a over s in [s0, s0 + h], bounded by its Bernstein coefficients there (their hull
+// holds the curve).
+vec2 cubicRange(vec4 a, float s0, float h) {
+    float p0 = cubicAt(a, s0);
+    float p1 = (a.y + s0 * (2.0 * a.z + 3.0 * a.w * s0)) * h;
+    float p2 = (a.z + 3.0 * a.w * s0) * h * h;
+    float p3 = a.w * h * h * h;
+    float b1 = p0 + p1 / 3.0, b2 = p0 + (2.0 * p1 + p2) / 3.0, b3 = p0 + p1 + p2 + p3;
+    return vec2(min(min(p0, b1), min(b2, b3)), max(max(p0, b1), max(b2, b3)));
+}
+
 // Ratio tracking's transmittance below which Russian roulette decides whether the march goes on.
 const float VOLUME_ROULETTE_BELOW = 0.1;
+
+// Cell-by-cell tracking (volumes whose record has cellByCell). A macrocell whose majorant's optical depth
+// over one cell crossing (on average along this ray) reaches VOLUME_REFINE_DEPTH is crossed cell by cell:
+// in each cell the ray's interpolant is a cubic (cellCubic), and the majorant from t to the cell's exit is
+// the largest extinction over the cubic's range there, bounded again after each null collision. Where a
+// thin shell of the transfer function crosses a cell, the majorant is the shell's peak only up to where
+// the ray passes it, and zero in cells the shell misses. Tentative collisions there read no voxels: the
+// cubic gives the value. On lavapipe a cell crossing costs about what a null collision does, hence the
+// depth of one.
 
 const uint TRACK_DELTA = 0u;  // stop at the first real collision
 const uint TRACK_RATIO = 1u;  // product of (1 - extinction / majorant) over tentative collisions
@@ -111,9 +173,11 @@ struct TrackResult {
     }
 
 // Marches world ray origin + t * direction, t in [tmin, tmax], through volume v, taking steps from
-// `budget` (left as what remains).
-TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 direction, float tmin, float tmax,
-                        uint mode, inout VolumeRng rng, inout uint budget) {
+// `budget` (left as what remains). A step is a tentative collision, a macrocell entered, or in a macrocell
+// crossed cell by cell, a cell entered or the rest of one crossed. `cellByCell` is a constant at each call
+// (trackVolume below), so the march of a volume that has no such macrocell carries none of that code.
+TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 direction, float tmin, float tmax,
+                             uint mode, bool cellByCell, inout VolumeRng rng, inout uint budget) {
     TrackResult result = TrackResult(tmax, 1.0, vec3(0.0), false, 0u);
     mat3x4 toGrid = mat3x4(v.worldToGrid[0], v.worldToGrid[1], v.worldToGrid[2]);
     vec3 o = vec4(origin, 1.0) * toGrid;
@@ -129,7 +193,7 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
     // DDA over macrocells, starting in the one holding the entry point.
     ivec3 macroDims = ivec3(v.macroX, v.macroY, v.macroZ);
     vec3 entry = o + t0 * d;
-    float macrocell = float(v.macrocell);
+    float macrocell = float(VOLUME_MACROCELL);
     ivec3 cell = clamp(ivec3(floor(entry / macrocell)), ivec3(0), macroDims - 1);
     ivec3 stepDir = ivec3(sign(d));
     vec3 nextBoundary = vec3(cell + max(stepDir, ivec3(0))) * macrocell;
@@ -147,20 +211,77 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
     float t = t0;
     uint cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
     float majorant = data.values[v.majorantOffset + cellIndex] * speed;
-    // Tentative collisions of the piecewise-constant majorant: an exponential optical depth tau, spent cell by
-    // cell (majorant times the length crossed) until a cell holds the rest. One logarithm per tentative
+
+    // Cell-by-cell state: whether this macrocell is crossed cell by cell, the cell the march is in (a
+    // DDA over cells, begun where the macrocell is entered: voxelExit < t) and the cubic over that cell's
+    // segment [voxelEntry, voxelExit].
+    float cellCrossing = 1.0 / (abs(d.x) + abs(d.y) + abs(d.z));  // mean t across one cell
+    bool refined = cellByCell && majorant * cellCrossing >= VOLUME_REFINE_DEPTH;
+    ivec3 voxelCell = ivec3(0);
+    vec3 voxelNext = vec3(0.0), voxelDelta = abs(inv);
+    float voxelEntry = 0.0, voxelExit = -INFINITY;
+    bool voxelDda = false;
+    vec4 cubic = vec4(0.0);
+
+    // Tentative collisions of the piecewise-constant majorant: an exponential optical depth tau, spent piece
+    // by piece (majorant times the length crossed) until a piece holds the rest. One logarithm per tentative
     // collision, none per macrocell crossed: rays cross many more cells than they collide in.
     float tau = -log(1.0 - volumeRandom(rng));
     for (uint chunk = 0u; chunk < VOLUME_STEP_CHUNKS && budget > 0u; ++chunk) {
         uint chunkSteps = min(budget, VOLUME_STEP_CHUNK);
         for (uint steps = 0u; steps < chunkSteps; ++steps, --budget) {
             float tExit = min(t1, min(tNext.x, min(tNext.y, tNext.z)));
-            float segment = majorant * (tExit - t);  // optical depth of the majorant to the cell's exit
-            if (majorant > 0.0 && tau < segment) {
-                t += tau / majorant;
+            // This step's piece: [t, pieceEnd] under majorant mu; the whole macrocell unless refined.
+            float pieceEnd = tExit, mu = majorant;
+            if (refined) {
+                if (t >= voxelExit && voxelExit < tExit) {
+                    // Into the next cell (the first of the macrocell: the one holding t).
+                    if (!voxelDda) {
+                        vec3 p = o + t * d;
+                        voxelCell = clamp(ivec3(floor(p)), ivec3(0), ivec3(v.dimX, v.dimY, v.dimZ) - 2);
+                        voxelNext = mix(vec3(INFINITY), (vec3(voxelCell + max(stepDir, ivec3(0))) - o) * inv,
+                                        notEqual(stepDir, ivec3(0)));
+                        for (int k = 0; k < 3; ++k) {
+                            if (voxelNext[k] <= t) {
+                                voxelCell[k] += stepDir[k];
+                                voxelNext[k] += voxelDelta[k];
+                            }
+                        }
+                        voxelDda = true;
+                    } else if (voxelNext.x <= voxelNext.y && voxelNext.x <= voxelNext.z) {
+                        voxelCell.x += stepDir.x;
+                        voxelNext.x += voxelDelta.x;
+                    } else if (voxelNext.y <= voxelNext.z) {
+                        voxelCell.y += stepDir.y;
+                        voxelNext.y += voxelDelta.y;
+                    } else {
+                        voxelCell.z += stepDir.z;
+                        voxelNext.z += voxelDelta.z;
+                    }
+                    voxelEntry = t;
+                    voxelExit = min(tExit, min(voxelNext.x, min(voxelNext.y, voxelNext.z)));
+                    ivec3 loaded = clamp(voxelCell, ivec3(0), ivec3(v.dimX, v.dimY, v.dimZ) - 2);
+                    cubic = cellCubic(v, data, loaded, o, d, voxelEntry, voxelExit);
+                }
+                if (t < voxelExit) {
+                    // The rest of the cell, under the cubic's range there.
+                    float span = voxelExit - voxelEntry;
+                    vec2 range = cubicRange(cubic, (t - voxelEntry) / span, (voxelExit - t) / span);
+                    mu = extinctionMax(v, data, range.x, range.y) * speed;
+                    pieceEnd = voxelExit;
+                } else {
+                    pieceEnd = t;  // a cell of no length, or the macrocell is done
+                    mu = 0.0;
+                }
+            }
+            float segment = mu * (pieceEnd - t);  // optical depth of the majorant to the piece's end
+            if (mu > 0.0 && tau < segment) {
+                t += tau / mu;
                 ++result.collisions;
-                vec4 medium = transferFunction(v, data, fieldValue(v, data, o + t * d));
-                float ratio = clamp(medium.w * speed / majorant, 0.0, 1.0);
+                float value = refined ? cubicAt(cubic, (t - voxelEntry) / (voxelExit - voxelEntry))
+                                      : fieldValue(v, data, o + t * d);
+                vec4 medium = transferFunction(v, data, value);
+                float ratio = clamp(medium.w * speed / mu, 0.0, 1.0);
                 if (mode == TRACK_RATIO) {
                     result.transmittance *= 1.0 - ratio;
                     // Russian roulette once little light is left: go on with probability T / threshold and
@@ -181,6 +302,10 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
                 continue;
             }
             tau -= max(segment, 0.0);
+            if (pieceEnd < tExit) {  // on within the macrocell, to the next piece or cell
+                t = pieceEnd;
+                continue;
+            }
             // Into the next macrocell with what is left of tau.
             if (tExit >= t1) return result;
             t = tExit;
@@ -197,11 +322,20 @@ TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 di
             if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, macroDims))) return result;
             cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
             majorant = data.values[v.majorantOffset + cellIndex] * speed;
+            refined = cellByCell && majorant * cellCrossing >= VOLUME_REFINE_DEPTH;
+            voxelDda = false;
+            voxelExit = -INFINITY;
         }
     }
     result.ranOut = true;
     result.t = t;
     return result;
+}
+
+TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 direction, float tmin, float tmax,
+                        uint mode, inout VolumeRng rng, inout uint budget) {
+    if (v.cellByCell != 0u) return trackVolumeMarch(v, data, origin, direction, tmin, tmax, mode, true, rng, budget);
+    return trackVolumeMarch(v, data, origin, direction, tmin, tmax, mode, false, rng, budget);
 }
 
 // Parking (shared/volume.h): params.volumeParking holds the header and the two pools.

@@ -6,9 +6,9 @@
 // Per case it prints the scene build (the majorant grid for volumes, the BLAS over crossed cells for the
 // iso-surface), bytes per voxel on the GPU, the time of a 512^2 16-spp render (one sample per frame, as
 // ripple-render renders), free-flight samples (tentative collisions of delta tracking) per CPU-second, the
-// null/real collision ratio, the GPU time per frame of the main stages and the majorant grid each volume
-// was given (core/scene/VolumeMajorants.h); --json writes the same. Core
-// only: no ANARI, no files.
+// null/real collision ratio, the GPU time per frame of the main stages and whether the volume has
+// macrocells deep enough to be crossed cell by cell (core/scene/VolumeMajorants.h); --json writes the
+// same. --case runs only the cases whose name holds the given text. Core only: no ANARI, no files.
 #include "bench/ripple-bench/Timing.h"
 #include "core/render/PathTracer.h"
 #include "core/scene/Scene.h"
@@ -131,15 +131,17 @@ std::vector<Case> cases(uint32_t n) {
 
 int main(int argc, char** argv) {
     uint32_t n = 256, size = 512, spp = 16;
-    std::string jsonFile;
+    std::string jsonFile, only;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--dims" && i + 1 < argc) n = uint32_t(std::atoi(argv[++i]));
         else if (arg == "--size" && i + 1 < argc) size = uint32_t(std::atoi(argv[++i]));
         else if (arg == "--spp" && i + 1 < argc) spp = uint32_t(std::atoi(argv[++i]));
         else if (arg == "--json" && i + 1 < argc) jsonFile = argv[++i];
+        else if (arg == "--case" && i + 1 < argc) only = argv[++i];
         else {
-            std::fprintf(stderr, "usage: ripple-volume-bench [--dims N (256)] [--size N (512)] [--spp N (16)] [--json FILE]\n");
+            std::fprintf(stderr, "usage: ripple-volume-bench [--dims N (256)] [--size N (512)] [--spp N (16)] [--json FILE]\n"
+                                 "                           [--case TEXT (only the cases whose name holds it)]\n");
             return arg == "--help" ? 0 : 2;
         }
     }
@@ -165,6 +167,7 @@ int main(int argc, char** argv) {
         settings.maxPathLength = 5;
         settings.pixelSamples = 1;
         for (const Case& c : cases(n)) {
+            if (c.name.find(only) == std::string::npos) continue;
             double buildSeconds = bench::wallSeconds();
             const core::Scene scene(context, c.scene);
             buildSeconds = bench::wallSeconds() - buildSeconds;
@@ -208,10 +211,9 @@ int main(int argc, char** argv) {
                 if (ms >= 0.05 * frameSeconds * 1e3) std::printf(" %s %.1f", core::stageName(core::Stage(i)), ms);
             }
             std::printf("\n");
-            const bool fineGrid = scene.report().volumesOnFineGrid > 0;
+            const bool cellByCell = scene.report().volumesCellByCell > 0;
             if (!c.scene.volumes.empty())
-                std::printf("  majorant grid: %s (macrocells of %u^3 cells)\n", fineGrid ? "fine" : "coarse",
-                            fineGrid ? gpu::VOLUME_MACROCELL_FINE : gpu::VOLUME_MACROCELL_COARSE);
+                std::printf("  macrocells crossed cell by cell where deep enough: %s\n", cellByCell ? "yes" : "no (none is)");
             if (total.parkedMarches > 0)
                 std::printf("  %llu marches spent a dispatch's step budget and were resumed\n",
                             (unsigned long long)total.parkedMarches);
@@ -236,7 +238,7 @@ int main(int argc, char** argv) {
                                {"freeFlightPerCpuSecond", perCpu * 1e6}, {"nullPerReal", ratio},
                                {"flaggedRays", total.flaggedRays}, {"parkedMarches", total.parkedMarches},
                                {"stageMillisecondsPerFrame", stageMilliseconds},
-                               {"fineMajorantGrid", fineGrid},
+                               {"cellByCell", cellByCell},
                                {"transferFunctionEditSeconds", editSeconds}});
         }
         if (!jsonFile.empty()) {

@@ -532,7 +532,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.volumeCount = static_cast<uint32_t>(volumes.records.size());
     const MajorantGrids grids = buildMajorantsOnDevice(context, volumes_, volumeData_, volumes.records);
     report_.volumeMajorantSeconds = grids.seconds;
-    report_.volumesOnFineGrid = grids.fineVolumes;
+    report_.volumesCellByCell = grids.cellByCellVolumes;
     desc.instanceCount = instanceCount_;
     desc.lightCount = lightCount_;
     desc.materialCount = static_cast<uint32_t>(shading.materials.size());

@@ -55,7 +55,7 @@ struct SceneReport {
     uint64_t volumeVoxelsUploaded = 0; // kept volumes whose voxels were uploaded
     uint64_t volumeVoxelsReused = 0;   // ... whose voxel buffer was taken from `previous` (or an earlier volume)
     double volumeMajorantSeconds = 0.0; // the macrocell majorants, computed on the device
-    uint64_t volumesOnFineGrid = 0;     // kept volumes tracked over the fine macrocell grid (VolumeMajorants.h)
+    uint64_t volumesCellByCell = 0;     // kept volumes with macrocells deep enough to cross cell by cell (VolumeMajorants.h)
     uint64_t blasBuilt = 0;
     uint64_t blasReused = 0;           // taken from `previous` (see the header comment)
     double blasBuildSeconds = 0.0;     // validation and BLAS builds (reused BLASes cost nothing)

@@ -13,18 +13,18 @@ namespace ripple::core {
 
 struct MajorantGrids {
     double seconds = 0.0;
-    uint64_t fineVolumes = 0;  // volumes that use the fine grid
+    uint64_t cellByCellVolumes = 0;  // volumes whose records got cellByCell = 1
 };
 
-// Fills both majorant grids of every record in `volumeData` and chooses each volume's grid: the fine one
-// where its majorants, summed over its cells, are at most 1 / kFineGridGain of the coarse majorants
-// over the same cells. A transfer function whose extinction is high in a narrow band of values (a thin
-// shell) gives coarse macrocells the band's peak wherever the band passes, so most of their tentative
-// collisions are null; a smooth one gains little from the finer grid and keeps the coarse one, whose
-// macrocells cost fewer crossings. The choice is written into `records`, which are uploaded again to
-// `volumes`. Waits for the device.
-inline constexpr double kFineGridGain = 2.0;
+// Fills the majorant grid of every record in `volumeData` and sets each record's cellByCell: 1 where a
+// linearly filtered volume has a macrocell whose majorant times the longest cell edge (in world units)
+// reaches VOLUME_REFINE_DEPTH, so that some ray may cross it cell by cell (a cell crossing is at most that
+// long). The records are uploaded again to `volumes` when one changed. Waits for the device.
 MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& volumes, const vk::Buffer& volumeData,
                                      std::vector<gpu::VolumeRecord>& records);
+
+// The longest edge of one of the volume's cells in world units: the longest column of the linear part of its
+// grid-to-world map.
+float longestCellEdge(const gpu::VolumeRecord& record);
 
 }  // namespace ripple::core

@@ -56,8 +56,14 @@ size_t transferTableSize(const Volume& volume) {
     return std::max<size_t>({kMinTransferEntries, volume.colors.size(), volume.opacities.size()});
 }
 
-glm::uvec3 macrocellsPerAxis(glm::uvec3 dims, uint32_t macrocell) {
-    return glm::max((dims - 1u + macrocell - 1u) / macrocell, glm::uvec3(1u));
+uint32_t extinctionMaxLevels(size_t entries) {
+    uint32_t levels = 1;
+    while ((size_t(1) << levels) <= entries) ++levels;
+    return levels;
+}
+
+glm::uvec3 macrocellsPerAxis(glm::uvec3 dims) {
+    return glm::max((dims - 1u + gpu::VOLUME_MACROCELL - 1u) / gpu::VOLUME_MACROCELL, glm::uvec3(1u));
 }
 
 VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
@@ -72,10 +78,9 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         // The kernels index the one float array with 32-bit offsets: a volume that would reach past them is
         // skipped (the majorants would otherwise be written over another volume's data).
         const size_t entries = transferTableSize(v);
-        const glm::uvec3 macroCells = macrocellsPerAxis(v.dims, gpu::VOLUME_MACROCELL_COARSE);
-        const glm::uvec3 fineCells = macrocellsPerAxis(v.dims, gpu::VOLUME_MACROCELL_FINE);
-        const uint64_t floatsNeeded = 4 * uint64_t(entries) + uint64_t(macroCells.x) * macroCells.y * macroCells.z +
-                                      uint64_t(fineCells.x) * fineCells.y * fineCells.z;
+        const glm::uvec3 macroCells = macrocellsPerAxis(v.dims);
+        const uint64_t floatsNeeded = 4 * uint64_t(entries) + uint64_t(entries) * extinctionMaxLevels(entries) +
+                                      uint64_t(macroCells.x) * macroCells.y * macroCells.z;
         if (table.data.size() + floatsNeeded > uint64_t(UINT32_MAX)) {
             table.messages.push_back("volume " + std::to_string(index) + ": the scene's volumes hold more than 2^32 floats "
                                      "with this one; skipped");
@@ -97,7 +102,6 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         record.filterMode = v.linearFilter ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
         record.objectId = v.objectId;
         record.instanceId = v.instanceId;
-        record.macrocell = gpu::VOLUME_MACROCELL_COARSE;
         record.macroX = macroCells.x;
         record.macroY = macroCells.y;
         record.macroZ = macroCells.z;
@@ -112,13 +116,22 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
             const float extinction = -std::log1p(-std::min(opacity, gpu::VOLUME_OPACITY_CAP)) / v.unitDistance;
             table.data.insert(table.data.end(), {albedo.r, albedo.g, albedo.b, extinction});
         }
+        // Its range-maximum table, right after it (level k, entry i: the largest extinction of entries
+        // i .. i + 2^k - 1, clamped to the last): the tracking kernels bound the extinction over any range
+        // of values with two reads.
+        const size_t levelsAt = table.data.size();
+        table.data.resize(levelsAt + entries * extinctionMaxLevels(entries));
+        for (size_t e = 0; e < entries; ++e) table.data[levelsAt + e] = table.data[record.tableOffset + 4 * e + 3];
+        for (uint32_t level = 1; level < extinctionMaxLevels(entries); ++level) {
+            const size_t below = levelsAt + (level - 1) * entries, half = size_t(1) << (level - 1);
+            for (size_t e = 0; e < entries; ++e)
+                table.data[below + entries + e] = std::max(table.data[below + e], table.data[below + std::min(e + half, entries - 1)]);
+        }
 
-        // Majorants: one float per macrocell of the coarse grid, then of the fine grid, filled on the device
-        // once the data is uploaded, which also chooses the grid (VolumeMajorants.h).
+        // Majorants: one float per macrocell, filled on the device once the data is uploaded
+        // (VolumeMajorants.h), which also sets cellByCell.
         record.majorantOffset = static_cast<uint32_t>(table.data.size());
         table.data.resize(table.data.size() + size_t(macroCells.x) * macroCells.y * macroCells.z, 0.0f);
-        record.fineOffset = static_cast<uint32_t>(table.data.size());
-        table.data.resize(table.data.size() + size_t(fineCells.x) * fineCells.y * fineCells.z, 0.0f);
 
         // World bounds: the grid box's corners.
         const glm::vec3 hiCorner = v.origin + glm::vec3(extent) * v.spacing;

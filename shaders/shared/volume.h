@@ -1,9 +1,9 @@
 // Volumes as the kernels read them: a structured-regular scalar field (voxel values as float32) seen
 // through a 1D transfer function, placed in the world by an affine transform. The transfer function is a
-// table of (linear RGB albedo, extinction) over the value range; a macrocell grid holds, per block of
-// macrocell^3 cells, the largest extinction the field can reach there (the majorant of delta and ratio
-// tracking). Built by core/scene/VolumeTable.cpp; the grid's size is chosen per volume by
-// core/scene/VolumeMajorants.cpp.
+// table of (linear RGB albedo, extinction) over the value range, followed by a range-maximum table of its
+// extinction; a macrocell grid holds, per block of VOLUME_MACROCELL^3 cells, the largest extinction the
+// field can reach there (the majorant of delta and ratio tracking). Built by core/scene/VolumeTable.cpp
+// and, for the majorants, core/scene/VolumeMajorants.cpp.
 #ifndef RIPPLE_SHARED_VOLUME_H
 #define RIPPLE_SHARED_VOLUME_H
 #include "common.h"
@@ -11,10 +11,11 @@
 
 RIPPLE_GPU_BEGIN
 
-// Cells per macrocell edge: the coarse grid, or the fine one where it bounds the extinction much more
-// tightly (core/scene/VolumeMajorants.h chooses).
-RIPPLE_CONST uint VOLUME_MACROCELL_COARSE = 8u;
-RIPPLE_CONST uint VOLUME_MACROCELL_FINE = 2u;
+// Cells per macrocell edge.
+RIPPLE_CONST uint VOLUME_MACROCELL = 8u;
+// A macrocell of a linearly filtered volume whose majorant's optical depth over one cell crossing reaches
+// this is crossed cell by cell, under majorants from the interpolant along the ray (shaders/volume.glsl).
+RIPPLE_CONST float VOLUME_REFINE_DEPTH = 1.0f;
 RIPPLE_CONST uint VOLUME_FILTER_NEAREST = 0u;
 RIPPLE_CONST uint VOLUME_FILTER_LINEAR = 1u;
 // Opacity o over the transfer function's unitDistance d means transmittance 1 - o over d: extinction
@@ -29,29 +30,30 @@ struct VolumeRecord {
     uint dimY;
     uint dimZ;
     uint filterMode;       // VOLUME_FILTER_*
-    uint macroX;           // macrocells per axis (of the grid in use)
+    uint macroX;           // macrocells per axis
     uint macroY;
     uint macroZ;
     uint tableSize;        // entries of the transfer function table (>= 2)
-    uint majorantOffset;   // first float of the macrocell majorants in use in SceneDesc.volumeData (world-space
+    uint majorantOffset;   // first float of the macrocell majorants in SceneDesc.volumeData (world-space
                            // extinction per unit length)
-    uint tableOffset;      // first float of its table there: tableSize entries of 4 floats (albedo rgb, extinction)
+    uint tableOffset;      // first float of its table there: tableSize entries of 4 floats (albedo rgb, extinction),
+                           // then its range-maximum table: level k (0 .. floor(log2(tableSize))) holds tableSize
+                           // floats, entry i the largest extinction of entries i .. min(i + 2^k, tableSize) - 1
     uint objectId;         // the application's ids for the objectId and instanceId channels (~0u: unset)
     uint instanceId;
     uint64_t voxels;       // device address of the field's float values (a buffer of its own, which a later
                            // scene reuses while the field is unchanged)
-    uint macrocell;        // cells per macrocell edge of the grid in use: VOLUME_MACROCELL_COARSE or _FINE
-    uint fineOffset;       // first float of the fine grid (the coarse one is at majorantOffset until chosen)
+    uint cellByCell;       // 1: some macrocell may be crossed cell by cell (VOLUME_REFINE_DEPTH), so the kernels
+                           // take the march that can; 0: none can (set with the majorants)
+    uint pad0;
 };
 
-// Push constants of volume_majorants.comp: both grids' majorants of coarse macrocells firstCell.. of one
-// volume (at the record's majorantOffset and fineOffset), and the sums of the fine ones under each.
+// Push constants of volume_majorants.comp: the majorants of macrocells firstCell.. of one volume.
 struct MajorantParams {
     uint64_t volumes;      // VolumeRecord[]
     uint64_t volumeData;   // the floats VolumeRecord's offsets index (SceneDesc.volumeData)
-    uint64_t fineSums;     // float per coarse macrocell
     uint volume;           // which record
-    uint firstCell;        // coarse macrocell of invocation 0 (a grid may need more than one dispatch)
+    uint firstCell;        // macrocell of invocation 0 (a grid may need more than one dispatch)
 };
 
 // Marches that spend their step budget (pt_volume, pt_shadow_volume) are parked with their state and
