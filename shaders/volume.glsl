@@ -79,10 +79,16 @@ float fieldValue(VolumeRecord v, VolumeDataRef data, vec3 g) {
     return mix(mix(c00, c10, w.y), mix(c01, c11, w.y), w.z);
 }
 
+// Where a field value falls in the transfer-function table, 0 .. tableSize - 1 (a NaN value at 0). Never
+// decreasing in the value, so a range of values maps to a range of positions that holds each value's own.
+float tablePosition(VolumeRecord v, float value) {
+    float x = (value - v.valueRange.x) * v.valueRange.y;
+    return (x >= 0.0 ? min(x, 1.0) : 0.0) * float(v.tableSize - 1u);
+}
+
 // (albedo rgb, extinction per world unit) of a field value, linearly interpolated in the table.
 vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
-    float x = (value - v.valueRange.x) * v.valueRange.y;
-    x = (x >= 0.0 ? min(x, 1.0) : 0.0) * float(v.tableSize - 1u);  // a NaN value reads the first entry
+    float x = tablePosition(v, value);
     uint i0 = min(uint(x), v.tableSize - 2u);
     float w = x - float(i0);
     uint at = v.tableOffset + 4u * i0;
@@ -91,17 +97,13 @@ vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
     return mix(a, b, w);
 }
 
-// The largest extinction the table gives over voxel values [lowest, highest] (lowest <= highest), from the
-// range-maximum table after it (core/scene/VolumeTable.cpp): the entries around the range, so at least the
-// interpolated table's maximum there; raised by 1e-5 so that float rounding stays under it.
+// The largest extinction the table gives over voxel values [lowest, highest], from the range-maximum table
+// after it (core/scene/VolumeTable.cpp): the entries from below the range's first position to above its
+// last (tablePosition, as transferFunction reads them), so at least the interpolated table's maximum
+// there; raised by 1e-5 as the macrocell majorants are.
 float extinctionMax(VolumeRecord v, VolumeDataRef data, float lowest, float highest) {
-    float top = float(v.tableSize - 1u);
-    float scale = top * v.valueRange.y;
-    float p0 = (lowest - v.valueRange.x) * scale, p1 = (highest - v.valueRange.x) * scale;
-    // Clamped to the table; a NaN (from values near the float limit) widens the range to all of it.
-    p0 = p0 >= 0.0 ? min(p0, top) : 0.0;
-    p1 = p1 <= top ? max(p1, p0) : top;
-    uint first = uint(p0), last = uint(ceil(p1));
+    float p0 = tablePosition(v, lowest), p1 = max(tablePosition(v, highest), p0);
+    uint first = min(uint(p0), v.tableSize - 1u), last = min(uint(ceil(p1)), v.tableSize - 1u);
     uint level = findMSB(last - first + 1u);
     uint at = v.tableOffset + 4u * v.tableSize + level * v.tableSize;
     return max(data.values[at + first], data.values[at + last + 1u - (1u << level)]) * (1.0 + 1e-5);
@@ -132,14 +134,15 @@ float cubicAt(vec4 a, float s) {
 }
 
 // The range of cubic a over s in [s0, s0 + h], bounded by its Bernstein coefficients there (their hull
-// holds the curve).
+// holds the curve). Not finite (voxel values near the float limit overflow the coefficients): every value.
 vec2 cubicRange(vec4 a, float s0, float h) {
     float p0 = cubicAt(a, s0);
     float p1 = (a.y + s0 * (2.0 * a.z + 3.0 * a.w * s0)) * h;
     float p2 = (a.z + 3.0 * a.w * s0) * h * h;
     float p3 = a.w * h * h * h;
-    float b1 = p0 + p1 / 3.0, b2 = p0 + (2.0 * p1 + p2) / 3.0, b3 = p0 + p1 + p2 + p3;
-    return vec2(min(min(p0, b1), min(b2, b3)), max(max(p0, b1), max(b2, b3)));
+    vec4 b = vec4(p0, p0 + p1 / 3.0, p0 + (2.0 * p1 + p2) / 3.0, p0 + p1 + p2 + p3);
+    if (any(isnan(b)) || any(isinf(b))) return vec2(-INFINITY, INFINITY);
+    return vec2(min(min(b.x, b.y), min(b.z, b.w)), max(max(b.x, b.y), max(b.z, b.w)));
 }
 
 // Ratio tracking's transmittance below which Russian roulette decides whether the march goes on.
@@ -233,6 +236,7 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
             float tExit = min(t1, min(tNext.x, min(tNext.y, tNext.z)));
             // This step's piece: [t, pieceEnd] under majorant mu; the whole macrocell unless refined.
             float pieceEnd = tExit, mu = majorant;
+            vec2 range = vec2(0.0);  // refined: the values the piece's majorant covers
             if (refined) {
                 if (t >= voxelExit && voxelExit < tExit) {
                     // Into the next cell (the first of the macrocell: the one holding t).
@@ -242,7 +246,7 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
                         voxelNext = mix(vec3(INFINITY), (vec3(voxelCell + max(stepDir, ivec3(0))) - o) * inv,
                                         notEqual(stepDir, ivec3(0)));
                         for (int k = 0; k < 3; ++k) {
-                            if (voxelNext[k] <= t) {
+                            for (int behind = 0; behind < 2 && voxelNext[k] <= t; ++behind) {
                                 voxelCell[k] += stepDir[k];
                                 voxelNext[k] += voxelDelta[k];
                             }
@@ -266,7 +270,7 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
                 if (t < voxelExit) {
                     // The rest of the cell, under the cubic's range there.
                     float span = voxelExit - voxelEntry;
-                    vec2 range = cubicRange(cubic, (t - voxelEntry) / span, (voxelExit - t) / span);
+                    range = cubicRange(cubic, (t - voxelEntry) / span, (voxelExit - t) / span);
                     mu = extinctionMax(v, data, range.x, range.y) * speed;
                     pieceEnd = voxelExit;
                 } else {
@@ -278,7 +282,9 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
             if (mu > 0.0 && tau < segment) {
                 t += tau / mu;
                 ++result.collisions;
-                float value = refined ? cubicAt(cubic, (t - voxelEntry) / (voxelExit - voxelEntry))
+                // Refined: the cubic's value, kept in the range its majorant was taken over (float rounding
+                // may put it a few ulps outside the Bernstein hull).
+                float value = refined ? clamp(cubicAt(cubic, (t - voxelEntry) / (voxelExit - voxelEntry)), range.x, range.y)
                                       : fieldValue(v, data, o + t * d);
                 vec4 medium = transferFunction(v, data, value);
                 float ratio = clamp(medium.w * speed / mu, 0.0, 1.0);
@@ -334,7 +340,9 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
 
 TrackResult trackVolume(VolumeRecord v, VolumeDataRef data, vec3 origin, vec3 direction, float tmin, float tmax,
                         uint mode, inout VolumeRng rng, inout uint budget) {
-    if (v.cellByCell != 0u) return trackVolumeMarch(v, data, origin, direction, tmin, tmax, mode, true, rng, budget);
+    // cellByCell is set only for linear filtering and at least two voxels per axis; checked again here.
+    if (v.cellByCell != 0u && v.filterMode == VOLUME_FILTER_LINEAR && min(v.dimX, min(v.dimY, v.dimZ)) > 1u)
+        return trackVolumeMarch(v, data, origin, direction, tmin, tmax, mode, true, rng, budget);
     return trackVolumeMarch(v, data, origin, direction, tmin, tmax, mode, false, rng, budget);
 }
 
