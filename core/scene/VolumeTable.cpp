@@ -37,6 +37,10 @@ std::optional<std::string> problemOf(const Volume& v) {
         return "spacing is not finite and positive";
     if (!std::isfinite(v.origin.x + v.origin.y + v.origin.z)) return "origin is not finite";
     if (!std::isfinite(v.valueRange.x) || !std::isfinite(v.valueRange.y)) return "valueRange is not finite";
+    // The kernels map a value to the table by multiplying with 1 / (highest - lowest): past 1e37 that
+    // reciprocal is no longer a normal float (a device may flush it to 0, and every value would read entry 0).
+    if (std::abs(double(v.valueRange.y) - double(v.valueRange.x)) > 1e37)
+        return "valueRange is wider than 1e37 (values cannot be mapped to the transfer function in float)";
     if (!(v.unitDistance > 0.0f) || !std::isfinite(v.unitDistance)) return "unitDistance is not finite and positive";
     for (const glm::vec3& c : v.colors)
         if (!std::isfinite(c.x + c.y + c.z)) return "a colour is not finite";

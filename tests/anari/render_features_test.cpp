@@ -796,6 +796,11 @@ TEST_CASE("volume hostile input: each bad field or transfer function is reported
              const float range[2] = {0.0f, nan};
              s.setRaw(v, "valueRange", ANARI_FLOAT32_BOX1, range);
          }},
+        {"valueRange wider than float can map", "valueRange is wider",
+         [&](RenderSession& s, ANARISpatialField, ANARIVolume v) {
+             const float range[2] = {-3e38f, 3e38f};
+             s.setRaw(v, "valueRange", ANARI_FLOAT32_BOX1, range);
+         }},
         {"NaN opacity", "opacity",
          [&](RenderSession& s, ANARISpatialField, ANARIVolume v) { s.set(v, "opacity", nan); }},
         {"no field", "value",
