@@ -241,6 +241,12 @@ VolumeData readSamples(const std::filesystem::path& label, const std::filesystem
         fail(label, (dataFile == label ? std::string("holds ") : "its data file " + quoted(dataFile) + " holds ") +
                         std::to_string(available) + " bytes of data but " + dimsText + " " + typeName(type) +
                         " voxels need " + std::to_string(needed) + " bytes");
+    // A raw file (no header: the data from its first byte) may end in a few bytes more than the field, but
+    // one that holds a whole plane more was given the wrong dimensions or type: read as given it would come
+    // out sheared, silently.
+    if (!gzip && dataFile == label && offset == 0 && available - needed >= uint64_t(dims.x) * dims.y * size)
+        fail(label, "holds " + std::to_string(available) + " bytes but " + dimsText + " " + typeName(type) +
+                        " voxels need " + std::to_string(needed) + ": the dimensions or the type do not match the file");
     const uint64_t cells = dims.z - 1;
     if (slab.count == 0 || slab.index >= slab.count || cells < slab.count)
         fail(label, "its " + std::to_string(dims.z) + " sample planes along z cannot be split into " +

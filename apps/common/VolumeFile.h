@@ -56,8 +56,9 @@ bool isNrrdFile(const std::filesystem::path& file);
 // The type named as --type names it; throws VolumeError listing the known names.
 VoxelType parseVoxelType(const std::string& name);
 
-// Reads a little-endian raw file (x fastest) of the given layout. The file may be longer than the field
-// (trailing bytes are ignored) but not shorter. Throws VolumeError.
+// Reads a little-endian raw file (x fastest) of the given layout. The file may be longer than the field by
+// less than one x-y plane (trailing bytes are ignored) but not shorter, and not a plane or more longer (the
+// layout would not be the file's). Throws VolumeError.
 VolumeData readRawVolume(const std::filesystem::path& file, const RawLayout& layout, VolumeSlab slab = {});
 
 // Reads an NRRD file: attached data (.nrrd) or `data file:` (relative to the header's folder, confined to

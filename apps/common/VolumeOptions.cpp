@@ -22,14 +22,14 @@ void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
     app.add_option("--tf", options.transferFunction,
                    "--volume's colour map, over the voxels' min..max with opacity rising from 0 to --opacity: " +
                        names + " (default viridis; with --isovalue the volume is drawn only when --tf is given)");
-    app.add_option("--opacity", options.opacity, "--volume: opacity at the largest value, per --unit-distance (default 0.5)")
-        ->check(CLI::Range(0.0f, 1.0f));
+    app.add_option("--opacity", options.opacity, "--volume: opacity at the largest value, per --unit-distance, 0 to 1 "
+                                                 "(default 0.5)");
     app.add_option("--unit-distance", options.unitDistance,
-                   "--volume: the distance the opacity holds for, in scene units where the field's longest side is 2 "
-                   "(default 0.2)")
-        ->check(CLI::PositiveNumber);
+                   "--volume: the distance the opacity holds for, in scene units where the field's longest side is 2, "
+                   "positive (default 0.2)");
     app.add_option("--isovalue", options.isovalues,
-                   "--volume: draw the field's surface at this value (repeatable), coloured by the colour map")
+                   "--volume: draw the field's surface at this value, coloured by the colour map; one value per "
+                   "flag, repeat the flag for more (--isovalue 0.3 --isovalue 0.5)")
         ->allow_extra_args(false);
 }
 
@@ -52,6 +52,11 @@ void checkVolumeOptions(const VolumeOptions& options) {
         throw std::runtime_error("--dims, --type, --spacing, --tf, --opacity, --unit-distance and --isovalue "
                                  "need --volume FILE");
     if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
+    if (options.opacity && !(*options.opacity >= 0.0f && *options.opacity <= 1.0f))
+        throw std::runtime_error("--opacity " + std::to_string(*options.opacity) + " is not a number from 0 to 1");
+    if (options.unitDistance && !(*options.unitDistance > 0.0f && std::isfinite(*options.unitDistance)))
+        throw std::runtime_error("--unit-distance " + std::to_string(*options.unitDistance) +
+                                 " is not a finite positive number");
     for (float v : options.isovalues)
         if (!std::isfinite(v)) throw std::runtime_error("--isovalue " + std::to_string(v) + " is not a finite number");
 }

@@ -18,8 +18,9 @@ uint64_t cellCount(glm::uvec3 cells) { return uint64_t(cells.x) * cells.y * cell
 
 glm::uvec3 dimsOf(const gpu::VolumeRecord& r) { return glm::uvec3(r.dimX, r.dimY, r.dimZ); }
 
-}  // namespace
-
+// The longest edge of one of the volume's cells in world units: the longest column of the linear part of
+// its grid-to-world map. A ray's crossing of one cell, 1 / (|dx| + |dy| + |dz|) in grid units, is at most
+// that long in the world.
 float longestCellEdge(const gpu::VolumeRecord& record) {
     glm::mat3 worldToGrid;  // linear part; the record holds its rows
     for (int row = 0; row < 3; ++row)
@@ -27,6 +28,8 @@ float longestCellEdge(const gpu::VolumeRecord& record) {
     const glm::mat3 gridToWorld = glm::inverse(worldToGrid);
     return std::max({glm::length(gridToWorld[0]), glm::length(gridToWorld[1]), glm::length(gridToWorld[2])});
 }
+
+}  // namespace
 
 MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& volumes, const vk::Buffer& volumeData,
                                      std::vector<gpu::VolumeRecord>& records) {

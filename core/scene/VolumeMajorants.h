@@ -23,8 +23,4 @@ struct MajorantGrids {
 MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& volumes, const vk::Buffer& volumeData,
                                      std::vector<gpu::VolumeRecord>& records);
 
-// The longest edge of one of the volume's cells in world units: the longest column of the linear part of its
-// grid-to-world map.
-float longestCellEdge(const gpu::VolumeRecord& record);
-
 }  // namespace ripple::core

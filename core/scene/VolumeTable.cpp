@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <optional>
 
@@ -39,8 +40,10 @@ std::optional<std::string> problemOf(const Volume& v) {
     if (!std::isfinite(v.valueRange.x) || !std::isfinite(v.valueRange.y)) return "valueRange is not finite";
     // The kernels map a value to the table by multiplying with 1 / (highest - lowest): past 1e37 that
     // reciprocal is no longer a normal float (a device may flush it to 0, and every value would read entry 0).
-    if (std::abs(double(v.valueRange.y) - double(v.valueRange.x)) > 1e37)
-        return "valueRange is wider than 1e37 (values cannot be mapped to the transfer function in float)";
+    const double width = std::abs(double(v.valueRange.y) - double(v.valueRange.x));
+    if (width > 1e37) return "valueRange is wider than 1e37 (values cannot be mapped to the transfer function in float)";
+    if (width > 0.0 && width < 1e-37)
+        return "valueRange is narrower than 1e-37 but not empty (values cannot be mapped to the transfer function in float)";
     if (!(v.unitDistance > 0.0f) || !std::isfinite(v.unitDistance)) return "unitDistance is not finite and positive";
     for (const glm::vec3& c : v.colors)
         if (!std::isfinite(c.x + c.y + c.z)) return "a colour is not finite";
@@ -110,16 +113,32 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         record.macroY = macroCells.y;
         record.macroZ = macroCells.z;
 
-        // Transfer-function table: albedo and extinction per entry.
-        record.tableSize = static_cast<uint32_t>(entries);
-        record.tableOffset = static_cast<uint32_t>(table.data.size());
+        // Transfer-function table: albedo and extinction per entry. The kernels track extinction in float
+        // (times the ray's speed, over sums of steps): past 1e36 per unit a volume is skipped rather than
+        // tracked with an infinite majorant, which would never collide.
+        std::vector<float> entryData;
+        entryData.reserve(4 * entries);
+        double largestExtinction = 0.0;
         for (size_t e = 0; e < entries; ++e) {
             const float x = float(e) / float(entries - 1);
             const glm::vec3 albedo = v.colors.empty() ? glm::vec3(1.0f) : glm::clamp(resampled(v.colors, x), 0.0f, 1.0f);
             const float opacity = v.opacities.empty() ? 1.0f : std::clamp(resampled(v.opacities, x), 0.0f, gpu::VOLUME_OPACITY_CAP);
             const float extinction = -std::log1p(-std::min(opacity, gpu::VOLUME_OPACITY_CAP)) / v.unitDistance;
-            table.data.insert(table.data.end(), {albedo.r, albedo.g, albedo.b, extinction});
+            largestExtinction = std::max(largestExtinction, -std::log1p(-double(opacity)) / double(v.unitDistance));
+            entryData.insert(entryData.end(), {albedo.r, albedo.g, albedo.b, extinction});
         }
+        if (largestExtinction > 1e36) {
+            char unitDistance[32];
+            std::snprintf(unitDistance, sizeof unitDistance, "%g", double(v.unitDistance));
+            table.messages.push_back("volume " + std::to_string(index) + ": its opacity over unitDistance " + unitDistance +
+                                     " gives an extinction above 1e36 per unit, more than the kernels can track in "
+                                     "float; skipped");
+            ++table.skipped;
+            continue;
+        }
+        record.tableSize = static_cast<uint32_t>(entries);
+        record.tableOffset = static_cast<uint32_t>(table.data.size());
+        table.data.insert(table.data.end(), entryData.begin(), entryData.end());
         // Its range-maximum table, right after it (level k, entry i: the largest extinction of entries
         // i .. i + 2^k - 1, clamped to the last): the tracking kernels bound the extinction over any range
         // of values with two reads.

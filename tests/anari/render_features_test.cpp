@@ -801,6 +801,16 @@ TEST_CASE("volume hostile input: each bad field or transfer function is reported
              const float range[2] = {-3e38f, 3e38f};
              s.setRaw(v, "valueRange", ANARI_FLOAT32_BOX1, range);
          }},
+        {"valueRange too narrow for float", "valueRange is narrower",
+         [&](RenderSession& s, ANARISpatialField, ANARIVolume v) {
+             const float range[2] = {0.0f, 1e-40f};
+             s.setRaw(v, "valueRange", ANARI_FLOAT32_BOX1, range);
+         }},
+        {"extinction past float", "extinction above 1e36",
+         [&](RenderSession& s, ANARISpatialField, ANARIVolume v) {
+             s.set(v, "opacity", 0.5f);
+             s.set(v, "unitDistance", 1e-40f);
+         }},
         {"NaN opacity", "opacity",
          [&](RenderSession& s, ANARISpatialField, ANARIVolume v) { s.set(v, "opacity", nan); }},
         {"no field", "value",

@@ -142,6 +142,14 @@ TEST_CASE("ripple-render rejects bad input with a message and exit code 1") {
         arguments = "--volume '" + (dir / "v.nrrd").string() + "' --dims 2,2,2";
         expected = "--dims, --type and --spacing are for raw files";
     }
+    SUBCASE("volume opacity not a number") {
+        arguments = "--volume '" + writeText(dir / "v.raw", "12345678").string() + "' --dims 2,2,2 --type uint8 --opacity nan";
+        expected = "--opacity nan is not a number from 0 to 1";
+    }
+    SUBCASE("volume unit distance infinite") {
+        arguments = "--volume '" + writeText(dir / "v.raw", "12345678").string() + "' --dims 2,2,2 --type uint8 --unit-distance inf";
+        expected = "--unit-distance inf is not a finite positive number";
+    }
     SUBCASE("volume options without a volume") {
         arguments = "--demo volume --tf viridis";
         expected = "need --volume FILE";

@@ -230,6 +230,10 @@ TEST_CASE("malformed volume files are refused with the file and the problem name
         raw("short.raw", std::vector<uint8_t>(100), {"4,4,4", "uint16", ""});
         expected = "holds 100 bytes of data but 4x4x4 uint16 voxels need 128 bytes";
     }
+    SUBCASE("raw file longer than the field: the layout does not match it") {
+        raw("long.raw", std::vector<uint8_t>(100), {"4,4,4", "uint8", ""});
+        expected = "holds 100 bytes but 4x4x4 uint8 voxels need 64: the dimensions or the type do not match the file";
+    }
     SUBCASE("zero dimension") {
         raw("z.raw", eight, {"2,0,2", "uint8", ""});
         expected = "dimensions 2x0x2 include a zero";
