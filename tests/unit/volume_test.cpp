@@ -541,10 +541,10 @@ TEST_CASE("volumes: cell by cell through a turned random field, transmittance eq
         const double opacity = v.opacities[i] * (1.0 - (x - double(i))) + v.opacities[i + 1] * (x - double(i));
         table[e] = -std::log1p(-opacity) / v.unitDistance;
     }
-    const glm::dmat4 worldToObject = glm::inverse(glm::dmat4(v.transform));
-    auto extinction = [&](const glm::dvec3& world) {
-        const glm::dvec3 g = (glm::dvec3(worldToObject * glm::dvec4(world, 1.0)) - glm::dvec3(v.origin)) / double(v.spacing.x);
-        if (glm::any(glm::lessThan(g, glm::dvec3(0.0))) || glm::any(glm::greaterThan(g, glm::dvec3(n - 1)))) return 0.0;
+    const glm::dmat4 worldToGrid = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0 / double(v.spacing.x))) *
+                                   glm::translate(glm::dmat4(1.0), -glm::dvec3(v.origin)) *
+                                   glm::inverse(glm::dmat4(v.transform));
+    auto extinction = [&](const glm::dvec3& g) {  // at grid point g, inside the grid
         const glm::uvec3 i0 = glm::min(glm::uvec3(g), glm::uvec3(n - 2));
         const glm::dvec3 w = g - glm::dvec3(i0);
         double value = 0.0;
@@ -566,8 +566,20 @@ TEST_CASE("volumes: cell by cell through a turned random field, transmittance eq
             for (uint32_t sy = 0; sy < sub; ++sy)
                 for (uint32_t sx = 0; sx < sub; ++sx) {
                     const glm::vec2 p = test::groundPoint(view, size, x + (sx + 0.5f) / sub, y + (sy + 0.5f) / sub);
+                    // The vertical ray z = 1.75 - s in grid space, s in world units down: clipped to the grid box.
+                    const glm::dvec3 o = glm::dvec3(worldToGrid * glm::dvec4(p.x, p.y, 1.75, 1.0));
+                    const glm::dvec3 d = glm::dvec3(worldToGrid * glm::dvec4(0.0, 0.0, -1.0, 0.0));
+                    double enter = 0.0, leave = 3.5;
+                    for (int k = 0; k < 3; ++k) {
+                        const double a = (0.0 - o[k]) / d[k], b = (double(n - 1) - o[k]) / d[k];
+                        enter = std::max(enter, std::min(a, b));
+                        leave = std::min(leave, std::max(a, b));
+                    }
                     double depth = 0.0;
-                    for (double z = 1.75; z > -1.75; z -= 0.002) depth += extinction({p.x, p.y, z - 0.001}) * 0.002;
+                    for (double s = std::floor(enter / 0.002) * 0.002; s < leave; s += 0.002) {
+                        const double mid = s + 0.001;  // steps of 0.002 from the top, as over the whole ray
+                        if (mid > enter && mid < leave) depth += extinction(o + mid * d) * 0.002;
+                    }
                     sum += std::exp(-depth);
                 }
             reference[y * size + x] = sum / (sub * sub);
