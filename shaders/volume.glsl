@@ -175,6 +175,36 @@ struct TrackResult {
         if (countedBefore + (n) < countedBefore) atomicAdd(counters.field[1], 1u);  \
     }
 
+// A 3D DDA over cells of `size` grid units (macrocells, or the field's cells at size 1), begun at t: the cell
+// holding o + t d, clamped to [0, last], and per axis the t of its next face, stepped past faces at or
+// behind t (a march resumed on a face, where it parked after crossing it, may round into the cell behind
+// the face, and with every budget it would cross that face again).
+void ddaBegin(vec3 o, vec3 d, vec3 inv, ivec3 stepDir, float t, float size, ivec3 last, out ivec3 cell, out vec3 next) {
+    cell = clamp(ivec3(floor((o + t * d) / size)), ivec3(0), last);
+    next = mix(vec3(INFINITY), (vec3(cell + max(stepDir, ivec3(0))) * size - o) * inv, notEqual(stepDir, ivec3(0)));
+    vec3 delta = abs(size * inv);
+    for (int k = 0; k < 3; ++k) {
+        for (int behind = 0; behind < 2 && next[k] <= t; ++behind) {
+            cell[k] += stepDir[k];
+            next[k] += delta[k];
+        }
+    }
+}
+
+// The DDA into the next cell, across the nearest face (`delta`: t across one cell per axis).
+void ddaStep(ivec3 stepDir, vec3 delta, inout ivec3 cell, inout vec3 next) {
+    if (next.x <= next.y && next.x <= next.z) {
+        cell.x += stepDir.x;
+        next.x += delta.x;
+    } else if (next.y <= next.z) {
+        cell.y += stepDir.y;
+        next.y += delta.y;
+    } else {
+        cell.z += stepDir.z;
+        next.z += delta.z;
+    }
+}
+
 // Marches world ray origin + t * direction, t in [tmin, tmax], through volume v, taking steps from
 // `budget` (left as what remains). A step is a tentative collision, a macrocell entered, or in a macrocell
 // crossed cell by cell, a cell entered or the rest of one crossed. `cellByCell` is a constant at each call
@@ -195,35 +225,24 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
 
     // DDA over macrocells, starting in the one holding the entry point.
     ivec3 macroDims = ivec3(v.macroX, v.macroY, v.macroZ);
-    vec3 entry = o + t0 * d;
-    float macrocell = float(VOLUME_MACROCELL);
-    ivec3 cell = clamp(ivec3(floor(entry / macrocell)), ivec3(0), macroDims - 1);
     ivec3 stepDir = ivec3(sign(d));
-    vec3 nextBoundary = vec3(cell + max(stepDir, ivec3(0))) * macrocell;
-    vec3 tNext = mix(vec3(INFINITY), (nextBoundary - o) * inv, notEqual(stepDir, ivec3(0)));
-    vec3 tDelta = abs(macrocell * inv);
-    // A march resumed on a macrocell face (where it parked after crossing it) may round into the cell behind
-    // the face: step past faces at or behind t0, or it would cross the same face again with every budget.
-    for (int k = 0; k < 3; ++k) {
-        if (tNext[k] <= t0) {
-            cell[k] += stepDir[k];
-            tNext[k] += tDelta[k];
-        }
-    }
+    ivec3 cell;
+    vec3 tNext;
+    ddaBegin(o, d, inv, stepDir, t0, float(VOLUME_MACROCELL), macroDims - 1, cell, tNext);
+    vec3 tDelta = abs(float(VOLUME_MACROCELL) * inv);
     if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, macroDims))) return result;
     float t = t0;
     uint cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
     float majorant = data.values[v.majorantOffset + cellIndex] * speed;
 
     // Cell-by-cell state: whether this macrocell is crossed cell by cell, the cell the march is in (a
-    // DDA over cells, begun where the macrocell is entered: voxelExit < t) and the cubic over that cell's
-    // segment [voxelEntry, voxelExit].
+    // DDA over cells, begun where the macrocell is entered: voxelExit is -inf until then) and the cubic over
+    // that cell's segment [voxelEntry, voxelExit].
     float cellCrossing = 1.0 / (abs(d.x) + abs(d.y) + abs(d.z));  // mean t across one cell
     bool refined = cellByCell && majorant * cellCrossing >= VOLUME_REFINE_DEPTH;
     ivec3 voxelCell = ivec3(0);
     vec3 voxelNext = vec3(0.0), voxelDelta = abs(inv);
     float voxelEntry = 0.0, voxelExit = -INFINITY;
-    bool voxelDda = false;
     vec4 cubic = vec4(0.0);
 
     // Tentative collisions of the piecewise-constant majorant: an exponential optical depth tau, spent piece
@@ -240,28 +259,10 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
             if (refined) {
                 if (t >= voxelExit && voxelExit < tExit) {
                     // Into the next cell (the first of the macrocell: the one holding t).
-                    if (!voxelDda) {
-                        vec3 p = o + t * d;
-                        voxelCell = clamp(ivec3(floor(p)), ivec3(0), ivec3(v.dimX, v.dimY, v.dimZ) - 2);
-                        voxelNext = mix(vec3(INFINITY), (vec3(voxelCell + max(stepDir, ivec3(0))) - o) * inv,
-                                        notEqual(stepDir, ivec3(0)));
-                        for (int k = 0; k < 3; ++k) {
-                            for (int behind = 0; behind < 2 && voxelNext[k] <= t; ++behind) {
-                                voxelCell[k] += stepDir[k];
-                                voxelNext[k] += voxelDelta[k];
-                            }
-                        }
-                        voxelDda = true;
-                    } else if (voxelNext.x <= voxelNext.y && voxelNext.x <= voxelNext.z) {
-                        voxelCell.x += stepDir.x;
-                        voxelNext.x += voxelDelta.x;
-                    } else if (voxelNext.y <= voxelNext.z) {
-                        voxelCell.y += stepDir.y;
-                        voxelNext.y += voxelDelta.y;
-                    } else {
-                        voxelCell.z += stepDir.z;
-                        voxelNext.z += voxelDelta.z;
-                    }
+                    if (voxelExit == -INFINITY)
+                        ddaBegin(o, d, inv, stepDir, t, 1.0, ivec3(v.dimX, v.dimY, v.dimZ) - 2, voxelCell, voxelNext);
+                    else
+                        ddaStep(stepDir, voxelDelta, voxelCell, voxelNext);
                     voxelEntry = t;
                     voxelExit = min(tExit, min(voxelNext.x, min(voxelNext.y, voxelNext.z)));
                     ivec3 loaded = clamp(voxelCell, ivec3(0), ivec3(v.dimX, v.dimY, v.dimZ) - 2);
@@ -315,21 +316,11 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
             // Into the next macrocell with what is left of tau.
             if (tExit >= t1) return result;
             t = tExit;
-            if (tNext.x <= tNext.y && tNext.x <= tNext.z) {
-                cell.x += stepDir.x;
-                tNext.x += tDelta.x;
-            } else if (tNext.y <= tNext.z) {
-                cell.y += stepDir.y;
-                tNext.y += tDelta.y;
-            } else {
-                cell.z += stepDir.z;
-                tNext.z += tDelta.z;
-            }
+            ddaStep(stepDir, tDelta, cell, tNext);
             if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, macroDims))) return result;
             cellIndex = (uint(cell.z) * v.macroY + uint(cell.y)) * v.macroX + uint(cell.x);
             majorant = data.values[v.majorantOffset + cellIndex] * speed;
             refined = cellByCell && majorant * cellCrossing >= VOLUME_REFINE_DEPTH;
-            voxelDda = false;
             voxelExit = -INFINITY;
         }
     }
