@@ -12,7 +12,7 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= stageCount()) return;
     PathState path = PathsRef(params.paths).paths[i];
-    if ((path.flags & PATH_FLAG_CAMERA) == 0u || (path.flags >> PATH_PASS_THROUGH_SHIFT) != 0u) return;
+    if ((path.flags & PATH_FLAG_CAMERA) == 0u || ((path.flags >> PATH_PASS_THROUGH_SHIFT) & 0xFFu) != 0u) return;
     SurfaceRecord r = SurfacesRef(params.surfaces).records[i];
     if (r.status != HIT_FOUND) return;  // pt_generate left the miss values
     ChannelBuffers c = ChannelsRef(params.results).channels;

@@ -76,7 +76,7 @@ void main() {
         }
     }
     RaysRef(params.rays).rays[i] = Ray(vec4(origin, tmin), vec4(direction, tmax));
-    PathsRef(params.paths).paths[i] = PathState(vec4(1.0), pixel, 0u, PATH_FLAG_CAMERA, 0.0);
+    PathsRef(params.paths).paths[i] = PathState(vec4(1.0), pixel, PATH_FLAG_CAMERA, 0.0, 0.0);
     Vec4sRef(f.sampleRadiance).values[pixel] = vec4(0.0);
     if (f.depth != 0ul) FloatsRef(f.depth).values[pixel] = INFINITY;
     clearChannels(pixel);

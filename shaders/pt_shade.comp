@@ -2,9 +2,9 @@
 // Stage 4 of a bounce, run at each path's home rank from the SurfaceRecord that pt_surface packed at the
 // hit (no scene geometry is read here, only lights and the BSDF tables). A BSDF-sampled ray first collects
 // the quad, ring and hdri lights it passed (MIS-weighted); then a miss adds the background (camera rays)
-// or the ambient light; a hit adds its emission (MIS-weighted where it is a light), passes through a
-// transparent surface with probability 1 - opacity, requests one shadow ray toward a light picked in
-// proportion to power (next-event estimation, MIS-weighted), and samples the BSDF for the next ray, with
+// or the ambient light (MIS-weighted); a hit adds its emission (MIS-weighted where it is a light), passes through a
+// transparent surface with probability 1 - opacity, requests one shadow ray toward the ambient light or a
+// light picked in proportion to power (next-event estimation, MIS-weighted), and samples the BSDF for the next ray, with
 // Russian roulette from the third interaction on. Survivors are appended to the next queue and shadow
 // requests to the shadow queue, each by an atomic counter. The eyeLight renderer's quick look ends at the
 // first interaction instead (SHADING_EYE_LIGHT).
@@ -80,27 +80,41 @@ void appendShadow(Ray ray, vec3 contribution, uint pixel) {
     ShadowRequestsRef(params.shadowRequests).requests[slot] = ShadowRequest(vec4(contribution, 0.0), pixel, 0u, 0u, 0u);
 }
 
-// Next-event estimation: one light picked in proportion to power, its contribution MIS-weighted against
-// BSDF sampling (weight 1 for delta lights, and where the path ends here so no BSDF ray will follow), as a
-// shadow request.
+// Next-event estimation: the ambient light with chance f.ambient.w, else one of the scene's lights picked in
+// proportion to power; its contribution MIS-weighted against BSDF sampling (weight 1 for delta lights, and
+// where the path ends here so no BSDF ray will follow), as a shadow request.
 // In a medium (m.kind MATERIAL_VOLUME) the BSDF is the phase function (times the albedo) and the shadow ray
 // starts at the collision itself.
 void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
                     vec3 wo, vec3 throughput, uint pixel, vec4 u, bool lastVertex) {
     bool medium = m.kind == MATERIAL_VOLUME;
-    if (scene.lightCount == 0u || !(scene.lightPowerTotal > 0.0)) return;
-    LightRecord light = LightsRef(scene.lights).lights[pickLight(scene, u.x)];
-    float selection = light.emission.w;
+    float ambientChance = f.ambient.w;
     LightSample ls;
-    if (!(selection > 0.0) || !sampleLight(scene, light, position, u.yz, ls)) return;
+    float misPdf;  // the light strategy's pdf in the MIS weight, selection included
+    if (u.x < ambientChance) {
+        ls.direction = medium ? sampleUniformSphere(u.yz) : toWorld(sampleCosineHemisphere(u.yz), n);
+        ls.pdf = ambientPdf(n, ls.direction, medium);
+        if (!(ls.pdf > 0.0)) return;
+        ls.distance = INFINITY;
+        ls.incident = f.ambient.rgb / (ambientChance * ls.pdf);
+        misPdf = ambientChance * ls.pdf;
+    } else {
+        if (scene.lightCount == 0u || !(scene.lightPowerTotal > 0.0)) return;
+        float lightsChance = 1.0 - ambientChance;
+        LightRecord light = LightsRef(scene.lights).lights[pickLight(scene, min((u.x - ambientChance) / lightsChance, 1.0))];
+        float selection = lightsChance * light.emission.w;
+        if (!(selection > 0.0) || !sampleLight(scene, light, position, u.yz, ls)) return;
+        ls.incident /= selection;
+        misPdf = selection * ls.pdf;
+    }
     bool delta = ls.pdf == 0.0;
     if (!delta && f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY && !lastVertex) return;
     float side = dot(ls.direction, geometricNormal);
     if (!medium && (side == 0.0 || (side < 0.0 && m.transmission == 0.0))) return;
     float bsdfPdf = medium ? phaseHG(dot(-wo, ls.direction), f.phaseAnisotropy) : 0.0;
     vec3 fCos = medium ? m.baseColor * bsdfPdf : evalBsdf(m, n, wo, ls.direction, bsdfPdf);
-    float w = delta || lastVertex || f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 1.0 : misWeight(selection * ls.pdf, bsdfPdf);
-    vec3 contribution = clamped(f, throughput * fCos * ls.incident * (w / selection));
+    float w = delta || lastVertex || f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 1.0 : misWeight(misPdf, bsdfPdf);
+    vec3 contribution = clamped(f, throughput * fCos * ls.incident * w);
     // Stop just short of the light, so geometry at the light itself does not shadow it.
     float tmax = isinf(ls.distance) ? INFINITY : ls.distance * (1.0 - 1e-4);
     vec3 origin = medium ? position : offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
@@ -117,7 +131,7 @@ void main() {
     PathState path = PathsRef(params.paths).paths[i];
     Vec4sRef radiance = Vec4sRef(f.sampleRadiance);
     bool camera = (path.flags & PATH_FLAG_CAMERA) != 0u;
-    uint passThroughs = path.flags >> PATH_PASS_THROUGH_SHIFT;
+    uint passThroughs = (path.flags >> PATH_PASS_THROUGH_SHIFT) & 0xFFu;
     vec3 direction = normalize(ray.direction.xyz);
     bool found = r.status == HIT_FOUND;  // else a miss, or a flagged traversal treated as one
     float hitT = found ? r.position.w : INFINITY;
@@ -125,10 +139,18 @@ void main() {
     if ((r.status & ~0xFFu) != 0u) atomicAdd(CountersRef(f.counters).counters.flagged, 1u);
     if (!camera)
         radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * testedLightsRadiance(scene, ray.origin.xyz, direction,
-                                                   hitT, path.throughput.w, path.bsdfPdf, f.lightSampling));
+                                                   hitT, path.throughput.w, path.bsdfPdf, 1.0 - f.ambient.w, f.lightSampling));
     if (!found) {
-        if (camera) radiance.values[path.pixel] += vec4(path.throughput.rgb * f.background.rgb, f.background.a);
-        else radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * f.ambient.rgb);
+        if (camera) {
+            radiance.values[path.pixel] += vec4(path.throughput.rgb * f.background.rgb, f.background.a);
+        } else {  // the ambient light, weighted against its next-event estimation at the vertex before
+            float lightPdf = f.ambient.w * path.ambientPdf;
+            float w = !(lightPdf > 0.0) || !(path.bsdfPdf > 0.0) ? 1.0  // next-event estimation cannot reach it
+                    : f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 0.0
+                    : f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY ? 1.0
+                    : misWeight(path.bsdfPdf, lightPdf);
+            radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * f.ambient.rgb * w);
+        }
         return;
     }
     if (camera && passThroughs == 0u && f.depth != 0ul) FloatsRef(f.depth).values[path.pixel] = r.position.w;
@@ -151,7 +173,7 @@ void main() {
     if (camera) radiance.values[path.pixel].a = 1.0;
     float emissionWeight = 1.0;
     if (!camera && r.shadingNormal.w > 0.0) {  // a light that next-event estimation samples too
-        float lightPdf = surfaceLightPdf(scene, r.shadingNormal.w, path.throughput.w + hitT, dot(geometricNormal, wo));
+        float lightPdf = (1.0 - f.ambient.w) * surfaceLightPdf(scene, r.shadingNormal.w, path.throughput.w + hitT, dot(geometricNormal, wo));
         emissionWeight = f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 0.0
                        : f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY || !(path.bsdfPdf > 0.0) ? 1.0
                        : misWeight(path.bsdfPdf, lightPdf);
@@ -167,13 +189,13 @@ void main() {
                                                           mix(1.0, facing, f.eyeLightBlendRatio));
         return;
     }
-    uint depth = path.depth + 1u;
+    uint depth = (path.flags >> PATH_DEPTH_SHIFT) + 1u;
     sampleOneLight(f, scene, m, position, geometricNormal, n, wo, path.throughput.rgb, path.pixel, uLight,
                    depth >= f.maxPathLength);
 
     if (depth >= f.maxPathLength) return;
     vec4 uBsdf = random4(path.pixel, params.sampleIndex, params.bounce, RNG_BSDF, f.seed);
-    if (path.depth == 0u) uBsdf.yz = stratified2D(path.pixel, params.stratifiedSample, RNG_FIRST_BSDF, f.seed);
+    if (depth == 1u) uBsdf.yz = stratified2D(path.pixel, params.stratifiedSample, RNG_FIRST_BSDF, f.seed);
     vec3 wi;
     vec3 weight;
     float pdf;
@@ -197,6 +219,7 @@ void main() {
     }
     if (!(maxComponent(throughput) > 0.0)) return;
     vec3 origin = medium ? position : offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
+    uint flags = (path.flags & ~PATH_FLAG_CAMERA & ((1u << PATH_DEPTH_SHIFT) - 1u)) | (depth << PATH_DEPTH_SHIFT);
     appendPath(Ray(vec4(origin, 0.0), vec4(wi, INFINITY)),
-               PathState(vec4(throughput, 0.0), path.pixel, depth, path.flags & ~PATH_FLAG_CAMERA, pdf));
+               PathState(vec4(throughput, 0.0), path.pixel, flags, pdf, ambientPdf(n, wi, medium)));
 }

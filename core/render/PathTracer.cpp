@@ -533,7 +533,9 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     if (size_.x == 0) throw std::invalid_argument("PathTracer::render: call resize() first");
     const auto start = std::chrono::steady_clock::now();
     Impl& m = *impl_;
-    m.uploadFrame(frameConstants(camera, settings), size_);
+    gpu::FrameConstants constants = frameConstants(camera, settings);
+    constants.ambient.w = scene.ambientLightChance(glm::vec3(constants.ambient));
+    m.uploadFrame(constants, size_);
     m.writeCounters({});
     m.stageSeconds = {};
     // Leave out what this frame does not need: kernels specialised for its FeatureSet (FeatureSet.h).

@@ -200,6 +200,13 @@ double lightSelectionPower(const gpu::LightRecord& light, float sceneRadius, flo
     return 0.0f;
 }
 
+float ambientLightChance(const glm::vec3& ambient, float sceneRadius, float lightPowerTotal) {
+    const double power = double(luminance(ambient)) * kPi * kPi * double(sceneRadius) * sceneRadius;
+    if (!(power > 0.0) || !std::isfinite(power)) return 0.0f;
+    const double lights = std::isfinite(lightPowerTotal) && lightPowerTotal > 0.0f ? lightPowerTotal : 0.0;
+    return float(power / (power + lights));
+}
+
 void buildLightTable(const SceneDescription& description, float sceneRadius, ShadingTables& out) {
     std::vector<gpu::LightRecord> lights;
     float environmentLuminance = 0.0f;

@@ -22,6 +22,12 @@ inline constexpr uint64_t kMaxTriangleLights = 1u << 20;
 // count the flux through the scene's bounding sphere of radius sceneRadius.
 double lightSelectionPower(const gpu::LightRecord& light, float sceneRadius, float environmentLuminance);
 
+// The chance that next-event estimation samples the ambient light (uniform radiance `ambient`) rather than
+// one of the scene's lights, whose selection powers add up to lightPowerTotal: in proportion to its power,
+// counted as the irradiance it gives a surface open to the whole sky (pi times its luminance) through the
+// scene's disc, as a directional light of that irradiance would be. 0 without ambient light, 1 without lights.
+float ambientLightChance(const glm::vec3& ambient, float sceneRadius, float lightPowerTotal);
+
 // Fills out.lights, out.lightPowerTotal, out.testedLightCount and out.environmentLight; appends hdri
 // tables to out.texels. Needs out.materials and out.textures already built.
 void buildLightTable(const SceneDescription& description, float sceneRadius, ShadingTables& out);

@@ -8,6 +8,7 @@
 #include "core/bvh/Bvh4Compress.h"
 #include "core/render/FeatureSet.h"
 #include "core/scene/AccelerationStructures.h"
+#include "core/scene/LightTable.h"
 #include "core/scene/ShadingTables.h"
 #include "core/scene/VolumeMajorants.h"
 #include "core/scene/VolumeTable.h"
@@ -404,7 +405,8 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
 
     const float sceneRadius = description.lightSceneRadius > 0.0f ? description.lightSceneRadius
                               : bounds_.lo.x <= bounds_.hi.x ? 0.5f * glm::length(bounds_.hi - bounds_.lo) : 1.0f;
-    ShadingTables shading = buildShadingTables(description, std::isfinite(sceneRadius) && sceneRadius > 0.0f ? sceneRadius : 1.0f);
+    lightSceneRadius_ = std::isfinite(sceneRadius) && sceneRadius > 0.0f ? sceneRadius : 1.0f;
+    ShadingTables shading = buildShadingTables(description, lightSceneRadius_);
     report_.materialsRepaired = shading.materialsRepaired;
     report_.texturesSkipped = shading.texturesSkipped;
     report_.lightsKept = shading.lights.size();
@@ -467,6 +469,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         report_.messages.push_back(std::to_string(badMaterial) + " instance(s) name a material index beyond the " +
                                    std::to_string(description.materials.size()) + " material(s); the default matte is used");
     lightCount_ = static_cast<uint32_t>(shading.lights.size());
+    lightPowerTotal_ = shading.lightPowerTotal;
     features_ |= shadingFeatures(description);  // materials and lights: see FeatureSet.h
 
     // 4. Upload. Empty arrays still get a (tiny) buffer so every address in SceneDesc is valid.
@@ -573,6 +576,10 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
 }
 
 Scene::~Scene() = default;
+
+float Scene::ambientLightChance(const glm::vec3& ambient) const {
+    return core::ambientLightChance(ambient, lightSceneRadius_, lightPowerTotal_);
+}
 Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
 

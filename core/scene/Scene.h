@@ -86,6 +86,8 @@ public:
     const vk::Buffer& volumeData() const { return volumeData_; }
     uint32_t instanceCount() const { return instanceCount_; }
     uint32_t lightCount() const { return lightCount_; }
+    // FrameConstants.ambient.w for an ambient light of this radiance (ambientLightChance in LightTable.h).
+    float ambientLightChance(const glm::vec3& ambient) const;
     // Software or RayQuery: whether this scene has acceleration structures for ray-query kernels.
     Traversal traversal() const { return traversal_; }
     // FEATURE_* bits (shaders/shared/features.h) of what this scene holds: geometry kinds of its kept
@@ -106,6 +108,8 @@ private:
     std::vector<bvh::Aabb> regions_;
     uint32_t instanceCount_ = 0;
     uint32_t lightCount_ = 0;
+    float lightSceneRadius_ = 1.0f;  // what the lights' selection powers were computed with
+    float lightPowerTotal_ = 0.0f;
     uint32_t features_ = 0;
     std::vector<gpu::LightRecord> triangleLights_;
     // The validated geometries with an identity, kept so a later Scene can reuse them.

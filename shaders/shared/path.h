@@ -7,16 +7,19 @@
 RIPPLE_GPU_BEGIN
 
 RIPPLE_CONST uint PATH_FLAG_CAMERA = 1u;  // no scattering yet: a miss shows the background, not the ambient light
-RIPPLE_CONST uint PATH_PASS_THROUGH_SHIFT = 8u;   // flags >> this = pass-throughs of transparent surfaces so far
+RIPPLE_CONST uint PATH_PASS_THROUGH_SHIFT = 8u;   // (flags >> this) & 0xFF = pass-throughs of transparent surfaces so far
 RIPPLE_CONST uint PATH_MAX_PASS_THROUGHS = 16u;   // more than this and the path ends (bounds the bounce loop)
+RIPPLE_CONST uint PATH_DEPTH_SHIFT = 16u;         // flags >> this = surface interactions so far (scattering
+                                                  // events; pass-throughs do not count), at most 1024
 
 // The home part of a path, parallel to its ray in the same queue slot (the ray is gpu::Ray).
 struct PathState {
     vec4 throughput;  // rgb; w: distance from the last scattering point to this ray's origin (pass-throughs)
     uint pixel;       // y * width + x of the full image, row 0 at the bottom
-    uint depth;       // surface interactions so far (scattering events; pass-throughs do not count)
-    uint flags;       // PATH_FLAG_* | pass-throughs << PATH_PASS_THROUGH_SHIFT
+    uint flags;       // PATH_FLAG_* | pass-throughs << PATH_PASS_THROUGH_SHIFT | depth << PATH_DEPTH_SHIFT
     float bsdfPdf;    // solid-angle pdf of the BSDF sample that made this ray (for MIS at what it finds); 0: none
+    float ambientPdf; // solid-angle pdf with which next-event estimation of the ambient light would have picked
+                      // this ray's direction at the same vertex (its chance not included): MIS if the ray escapes
 };
 
 // What an unoccluded shadow ray adds to its pixel (the ray itself sits in a gpu::Ray queue beside it).
@@ -127,7 +130,9 @@ struct FrameConstants {
                            // (perspective, orthographic; 0: none)
     vec4 imageRegion;      // (minX, minY, maxX, maxY) of the screen in [0,1]^2
     vec4 background;       // RGBA seen by camera rays that miss
-    vec4 ambient;          // rgb: ambientColor * ambientRadiance, seen by secondary rays that miss
+    vec4 ambient;          // rgb: ambientColor * ambientRadiance, seen by secondary rays that miss; w: the
+                           // chance that next-event estimation samples it rather than the scene's lights
+                           // (ambientLightChance, core/scene/LightTable.h)
     uint width;
     uint height;
     uint maxPathLength;

@@ -41,20 +41,30 @@ TEST_CASE("feature set: what a scene holds") {
 }
 
 // Exact: the pipelines in use after rendering a triangle-only scene carry no sphere/cylinder/cone/volume
-// bit, no trace_any variant for triangles was ever needed (no lights: zero shadow rays), and the image
-// equals the unspecialised render's bit for bit (specialisation removes code, never changes results).
+// bit, the only light (the ambient light) costs one shadow ray per camera sample that finds the square (a
+// bounce off it escapes), none without it, and the image equals the unspecialised render's bit for bit
+// (specialisation removes code, never changes results).
 TEST_CASE("feature set: a triangle-only scene runs triangle-only kernels") {
     test::ValidationGuard guard;
     const core::SceneDescription description = litSquare(false);
     core::Scene scene(testContext(), description);
     core::RenderSettings settings;
     settings.ambientRadiance = 1.0f;
+    settings.background = {0.0f, 0.0f, 0.0f, 0.0f};  // so that a pixel's alpha is its share of samples on the square
     settings.pixelSamples = 2;
     core::PathTracer specialised(testContext());
     specialised.resize({16, 16}, false);
     const core::FrameStats stats = specialised.render(scene, test::lookingDown(2.0f, 3.0f), settings);
     CHECK(specialised.features().bits == gpu::FEATURE_TRIANGLES);
-    CHECK(stats.shadowRays == 0);
+    std::vector<glm::vec4> a(256), b(256);
+    specialised.readColor(core::ColorFormat::Rgba32Float, a.data());
+    double squareSamples = 0.0;
+    for (const glm::vec4& c : a) squareSamples += double(c.a) * settings.pixelSamples;
+    CHECK(squareSamples > 0.0);
+    CHECK(double(stats.shadowRays) == squareSamples);
+    core::RenderSettings unlit = settings;
+    unlit.ambientRadiance = 0.0f;
+    CHECK(specialised.render(scene, test::lookingDown(2.0f, 3.0f), unlit).shadowRays == 0);
     const uint32_t unwanted = gpu::FEATURE_SPHERES | gpu::FEATURE_CYLINDERS | gpu::FEATURE_CONES | gpu::FEATURE_VOLUMES |
                               gpu::FEATURE_TEXTURES;
     int inUse = 0;
@@ -63,7 +73,7 @@ TEST_CASE("feature set: a triangle-only scene runs triangle-only kernels") {
         ++inUse;
         CAPTURE(e.kernel);
         CHECK((e.features & unwanted) == 0);
-        // Selected, never dispatched (trace_any_rq under ray-query traversal).
+        // trace_any_rq under ray-query traversal.
         if (e.kernel.starts_with("trace_any")) CHECK(e.features == gpu::FEATURE_TRIANGLES);
     }
     CHECK(inUse == 3);  // trace_closest, trace_any (or their _rq forms), pt_surface
@@ -74,8 +84,6 @@ TEST_CASE("feature set: a triangle-only scene runs triangle-only kernels") {
     unspecialised.resize({16, 16}, false);
     unspecialised.render(scene, test::lookingDown(2.0f, 3.0f), settings);
     CHECK(unspecialised.features().bits == gpu::FEATURE_ALL);
-    std::vector<glm::vec4> a(256), b(256);
-    specialised.readColor(core::ColorFormat::Rgba32Float, a.data());
     unspecialised.readColor(core::ColorFormat::Rgba32Float, b.data());
     CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0);
 
