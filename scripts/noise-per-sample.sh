@@ -11,6 +11,7 @@
 # rest). One line of text, one of JSON.
 #
 #   scripts/noise-per-sample.sh [options] SCENE.glb
+#   scripts/noise-per-sample.sh [options] --demo NAME   (a built-in scene of ripple-render, e.g. default)
 #
 # Options:
 #   --renderer ripple|cycles  ripple-render (default) or Blender's Cycles set up as ripple-render shows the
@@ -23,6 +24,7 @@
 #                          the same renderer, scene, size, spp, path length and seed are reused
 #   --map FILE.png         also write a heat map of each pixel's relMSE x spp (log10, -3 black to 1 white)
 #   --ripple-render PATH   the ripple-render program (default: build/apps/ripple-render/ripple-render)
+#   --demo NAME            ripple-render's built-in scene NAME instead of a file (--renderer ripple only)
 #   -h, --help
 #
 # Needs python3 with numpy (Debian: python3-numpy), and `blender` for --renderer cycles.
@@ -41,6 +43,7 @@ out=""
 map=""
 ripple_render="$repo_dir/build/apps/ripple-render/ripple-render"
 scene=""
+demo=""
 
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -52,13 +55,23 @@ while [ $# -gt 0 ]; do
     --out) out=$2; shift 2 ;;
     --map) map=$2; shift 2 ;;
     --ripple-render) ripple_render=$2; shift 2 ;;
+    --demo) demo=$2; shift 2 ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     -*) die "unknown option $1 (see --help)" ;;
     *) [ -z "$scene" ] || die "one scene only"; scene=$1; shift ;;
   esac
 done
-[ -n "$scene" ] || die "no scene given (see --help)"
-[ -f "$scene" ] || die "$scene: no such file"
+if [ -n "$demo" ]; then
+  [ -z "$scene" ] || die "a scene file or --demo, not both"
+  [ "$renderer" = ripple ] || die "--demo needs --renderer ripple"
+  scene_args=(--demo "$demo")
+  name=demo-$demo
+else
+  [ -n "$scene" ] || die "no scene given (see --help)"
+  [ -f "$scene" ] || die "$scene: no such file"
+  scene_args=("$scene")
+  name=$(basename "$scene"); name=${name%.*}
+fi
 case "$renderer" in
   ripple) [ -x "$ripple_render" ] || die "$ripple_render: not built (cmake --build build)" ;;
   cycles) command -v blender >/dev/null || die "blender not found (apt-get install blender)" ;;
@@ -70,7 +83,6 @@ python3 -c "import numpy" 2>/dev/null || die "python3 with numpy is needed (apt-
 [ -n "$out" ] || out=$(mktemp -d "${TMPDIR:-/tmp}/noise.XXXXXX")
 mkdir -p "$out"
 
-name=$(basename "$scene"); name=${name%.*}
 start=$(date +%s.%N)
 files=()
 rendered=0
@@ -81,7 +93,7 @@ for seed in $(seq 1 "$images"); do
   rendered=$((rendered + 1))
   log="${image%.pfm}.log"
   if [ "$renderer" = ripple ]; then
-    "$ripple_render" "$scene" --size "$size" --spp "$spp" --max-path-length "$path_length" --seed "$seed" -q \
+    "$ripple_render" "${scene_args[@]}" --size "$size" --spp "$spp" --max-path-length "$path_length" --seed "$seed" -q \
       -o "$image" > "$log" 2>&1 || die "ripple-render failed: $log"
   else
     blender -b --factory-startup --python "$script_dir/cycles_render.py" -- "$scene" "$image" --size "$size" \

@@ -4,8 +4,7 @@
 // of a directional light with an angular diameter (a sun) are not geometry, so a BSDF-sampled ray tests
 // them itself (testedLightsRadiance); emissive triangles are geometry, found by the trace, and their
 // light pdf comes from the density pt_surface stores in the SurfaceRecord (surfaceLightPdf). A light is
-// picked with the probability stored in its record (proportional to power), once next-event estimation has
-// chosen the scene's lights over the ambient light (the end of this file). Needs texture.glsl.
+// picked with the probability stored in its record (proportional to power). Needs texture.glsl.
 #ifndef RIPPLE_LIGHTS_GLSL
 #define RIPPLE_LIGHTS_GLSL
 
@@ -190,10 +189,8 @@ float surfaceLightPdf(SceneDesc scene, float density, float distance, float cosL
 
 // Emission that a BSDF-sampled ray (from o along unit d, up to tmax; `before` is the distance from the
 // scattering point to o when the ray passed through transparent surfaces) collects from the quad, ring,
-// hdri and sun-disc lights, each weighted against next-event estimation with `bsdfPdf` (`lightsChance`: the
-// chance that next-event estimation picks one of the scene's lights rather than the ambient light).
-vec3 testedLightsRadiance(SceneDesc scene, vec3 o, vec3 d, float tmax, float before, float bsdfPdf, float lightsChance,
-                          uint strategy) {
+// hdri and sun-disc lights, each weighted against next-event estimation with `bsdfPdf`.
+vec3 testedLightsRadiance(SceneDesc scene, vec3 o, vec3 d, float tmax, float before, float bsdfPdf, uint strategy) {
     if (strategy == LIGHT_SAMPLING_LIGHTS_ONLY) return vec3(0.0);
     vec3 sum = vec3(0.0);
     LightsRef lights = LightsRef(scene.lights);
@@ -232,7 +229,7 @@ vec3 testedLightsRadiance(SceneDesc scene, vec3 o, vec3 d, float tmax, float bef
             float distance = before + t;
             pdf = distance * distance / (abs(cosLight) * light.edge1.w);
         }
-        float w = strategy == LIGHT_SAMPLING_BSDF_ONLY || !(bsdfPdf > 0.0) ? 1.0 : misWeight(bsdfPdf, lightsChance * light.emission.w * pdf);
+        float w = strategy == LIGHT_SAMPLING_BSDF_ONLY || !(bsdfPdf > 0.0) ? 1.0 : misWeight(bsdfPdf, light.emission.w * pdf);
         sum += radiance * w;
     }
     return sum;
@@ -241,7 +238,7 @@ vec3 testedLightsRadiance(SceneDesc scene, vec3 o, vec3 d, float tmax, float bef
 // --- the ambient light: a uniform environment of radiance FrameConstants.ambient.rgb ---
 
 // The solid-angle pdf with which next-event estimation samples the ambient light's direction wi, once it has
-// picked the ambient light (chance FrameConstants.ambient.w) over the scene's lights: proportional to the
+// picked the ambient light over the scene's lights (ambientChance in pt_shade.comp): proportional to the
 // cosine to the shading normal n, or uniform over the sphere in a medium.
 float ambientPdf(vec3 n, vec3 wi, bool medium) { return medium ? 0.25 / PI : max(dot(wi, n), 0.0) / PI; }
 

@@ -80,28 +80,35 @@ void appendShadow(Ray ray, vec3 contribution, uint pixel) {
     ShadowRequestsRef(params.shadowRequests).requests[slot] = ShadowRequest(vec4(contribution, 0.0), pixel, 0u, 0u, 0u);
 }
 
-// Next-event estimation: the ambient light with chance f.ambient.w, else one of the scene's lights picked in
-// proportion to power; its contribution MIS-weighted against BSDF sampling (weight 1 for delta lights, and
+// The chance that next-event estimation picks the ambient light over the scene's lights at a vertex. At a
+// path's last vertex, which no BSDF-sampled ray follows, it is in proportion to power (f.ambient.w). Before
+// it, only where the scene has no lights (f.ambient.w is 1 then): with lights, the ambient light is found by
+// BSDF sampling alone, which has little variance on surfaces open to the sky, while taking next-event
+// samples from a sun for it doubled the noise of the studio-lit shared scenes (docs/sampling.md).
+float ambientChance(FrameConstants f, bool lastVertex) { return lastVertex || f.ambient.w == 1.0 ? f.ambient.w : 0.0; }
+
+// Next-event estimation: the ambient light with chance ambientChance(), else one of the scene's lights picked
+// in proportion to power; its contribution MIS-weighted against BSDF sampling (weight 1 for delta lights, and
 // where the path ends here so no BSDF ray will follow), as a shadow request.
 // In a medium (m.kind MATERIAL_VOLUME) the BSDF is the phase function (times the albedo) and the shadow ray
 // starts at the collision itself.
 void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
                     vec3 wo, vec3 throughput, uint pixel, vec4 u, bool lastVertex) {
     bool medium = m.kind == MATERIAL_VOLUME;
-    float ambientChance = f.ambient.w;
+    float chance = ambientChance(f, lastVertex);
     LightSample ls;
     float misPdf;  // the light strategy's pdf in the MIS weight, selection included
-    if (u.x < ambientChance) {
+    if (u.x < chance) {
         ls.direction = medium ? sampleUniformSphere(u.yz) : toWorld(sampleCosineHemisphere(u.yz), n);
         ls.pdf = ambientPdf(n, ls.direction, medium);
         if (!(ls.pdf > 0.0)) return;
         ls.distance = INFINITY;
-        ls.incident = f.ambient.rgb / (ambientChance * ls.pdf);
-        misPdf = ambientChance * ls.pdf;
+        ls.incident = f.ambient.rgb / (chance * ls.pdf);
+        misPdf = chance * ls.pdf;
     } else {
         if (scene.lightCount == 0u || !(scene.lightPowerTotal > 0.0)) return;
-        float lightsChance = 1.0 - ambientChance;
-        LightRecord light = LightsRef(scene.lights).lights[pickLight(scene, min((u.x - ambientChance) / lightsChance, 1.0))];
+        float lightsChance = 1.0 - chance;
+        LightRecord light = LightsRef(scene.lights).lights[pickLight(scene, min((u.x - chance) / lightsChance, 1.0))];
         float selection = lightsChance * light.emission.w;
         if (!(selection > 0.0) || !sampleLight(scene, light, position, u.yz, ls)) return;
         ls.incident /= selection;
@@ -139,12 +146,12 @@ void main() {
     if ((r.status & ~0xFFu) != 0u) atomicAdd(CountersRef(f.counters).counters.flagged, 1u);
     if (!camera)
         radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * testedLightsRadiance(scene, ray.origin.xyz, direction,
-                                                   hitT, path.throughput.w, path.bsdfPdf, 1.0 - f.ambient.w, f.lightSampling));
+                                                   hitT, path.throughput.w, path.bsdfPdf, f.lightSampling));
     if (!found) {
         if (camera) {
             radiance.values[path.pixel] += vec4(path.throughput.rgb * f.background.rgb, f.background.a);
         } else {  // the ambient light, weighted against its next-event estimation at the vertex before
-            float lightPdf = f.ambient.w * path.ambientPdf;
+            float lightPdf = path.ambientPdf;
             float w = !(lightPdf > 0.0) || !(path.bsdfPdf > 0.0) ? 1.0  // next-event estimation cannot reach it
                     : f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 0.0
                     : f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY ? 1.0
@@ -173,7 +180,7 @@ void main() {
     if (camera) radiance.values[path.pixel].a = 1.0;
     float emissionWeight = 1.0;
     if (!camera && r.shadingNormal.w > 0.0) {  // a light that next-event estimation samples too
-        float lightPdf = (1.0 - f.ambient.w) * surfaceLightPdf(scene, r.shadingNormal.w, path.throughput.w + hitT, dot(geometricNormal, wo));
+        float lightPdf = surfaceLightPdf(scene, r.shadingNormal.w, path.throughput.w + hitT, dot(geometricNormal, wo));
         emissionWeight = f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 0.0
                        : f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY || !(path.bsdfPdf > 0.0) ? 1.0
                        : misWeight(path.bsdfPdf, lightPdf);
@@ -221,5 +228,5 @@ void main() {
     vec3 origin = medium ? position : offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
     uint flags = (path.flags & ~PATH_FLAG_CAMERA & ((1u << PATH_DEPTH_SHIFT) - 1u)) | (depth << PATH_DEPTH_SHIFT);
     appendPath(Ray(vec4(origin, 0.0), vec4(wi, INFINITY)),
-               PathState(vec4(throughput, 0.0), path.pixel, flags, pdf, ambientPdf(n, wi, medium)));
+               PathState(vec4(throughput, 0.0), path.pixel, flags, pdf, ambientChance(f, false) * ambientPdf(n, wi, medium)));
 }

@@ -18,8 +18,8 @@ struct PathState {
     uint pixel;       // y * width + x of the full image, row 0 at the bottom
     uint flags;       // PATH_FLAG_* | pass-throughs << PATH_PASS_THROUGH_SHIFT | depth << PATH_DEPTH_SHIFT
     float bsdfPdf;    // solid-angle pdf of the BSDF sample that made this ray (for MIS at what it finds); 0: none
-    float ambientPdf; // solid-angle pdf with which next-event estimation of the ambient light would have picked
-                      // this ray's direction at the same vertex (its chance not included): MIS if the ray escapes
+    float ambientPdf; // solid-angle pdf with which next-event estimation at the same vertex would have picked the
+                      // ambient light in this ray's direction (its chance included): MIS if the ray escapes
 };
 
 // What an unoccluded shadow ray adds to its pixel (the ray itself sits in a gpu::Ray queue beside it).
@@ -130,9 +130,9 @@ struct FrameConstants {
                            // (perspective, orthographic; 0: none)
     vec4 imageRegion;      // (minX, minY, maxX, maxY) of the screen in [0,1]^2
     vec4 background;       // RGBA seen by camera rays that miss
-    vec4 ambient;          // rgb: ambientColor * ambientRadiance, seen by secondary rays that miss; w: the
-                           // chance that next-event estimation samples it rather than the scene's lights
-                           // (ambientLightChance, core/scene/LightTable.h)
+    vec4 ambient;          // rgb: ambientColor * ambientRadiance, seen by secondary rays that miss; w: its
+                           // share of the lights' power (ambientLightChance, core/scene/LightTable.h; 1 when
+                           // the scene has no lights), for next-event estimation (ambientChance, pt_shade.comp)
     uint width;
     uint height;
     uint maxPathLength;

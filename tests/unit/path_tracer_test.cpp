@@ -169,6 +169,65 @@ TEST_CASE("path tracer: white furnace with ambient light, exact background elsew
     CHECK(double(hits) == doctest::Approx(expectedHits).epsilon(0.1));
 }
 
+// The ambient light at a path's last vertex, by next-event estimation (no BSDF-sampled ray follows it): a
+// matte sphere of albedo a under ambient radiance La with maxPathLength 1. Without lights every sample that
+// finds the sphere is exactly a La (the cosine-distributed direction cancels the matte BSDF's cosine; 1e-5
+// relative). With a sun behind the sphere, which lights none of what the camera sees, next-event estimation
+// picks the sun or the ambient light by power, so single samples differ, but the mean over the hit samples
+// is still a La: 64 samples per pixel, tolerance 4 standard errors of the measured spread.
+TEST_CASE("path tracer: the ambient light reaches a path's last vertex") {
+    test::ValidationGuard guard;
+    core::SphereSet sphere;
+    sphere.centers = {{0.0f, 0.0f, 0.0f}};
+    sphere.radii = {1.0f};
+    core::SceneDescription d = test::sceneOf(sphere);
+    core::Material matte;
+    matte.baseColor = glm::vec3(0.5f);
+    d.materials.push_back(matte);
+    core::RenderSettings settings;
+    settings.ambientRadiance = 0.7f;
+    settings.background = {0.0f, 0.0f, 0.0f, 0.0f};
+    settings.maxPathLength = 1;
+    core::Camera camera;
+    camera.position = {0.0f, 0.0f, 4.0f};
+    camera.fovy = 0.7f;
+    const float expected = 0.5f * settings.ambientRadiance;
+
+    SUBCASE("no lights: every sample exact") {
+        const test::Rendered r = test::render(d, camera, settings);
+        uint64_t hits = 0, wrong = 0;
+        for (const glm::vec4& c : r.color) {
+            if (c.a == 0.0f) continue;
+            ++hits;
+            if (std::abs(c.r - expected) > 1e-5f * expected || std::abs(c.b - expected) > 1e-5f * expected) ++wrong;
+        }
+        CHECK(hits > 100);
+        CHECK(wrong == 0);
+    }
+    SUBCASE("a sun behind the sphere: the mean") {
+        core::Light sun;
+        sun.direction = {0.0f, 0.0f, 1.0f};  // travelling toward the camera: it lights the far side only
+        sun.intensity = 3.0f;
+        d.lights.push_back(sun);
+        settings.pixelSamples = 64;
+        const test::Rendered r = test::render(d, camera, settings);
+        double sum = 0.0, sumSquares = 0.0;
+        uint64_t hits = 0;
+        for (const glm::vec4& c : r.color) {
+            if (c.a != 1.0f) continue;  // pixels wholly on the sphere
+            sum += c.r;
+            sumSquares += double(c.r) * c.r;
+            ++hits;
+        }
+        REQUIRE(hits > 100);
+        const double mean = sum / double(hits);
+        const double standardError = std::sqrt(std::max(0.0, sumSquares / double(hits) - mean * mean) / double(hits));
+        MESSAGE("mean ", mean, " +- ", standardError, " (expected ", expected, ")");
+        CHECK(standardError > 0.0);  // the sun took some of the samples
+        CHECK(std::abs(mean - expected) <= 4.0 * standardError + 1e-6);
+    }
+}
+
 // Closed furnace: the camera inside a sphere whose inside is matte (albedo a) and emits Le. Every
 // interaction adds Le times the throughput a^k, so with maxPathLength N the pixel expectation is
 // Le (1 - a^N) / (1 - a) (Russian roulette from the third interaction keeps it unbiased but noisy). The
