@@ -2,10 +2,10 @@
 // Stage 4 of a bounce, run at each path's home rank from the SurfaceRecord that pt_surface packed at the
 // hit (no scene geometry is read here, only lights and the BSDF tables). A BSDF-sampled ray first collects
 // the quad, ring and hdri lights it passed (MIS-weighted); then a miss adds the background (camera rays)
-// or the ambient light (MIS-weighted); a hit adds its emission (MIS-weighted where it is a light), passes through a
-// transparent surface with probability 1 - opacity, requests one shadow ray toward the ambient light or a
-// light picked in proportion to power (next-event estimation, MIS-weighted), and samples the BSDF for the next ray, with
-// Russian roulette from the third interaction on. Survivors are appended to the next queue and shadow
+// or the ambient light (MIS-weighted); a hit adds its emission (MIS-weighted where it is a light), passes
+// through a transparent surface with probability 1 - opacity, requests one shadow ray toward the ambient
+// light or a light picked in proportion to power (next-event estimation, MIS-weighted), and samples the
+// BSDF for the next ray, with Russian roulette from the third interaction on. Survivors are appended to the next queue and shadow
 // requests to the shadow queue, each by an atomic counter. The eyeLight renderer's quick look ends at the
 // first interaction instead (SHADING_EYE_LIGHT).
 #extension GL_GOOGLE_include_directive : require

@@ -204,7 +204,9 @@ float ambientLightChance(const glm::vec3& ambient, float sceneRadius, float ligh
     const double power = double(luminance(ambient)) * kPi * kPi * double(sceneRadius) * sceneRadius;
     if (!(power > 0.0) || !std::isfinite(power)) return 0.0f;
     const double lights = std::isfinite(lightPowerTotal) && lightPowerTotal > 0.0f ? lightPowerTotal : 0.0;
-    return float(power / (power + lights));
+    if (lights == 0.0) return 1.0f;
+    // Below 1 whenever there are lights, however faint: the kernels read 1 as "no lights".
+    return std::min(float(power / (power + lights)), std::nextafter(1.0f, 0.0f));
 }
 
 void buildLightTable(const SceneDescription& description, float sceneRadius, ShadingTables& out) {

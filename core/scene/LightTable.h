@@ -25,7 +25,8 @@ double lightSelectionPower(const gpu::LightRecord& light, float sceneRadius, flo
 // The chance that next-event estimation samples the ambient light (uniform radiance `ambient`) rather than
 // one of the scene's lights, whose selection powers add up to lightPowerTotal: in proportion to its power,
 // counted as the irradiance it gives a surface open to the whole sky (pi times its luminance) through the
-// scene's disc, as a directional light of that irradiance would be. 0 without ambient light, 1 without lights.
+// scene's disc, as a directional light of that irradiance would be. 0 without ambient light; 1 without lights,
+// and only then.
 float ambientLightChance(const glm::vec3& ambient, float sceneRadius, float lightPowerTotal);
 
 // Fills out.lights, out.lightPowerTotal, out.testedLightCount and out.environmentLight; appends hdri

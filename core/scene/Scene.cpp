@@ -576,11 +576,11 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
 }
 
 Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
 
 float Scene::ambientLightChance(const glm::vec3& ambient) const {
     return core::ambientLightChance(ambient, lightSceneRadius_, lightPowerTotal_);
 }
-Scene::Scene(Scene&&) noexcept = default;
-Scene& Scene::operator=(Scene&&) noexcept = default;
 
 }  // namespace ripple::core

@@ -2,6 +2,7 @@
 // matte plane, furnaces (a convex sphere under ambient light, a closed emitting sphere seen from inside),
 // background and depth channels, transparency, the non-finite guard, and bitwise determinism.
 #include "core/render/PathTracer.h"
+#include "core/scene/LightTable.h"
 #include "tests/support/RenderHelpers.h"
 #include "tests/support/SceneGenerators.h"
 #include "tests/support/TestContext.h"
@@ -19,6 +20,25 @@ using test::testContext;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+// A unit sphere at the origin of one matte material, and a camera on +z that sees all of it.
+core::SceneDescription matteSphere(const glm::vec3& albedo) {
+    core::SphereSet sphere;
+    sphere.centers = {{0.0f, 0.0f, 0.0f}};
+    sphere.radii = {1.0f};
+    core::SceneDescription d = test::sceneOf(sphere);
+    core::Material m;
+    m.baseColor = albedo;
+    d.materials.push_back(m);
+    return d;
+}
+
+core::Camera sphereCamera() {
+    core::Camera camera;
+    camera.position = {0.0f, 0.0f, 4.0f};
+    camera.fovy = 0.7f;
+    return camera;
+}
 
 core::SceneDescription matteFloor(const glm::vec3& albedo, float side = 200.0f) {
     core::SceneDescription d = test::sceneOf(test::squareMesh(side));
@@ -137,22 +157,13 @@ TEST_CASE("path tracer: quad light by area sampling matches the analytic form fa
 // or the other (1e-6 relative), and the hit count matches the sphere's projected disk.
 TEST_CASE("path tracer: white furnace with ambient light, exact background elsewhere") {
     test::ValidationGuard guard;
-    core::SphereSet sphere;
-    sphere.centers = {{0.0f, 0.0f, 0.0f}};
-    sphere.radii = {1.0f};
-    core::SceneDescription d = test::sceneOf(sphere);
-    core::Material white;
-    white.baseColor = glm::vec3(1.0f);
-    d.materials.push_back(white);
+    const core::SceneDescription d = matteSphere(glm::vec3(1.0f));
     core::RenderSettings settings;
     settings.ambientRadiance = 0.7f;
     settings.ambientColor = {1.0f, 0.5f, 0.25f};
     settings.background = {0.1f, 0.2f, 0.3f, 0.4f};
     settings.maxPathLength = 8;
-    core::Camera camera;
-    camera.position = {0.0f, 0.0f, 4.0f};
-    camera.fovy = 0.7f;
-    const test::Rendered r = test::render(d, camera, settings);
+    const test::Rendered r = test::render(d, sphereCamera(), settings);
     const glm::vec3 ambient = settings.ambientColor * settings.ambientRadiance;
     uint64_t hits = 0, other = 0;
     for (const glm::vec4& c : r.color) {
@@ -169,6 +180,19 @@ TEST_CASE("path tracer: white furnace with ambient light, exact background elsew
     CHECK(double(hits) == doctest::Approx(expectedHits).epsilon(0.1));
 }
 
+// Exact: the ambient light's share of next-event estimation is its power (pi luminance through the scene's
+// disc, pi r^2) over the total, 1 without lights and only then, 0 without ambient light.
+TEST_CASE("path tracer: the ambient light's share of next-event estimation") {
+    const float radius = 2.0f;
+    const double ambientPower = kPi * kPi * radius * radius;  // luminance 1
+    CHECK(core::ambientLightChance(glm::vec3(1.0f), radius, float(ambientPower)) == doctest::Approx(0.5));
+    CHECK(core::ambientLightChance(glm::vec3(1.0f), radius, float(3.0 * ambientPower)) == doctest::Approx(0.25));
+    CHECK(core::ambientLightChance(glm::vec3(1.0f), radius, 0.0f) == 1.0f);
+    CHECK(core::ambientLightChance(glm::vec3(1.0f), radius, 1e-30f) < 1.0f);
+    CHECK(core::ambientLightChance(glm::vec3(0.0f), radius, 1.0f) == 0.0f);
+    CHECK(core::ambientLightChance(glm::vec3(0.0f), radius, 0.0f) == 0.0f);
+}
+
 // The ambient light at a path's last vertex, by next-event estimation (no BSDF-sampled ray follows it): a
 // matte sphere of albedo a under ambient radiance La with maxPathLength 1. Without lights every sample that
 // finds the sphere is exactly a La (the cosine-distributed direction cancels the matte BSDF's cosine; 1e-5
@@ -177,20 +201,12 @@ TEST_CASE("path tracer: white furnace with ambient light, exact background elsew
 // is still a La: 64 samples per pixel, tolerance 4 standard errors of the measured spread.
 TEST_CASE("path tracer: the ambient light reaches a path's last vertex") {
     test::ValidationGuard guard;
-    core::SphereSet sphere;
-    sphere.centers = {{0.0f, 0.0f, 0.0f}};
-    sphere.radii = {1.0f};
-    core::SceneDescription d = test::sceneOf(sphere);
-    core::Material matte;
-    matte.baseColor = glm::vec3(0.5f);
-    d.materials.push_back(matte);
+    core::SceneDescription d = matteSphere(glm::vec3(0.5f));
     core::RenderSettings settings;
     settings.ambientRadiance = 0.7f;
     settings.background = {0.0f, 0.0f, 0.0f, 0.0f};
     settings.maxPathLength = 1;
-    core::Camera camera;
-    camera.position = {0.0f, 0.0f, 4.0f};
-    camera.fovy = 0.7f;
+    const core::Camera camera = sphereCamera();
     const float expected = 0.5f * settings.ambientRadiance;
 
     SUBCASE("no lights: every sample exact") {
