@@ -166,6 +166,7 @@ void main() {
     vec3 geometricNormal = r.geometricNormal.xyz;
     vec3 wo = -direction;
     vec4 uLight = random4(path.pixel, params.sampleIndex, params.bounce, RNG_LIGHT, f.seed);
+    if ((path.flags >> PATH_DEPTH_SHIFT) == 0u) uLight.yz = stratified2D(path.pixel, params.stratifiedSample, RNG_FIRST_LIGHT, f.seed);
 
     // Transparency: continue straight on, unchanged, with probability 1 - opacity.
     if (uLight.w >= r.geometricNormal.w) {

@@ -27,8 +27,8 @@ const uint RNG_LIGHT = 1u;      // light choice (x), point on the light (yz), op
 const uint RNG_BSDF = 2u;       // lobe choice (x), direction (yz), Russian roulette (w)
 const uint RNG_VOLUME = 3u;     // free-flight sampling: a stream (volume.glsl), counter in the high bits
 const uint RNG_VOLUME_SHADOW = 4u; // ratio tracking of shadow rays: a stream likewise
-// 5 and 6 are stratified2D's (RNG_CAMERA_JITTER, RNG_FIRST_BSDF below), keyed (pixel, 0 or 1, group, seed):
-// random4 must not use them.
+// 5, 6 and 7 are stratified2D's (RNG_CAMERA_JITTER, RNG_FIRST_BSDF, RNG_FIRST_LIGHT below), keyed (pixel,
+// 0 or 1, group, seed): random4 must not use them.
 
 // Four uniform numbers in [0, 1), 24 bits each (so 1.0 is never returned).
 vec4 random4(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {
@@ -37,7 +37,7 @@ vec4 random4(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {
 }
 
 // Stratified samples for the decisions where a pixel's samples gain most from it: the camera's pixel
-// jitter and the first scattering's BSDF direction. The point `stratifiedSample >> 1` of an Owen-scrambled
+// jitter, and the first scattering's BSDF direction and point on a light (or ambient direction). The point `stratifiedSample >> 1` of an Owen-scrambled
 // 2D Sobol sequence of its own for each pixel, seed and use (`group`), and for each of two sequences
 // (`stratifiedSample & 1`; PathTracer::render deals the accumulation's even and odd frames to the two, so
 // that halves of frames taken in turns stay independent). Any 2^k consecutive points from the start
@@ -46,10 +46,11 @@ vec4 random4(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {
 // (unbiased). Sobol's first two dimensions (van der Corput, and the one from x + 1, whose direction
 // numbers are v ^ (v >> 1)) form a (0, 2)-sequence; the scramble is the hash-based nested uniform scramble
 // of Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020), which also shuffles the index per use, so
-// that two uses of one pixel sample (pixel jitter, BSDF direction) are not correlated; the shuffle keeps
+// that two uses of one pixel sample (pixel jitter, BSDF direction, light point) are not correlated; the shuffle keeps
 // every block of 2^k indices from the start, so the stratification survives it.
 const uint RNG_CAMERA_JITTER = 5u; // stratified2D's uses
 const uint RNG_FIRST_BSDF = 6u;
+const uint RNG_FIRST_LIGHT = 7u;
 
 uint owenScramble(uint x, uint seed) {
     x = bitfieldReverse(x);
