@@ -5,9 +5,9 @@
 // or the ambient light (MIS-weighted); a hit adds its emission (MIS-weighted where it is a light), passes
 // through a transparent surface with probability 1 - opacity, requests one shadow ray toward the ambient
 // light or a light picked in proportion to power (next-event estimation, MIS-weighted), and samples the
-// BSDF for the next ray, with Russian roulette from the third interaction on. Survivors are appended to the next queue and shadow
-// requests to the shadow queue, each by an atomic counter. The eyeLight renderer's quick look ends at the
-// first interaction instead (SHADING_EYE_LIGHT).
+// BSDF for the next ray, with Russian roulette from the third interaction on. Survivors are appended to
+// the next queue and shadow requests to the shadow queue, each by an atomic counter. The eyeLight
+// renderer's quick look ends at the first interaction instead (SHADING_EYE_LIGHT).
 #extension GL_GOOGLE_include_directive : require
 #include "pt_common.glsl"
 #include "rng.glsl"
@@ -166,7 +166,8 @@ void main() {
     vec3 geometricNormal = r.geometricNormal.xyz;
     vec3 wo = -direction;
     vec4 uLight = random4(path.pixel, params.sampleIndex, params.bounce, RNG_LIGHT, f.seed);
-    if ((path.flags >> PATH_DEPTH_SHIFT) == 0u) uLight.yz = stratified2D(path.pixel, params.stratifiedSample, RNG_FIRST_LIGHT, f.seed);
+    if ((path.flags >> PATH_DEPTH_SHIFT) == 0u)
+        uLight.yz = stratified2D(path.pixel, params.stratifiedSample, RNG_FIRST_LIGHT, f.seed);
 
     // Transparency: continue straight on, unchanged, with probability 1 - opacity.
     if (uLight.w >= r.geometricNormal.w) {
@@ -229,5 +230,6 @@ void main() {
     vec3 origin = medium ? position : offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
     uint flags = (path.flags & ~PATH_FLAG_CAMERA & ((1u << PATH_DEPTH_SHIFT) - 1u)) | (depth << PATH_DEPTH_SHIFT);
     appendPath(Ray(vec4(origin, 0.0), vec4(wi, INFINITY)),
-               PathState(vec4(throughput, 0.0), path.pixel, flags, pdf, ambientChance(f, false) * ambientPdf(n, wi, medium)));
+               PathState(vec4(throughput, 0.0), path.pixel, flags, pdf,
+                         ambientChance(f, false) * ambientPdf(n, wi, medium)));
 }

@@ -23,7 +23,7 @@ uvec4 pcg4d(uvec4 v) {
 
 // Dimension groups: each consumer of random numbers has its own, so no two read the same ones.
 const uint RNG_CAMERA = 0u;     // lens (zw); the pixel jitter is stratified2D's (below)
-const uint RNG_LIGHT = 1u;      // light choice (x), point on the light (yz), opacity (w)
+const uint RNG_LIGHT = 1u;      // light choice (x), point on the light (yz; stratified2D's at the first), opacity (w)
 const uint RNG_BSDF = 2u;       // lobe choice (x), direction (yz), Russian roulette (w)
 const uint RNG_VOLUME = 3u;     // free-flight sampling: a stream (volume.glsl), counter in the high bits
 const uint RNG_VOLUME_SHADOW = 4u; // ratio tracking of shadow rays: a stream likewise
@@ -37,17 +37,18 @@ vec4 random4(uint pixel, uint sampleIndex, uint bounce, uint group, uint seed) {
 }
 
 // Stratified samples for the decisions where a pixel's samples gain most from it: the camera's pixel
-// jitter, and the first scattering's BSDF direction and point on a light (or ambient direction). The point `stratifiedSample >> 1` of an Owen-scrambled
-// 2D Sobol sequence of its own for each pixel, seed and use (`group`), and for each of two sequences
-// (`stratifiedSample & 1`; PathTracer::render deals the accumulation's even and odd frames to the two, so
-// that halves of frames taken in turns stay independent). Any 2^k consecutive points from the start
-// stratify the square into 2^k cells of every shape 2^i x 2^(k-i), so edges, textures and glossy
-// reflections converge faster than with independent samples, while each point alone is uniform
-// (unbiased). Sobol's first two dimensions (van der Corput, and the one from x + 1, whose direction
-// numbers are v ^ (v >> 1)) form a (0, 2)-sequence; the scramble is the hash-based nested uniform scramble
-// of Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020), which also shuffles the index per use, so
-// that two uses of one pixel sample (pixel jitter, BSDF direction, light point) are not correlated; the shuffle keeps
-// every block of 2^k indices from the start, so the stratification survives it.
+// jitter, and the first scattering's BSDF direction and point on a light (or ambient direction). The point
+// `stratifiedSample >> 1` of an Owen-scrambled 2D Sobol sequence of its own for each pixel, seed and use
+// (`group`), and for each of two sequences (`stratifiedSample & 1`; PathTracer::render deals the
+// accumulation's even and odd frames to the two, so that halves of frames taken in turns stay
+// independent). Any 2^k consecutive points from the start stratify the square into 2^k cells of every
+// shape 2^i x 2^(k-i), so edges, textures and glossy reflections converge faster than with independent
+// samples, while each point alone is uniform (unbiased). Sobol's first two dimensions (van der Corput, and
+// the one from x + 1, whose direction numbers are v ^ (v >> 1)) form a (0, 2)-sequence; the scramble is
+// the hash-based nested uniform scramble of Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020),
+// which also shuffles the index per use, so that two uses of one pixel sample (pixel jitter, BSDF
+// direction, light point) are not correlated; the shuffle keeps every block of 2^k indices from the start,
+// so the stratification survives it.
 const uint RNG_CAMERA_JITTER = 5u; // stratified2D's uses
 const uint RNG_FIRST_BSDF = 6u;
 const uint RNG_FIRST_LIGHT = 7u;

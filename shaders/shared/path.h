@@ -7,7 +7,8 @@
 RIPPLE_GPU_BEGIN
 
 RIPPLE_CONST uint PATH_FLAG_CAMERA = 1u;  // no scattering yet: a miss shows the background, not the ambient light
-RIPPLE_CONST uint PATH_PASS_THROUGH_SHIFT = 8u;   // (flags >> this) & 0xFF = pass-throughs of transparent surfaces so far
+RIPPLE_CONST uint PATH_PASS_THROUGH_SHIFT = 8u;   // (flags >> this) & 0xFF = pass-throughs of transparent
+                                                  // surfaces so far
 RIPPLE_CONST uint PATH_MAX_PASS_THROUGHS = 16u;   // more than this and the path ends (bounds the bounce loop)
 RIPPLE_CONST uint PATH_DEPTH_SHIFT = 16u;         // flags >> this = surface interactions so far (scattering
                                                   // events; pass-throughs do not count), at most 1024

@@ -1,6 +1,7 @@
 // Light transport against analytic answers: white furnaces per material and roughness (energy
 // conservation), spot light cone edges, light sampling / BSDF sampling / MIS converging to the same mean
-// (area lights, a sun disc and the ambient light), an importance-sampled hdri furnace, alpha modes and the radiance clamp.
+// (area lights, a sun disc and the ambient light), an importance-sampled hdri furnace, alpha modes and the
+// radiance clamp.
 #include "core/render/PathTracer.h"
 #include "core/scene/BsdfTables.h"
 #include "tests/support/RenderHelpers.h"
@@ -278,7 +279,8 @@ TEST_CASE("light transport: the ambient light by next-event estimation, BSDF sam
     for (int s = 0; s < 3; ++s) {
         settings.lightSampling = static_cast<core::RenderSettings::LightSampling>(s);
         means[s] = surfaceMean(test::render(d, camera, settings));
-        MESSAGE(names[s] << ": " << means[s].mean << " +- " << means[s].standardError << " (expected " << expected << ")");
+        MESSAGE(names[s] << ": " << means[s].mean << " +- " << means[s].standardError << " (expected " << expected
+                         << ")");
         CAPTURE(names[s]);
         CHECK(means[s].count == 32 * 32);
         CHECK(std::abs(means[s].mean - expected) <= 5.0 * means[s].standardError);

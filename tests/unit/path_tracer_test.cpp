@@ -1,6 +1,7 @@
 // The path tracer against analytic radiance: direct light from directional, point and quad lights on a
-// matte plane, furnaces (a convex sphere under ambient light, a closed emitting sphere seen from inside),
-// background and depth channels, transparency, the non-finite guard, and bitwise determinism.
+// matte plane, furnaces (a convex sphere under ambient light, a closed emitting sphere seen from inside), the
+// ambient light at a path's last vertex, background and depth channels, transparency, the non-finite guard,
+// and bitwise determinism.
 #include "core/render/PathTracer.h"
 #include "core/scene/LightTable.h"
 #include "tests/support/RenderHelpers.h"
