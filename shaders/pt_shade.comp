@@ -85,7 +85,10 @@ void appendShadow(Ray ray, vec3 contribution, uint pixel) {
 // it, only where the scene has no lights (f.ambient.w is 1 then): with lights, the ambient light is found by
 // BSDF sampling alone, which has little variance on surfaces open to the sky, while taking next-event
 // samples from a sun for it doubled the noise of the studio-lit shared scenes (docs/sampling.md).
-float ambientChance(FrameConstants f, bool lastVertex) { return lastVertex || f.ambient.w == 1.0 ? f.ambient.w : 0.0; }
+float ambientChance(FrameConstants f, SceneDesc scene, bool lastVertex) {
+    bool noLights = !(scene.lightPowerTotal > 0.0);  // as ambientLightChance (LightTable.h) counts them
+    return lastVertex || noLights ? f.ambient.w : 0.0;
+}
 
 // Next-event estimation: the ambient light with chance ambientChance(), else one of the scene's lights picked
 // in proportion to power; its contribution MIS-weighted against BSDF sampling (weight 1 for delta lights, and
@@ -95,7 +98,7 @@ float ambientChance(FrameConstants f, bool lastVertex) { return lastVertex || f.
 void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
                     vec3 wo, vec3 throughput, uint pixel, vec4 u, bool lastVertex) {
     bool medium = m.kind == MATERIAL_VOLUME;
-    float chance = ambientChance(f, lastVertex);
+    float chance = ambientChance(f, scene, lastVertex);
     LightSample ls;
     float misPdf;  // the light strategy's pdf in the MIS weight, selection included
     if (u.x < chance) {
@@ -231,5 +234,5 @@ void main() {
     uint flags = (path.flags & ~PATH_FLAG_CAMERA & ((1u << PATH_DEPTH_SHIFT) - 1u)) | (depth << PATH_DEPTH_SHIFT);
     appendPath(Ray(vec4(origin, 0.0), vec4(wi, INFINITY)),
                PathState(vec4(throughput, 0.0), path.pixel, flags, pdf,
-                         ambientChance(f, false) * ambientPdf(n, wi, medium)));
+                         ambientChance(f, scene, false) * ambientPdf(n, wi, medium)));
 }
