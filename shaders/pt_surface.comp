@@ -13,18 +13,13 @@
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MaterialsRef { MaterialRecord materials[]; };
 
-// The texture's first output component as a factor (ANARI's rule for float parameters from samplers).
-float textureFactor(SceneDesc scene, int texture, SurfacePoint s) {
-    return texture == NO_TEXTURE ? 1.0 : sampleTexture(scene, texture, s).x;
-}
-
-// The shading normal bent by a tangent-space normal map (rgb in [0,1] -> [-1,1]) around ns.
-vec3 normalMapped(SceneDesc scene, int texture, SurfacePoint s) {
+// The shading normal bent by a tangent-space normal map value m (rgb in [0,1] -> [-1,1]) around ns.
+vec3 normalMapped(SurfacePoint s, vec3 m) {
     vec3 t = s.tangent - dot(s.tangent, s.shadingNormal) * s.shadingNormal;
-    if (texture == NO_TEXTURE || !(dot(t, t) > 0.0)) return s.shadingNormal;
+    if (!(dot(t, t) > 0.0)) return s.shadingNormal;
     t = normalize(t);
     vec3 b = s.tangentSign * cross(s.shadingNormal, t);
-    vec3 m = sampleTexture(scene, texture, s).xyz * 2.0 - 1.0;
+    m = m * 2.0 - 1.0;
     // A back-face hit sees the surface flipped: keep the map's bump on the viewer's side.
     if (!s.frontFace) b = -b;
     vec3 n = safeNormalize(m.x * t + m.y * b + m.z * s.shadingNormal, s.shadingNormal);
@@ -57,18 +52,40 @@ void main() {
             baseColor = s.color.rgb;
             opacity *= s.color.a;
         }
-        if (rec.baseColorTexture != NO_TEXTURE) {
-            vec4 texel = sampleTexture(scene, rec.baseColorTexture, s);
-            baseColor *= texel.rgb;
-            opacity *= texel.a;
+        vec3 emission = rec.emissiveIor.rgb;
+        float metallic = rec.metallic;
+        float roughness = rec.roughness;
+        vec3 shadingNormal = s.shadingNormal;
+        // The texture code, the largest part of this kernel, only when the scene has textures; and then a
+        // loop over the material's six texture slots, so that it is compiled once rather than six times.
+        if (hasFeature(FEATURE_TEXTURES)) {
+            for (uint slot = 0u; slot < 6u; ++slot) {
+                int texture = slot == 0u ? rec.baseColorTexture : slot == 1u ? rec.opacityTexture
+                            : slot == 2u ? rec.emissiveTexture : slot == 3u ? rec.metallicTexture
+                            : slot == 4u ? rec.roughnessTexture : rec.normalTexture;
+                if (texture == NO_TEXTURE) continue;
+                // Float parameters take the texture's first component (ANARI's rule for samplers).
+                vec4 value = sampleTexture(scene, texture, s);
+                if (slot == 0u) {
+                    baseColor *= value.rgb;
+                    opacity *= value.a;
+                } else if (slot == 1u) {
+                    opacity *= value.x;
+                } else if (slot == 2u) {
+                    emission *= value.rgb;
+                } else if (slot == 3u) {
+                    metallic *= value.x;
+                } else if (slot == 4u) {
+                    roughness *= value.x;
+                } else {
+                    shadingNormal = normalMapped(s, value.xyz);
+                }
+            }
         }
-        opacity *= textureFactor(scene, rec.opacityTexture, s);
         if (rec.alphaMode == ALPHA_OPAQUE) opacity = 1.0;
         else if (rec.alphaMode == ALPHA_MASK) opacity = opacity >= rec.alphaCutoff ? 1.0 : 0.0;
-        vec3 emission = rec.emissiveIor.rgb;
-        if (rec.emissiveTexture != NO_TEXTURE) emission *= sampleTexture(scene, rec.emissiveTexture, s).rgb;
-        float metallic = clamp(rec.metallic * textureFactor(scene, rec.metallicTexture, s), 0.0, 1.0);
-        float roughness = clamp(rec.roughness * textureFactor(scene, rec.roughnessTexture, s), 0.0, 1.0);
+        metallic = clamp(metallic, 0.0, 1.0);
+        roughness = clamp(roughness, 0.0, 1.0);
         float ior = rec.emissiveIor.w;
         float f = (ior - 1.0) / (ior + 1.0);
         r.position.xyz = s.position;
@@ -77,7 +94,7 @@ void main() {
         uint geometry = InstanceShadingRef(scene.instanceShading).instances[hit.instanceId].geometry;
         bool light = (rec.flags & MATERIAL_FLAG_LIGHT) != 0u &&
                      GeometriesRef(scene.geometries).geometries[geometry].kind == GEOMETRY_TRIANGLES;
-        r.shadingNormal = vec4(normalMapped(scene, rec.normalTexture, s), light ? 2.0 * PI * luminance(emission) : 0.0);
+        r.shadingNormal = vec4(shadingNormal, light ? 2.0 * PI * luminance(emission) : 0.0);
         r.baseColor = vec4(max(baseColor, vec3(0.0)), metallic);
         r.emission = vec4(max(emission, vec3(0.0)), max(roughness * roughness, MIN_GGX_ALPHA));
         r.layers = vec4(rec.transmission, rec.clearcoat, max(rec.clearcoatRoughness * rec.clearcoatRoughness, MIN_GGX_ALPHA),

@@ -39,7 +39,9 @@ uint32_t shadingFeatures(const SceneDescription& description) {
     for (size_t m = 0; m < description.materials.size(); ++m) {
         if (!used[m]) continue;
         const Material& material = description.materials[m];
-        if (material.baseColorTexture != kNoTexture) bits |= gpu::FEATURE_TEXTURES;
+        for (int32_t texture : {material.baseColorTexture, material.normalTexture, material.metallicTexture,
+                                material.roughnessTexture, material.emissiveTexture, material.opacityTexture})
+            if (texture != kNoTexture) bits |= gpu::FEATURE_TEXTURES;
         if (glm::any(glm::greaterThan(material.emissive, glm::vec3(0.0f)))) bits |= gpu::FEATURE_EMISSIVE;
         if (material.opacity < 1.0f) bits |= gpu::FEATURE_ALPHA;
     }

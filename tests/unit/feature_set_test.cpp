@@ -38,6 +38,17 @@ TEST_CASE("feature set: what a scene holds") {
     CHECK(all.features() == (gpu::FEATURE_TRIANGLES | gpu::FEATURE_SPHERES | gpu::FEATURE_EMISSIVE |
                              gpu::FEATURE_ALPHA | (1u << gpu::FEATURE_LIGHT_SHIFT)));
     CHECK(core::FeatureSet{all.features()}.describe() == "triangles spheres emissive alpha light:0");
+    // Any one of a material's six texture slots makes the scene textured: without FEATURE_TEXTURES,
+    // pt_surface is built without its texture code.
+    for (int slot = 0; slot < 6; ++slot) {
+        CAPTURE(slot);
+        core::SceneDescription textured = litSquare(false);
+        core::Material& m = textured.materials[0];
+        int32_t* const slots[] = {&m.baseColorTexture, &m.normalTexture,   &m.metallicTexture,
+                                  &m.roughnessTexture, &m.emissiveTexture, &m.opacityTexture};
+        *slots[slot] = 0;
+        CHECK(core::shadingFeatures(textured) == gpu::FEATURE_TEXTURES);
+    }
 }
 
 // Exact: the pipelines in use after rendering a triangle-only scene carry no sphere/cylinder/cone/volume
