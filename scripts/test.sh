@@ -6,7 +6,7 @@ scripts/setup.sh
 build=${RIPPLE_BUILD_DIR:-build}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build" --parallel
-ctest --test-dir "$build" --output-on-failure --timeout 900
+ctest --test-dir "$build" --output-on-failure --timeout 900 --parallel "$(nproc)"
 # The unit, light-transport and robustness suites and the fuzz regressions again under ASan + UBSan
 # (docs/fuzzing.md), in a build folder of their own and without the Vulkan validation layer (the Release
 # run above has it; tests/CMakeLists.txt): the whole suite under the sanitizers would not fit CI's time.
