@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <string_view>
 
 namespace ripple::mpi {
 
@@ -335,8 +336,20 @@ namespace ripple::mpi {
 
 // Serialized: Ripple calls MPI from one thread at a time (a data-parallel frame renders on the thread that
 // called anariRenderFrame), which is all the application is promised too.
+namespace {
+
+// See Runtime.h.
+bool launchedByMpi() {
+    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "MV2_COMM_WORLD_SIZE"})
+        if (std::getenv(name)) return true;
+    const char* force = std::getenv("RIPPLE_MPI_INIT");
+    return force && std::string_view(force) == "1";
+}
+
+}  // namespace
+
 Runtime::Runtime(int* argc, char*** argv) {
-    if (mpiActive()) return;
+    if (mpiActive() || !launchedByMpi()) return;
     int provided = 0;
     RIPPLE_MPI_CHECK(MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided));
     started_ = true;
