@@ -1,13 +1,49 @@
-// Compute pipelines from embedded SPIR-V, with push constants and specialization constants.
+// Compute pipelines from embedded SPIR-V, with push constants and specialization constants, built once per
+// device (Context::storedPipeline).
 #include "core/vk/ComputePipeline.h"
 
+#include <string>
 #include <utility>
 
 namespace ripple::vk {
 
+namespace {
+
+// The key of a pipeline among the context's stored ones: its name, push constant size, specialization
+// constants, and the SPIR-V's length and 64-bit FNV-1a hash (two different kernels of the same name and
+// length would have to collide in 64 bits; hashing 190 KB of SPIR-V takes well under a millisecond).
+std::string pipelineKey(std::span<const uint32_t> spirv, const std::string& name, uint32_t pushConstantBytes,
+                        std::span<const SpecializationConstant> constants) {
+    uint64_t hash = 14695981039346656037ull;
+    for (const uint32_t word : spirv) hash = (hash ^ word) * 1099511628211ull;
+    std::string key = name + " push " + std::to_string(pushConstantBytes) + " spirv " + std::to_string(spirv.size()) +
+                      " " + std::to_string(hash);
+    for (const auto& c : constants) {
+        key += ' ';
+        key += std::to_string(c.id);
+        key += '=';
+        key += std::to_string(c.value);
+    }
+    return key;
+}
+
+}  // namespace
+
 ComputePipeline::ComputePipeline(const Context& context, std::span<const uint32_t> spirv, const std::string& name,
                                  uint32_t pushConstantBytes, std::span<const SpecializationConstant> constants)
-    : context_(&context), name_(name) {
+    : name_(name) {
+    const Context::StoredPipeline stored =
+        context.storedPipeline(pipelineKey(spirv, name, pushConstantBytes, constants), [&] {
+            return build(context, spirv, name, pushConstantBytes, constants);
+        });
+    pipeline_ = stored.pipeline;
+    layout_ = stored.layout;
+}
+
+Context::StoredPipeline ComputePipeline::build(const Context& context, std::span<const uint32_t> spirv,
+                                               const std::string& name, uint32_t pushConstantBytes,
+                                               std::span<const SpecializationConstant> constants) {
+    Context::StoredPipeline built;
     const VkDevice device = context.device();
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     moduleInfo.codeSize = spirv.size_bytes();
@@ -19,7 +55,7 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const uint32_
     VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     layoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
     layoutInfo.pPushConstantRanges = &range;
-    const VkResult layoutResult = vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout_);
+    const VkResult layoutResult = vkCreatePipelineLayout(device, &layoutInfo, nullptr, &built.layout);
     if (layoutResult != VK_SUCCESS) {
         vkDestroyShaderModule(device, module, nullptr);
         throwVulkanError("vkCreatePipelineLayout", layoutResult, __FILE__, __LINE__);
@@ -40,39 +76,28 @@ ComputePipeline::ComputePipeline(const Context& context, std::span<const uint32_
     info.stage.module = module;
     info.stage.pName = "main";
     info.stage.pSpecializationInfo = entries.empty() ? nullptr : &specialization;
-    info.layout = layout_;
-    const VkResult result = vkCreateComputePipelines(device, context.pipelineCache(), 1, &info, nullptr, &pipeline_);
+    info.layout = built.layout;
+    const VkResult result = vkCreateComputePipelines(device, context.pipelineCache(), 1, &info, nullptr, &built.pipeline);
     vkDestroyShaderModule(device, module, nullptr);
     if (result != VK_SUCCESS) {
-        release();
+        vkDestroyPipelineLayout(device, built.layout, nullptr);
         throw VulkanError("creating compute pipeline '" + name + "': vkCreateComputePipelines returned " +
                               resultName(result), result);
     }
-    context.setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(pipeline_), name);
-    context.setName(VK_OBJECT_TYPE_PIPELINE_LAYOUT, reinterpret_cast<uint64_t>(layout_), name + " layout");
+    context.setName(VK_OBJECT_TYPE_PIPELINE, reinterpret_cast<uint64_t>(built.pipeline), name);
+    context.setName(VK_OBJECT_TYPE_PIPELINE_LAYOUT, reinterpret_cast<uint64_t>(built.layout), name + " layout");
+    return built;
 }
-
-ComputePipeline::~ComputePipeline() { release(); }
 
 ComputePipeline::ComputePipeline(ComputePipeline&& other) noexcept { *this = std::move(other); }
 
 ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
     if (this != &other) {
-        release();
-        context_ = other.context_;
         pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
         layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
         name_ = std::move(other.name_);
     }
     return *this;
-}
-
-void ComputePipeline::release() {
-    if (!context_) return;
-    if (pipeline_) vkDestroyPipeline(context_->device(), pipeline_, nullptr);
-    if (layout_) vkDestroyPipelineLayout(context_->device(), layout_, nullptr);
-    pipeline_ = VK_NULL_HANDLE;
-    layout_ = VK_NULL_HANDLE;
 }
 
 void ComputePipeline::bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_); }

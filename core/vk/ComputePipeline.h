@@ -1,6 +1,7 @@
 // A compute pipeline from embedded SPIR-V: push constants only (every buffer is reached by device
-// address, so there are no descriptor sets), specialization constants for compile-time knobs, built
-// through the context's pipeline cache.
+// address, so there are no descriptor sets), specialization constants for compile-time knobs. The context
+// owns it (Context::storedPipeline): built on the first request for the same SPIR-V and constants on a
+// device, kept until the device goes, and shared by every ComputePipeline that asks for it afterwards.
 #pragma once
 
 #include "core/vk/Context.h"
@@ -22,7 +23,6 @@ public:
     ComputePipeline() = default;
     ComputePipeline(const Context& context, std::span<const uint32_t> spirv, const std::string& name,
                     uint32_t pushConstantBytes, std::span<const SpecializationConstant> constants = {});
-    ~ComputePipeline();
     ComputePipeline(ComputePipeline&& other) noexcept;
     ComputePipeline& operator=(ComputePipeline&& other) noexcept;
     ComputePipeline(const ComputePipeline&) = delete;
@@ -36,9 +36,10 @@ public:
     void pushConstants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const;
 
 private:
-    void release();
+    static Context::StoredPipeline build(const Context& context, std::span<const uint32_t> spirv,
+                                         const std::string& name, uint32_t pushConstantBytes,
+                                         std::span<const SpecializationConstant> constants);
 
-    const Context* context_ = nullptr;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     std::string name_;

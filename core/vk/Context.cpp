@@ -340,9 +340,35 @@ void Context::loadAccelerationStructureFunctions() {
 
 Context::~Context() { destroy(); }
 
+Context::StoredPipeline Context::storedPipeline(const std::string& key,
+                                                const std::function<StoredPipeline()>& build) const {
+    {
+        std::lock_guard lock(pipelinesMutex_);
+        if (auto found = pipelines_.find(key); found != pipelines_.end()) return found->second;
+    }
+    const StoredPipeline built = build();  // outside the lock: threads build different kernels at once
+    std::lock_guard lock(pipelinesMutex_);
+    const auto [stored, inserted] = pipelines_.try_emplace(key, built);
+    if (!inserted) {  // another thread built the same one meanwhile
+        vkDestroyPipeline(device_, built.pipeline, nullptr);
+        vkDestroyPipelineLayout(device_, built.layout, nullptr);
+    }
+    return stored->second;
+}
+
+size_t Context::storedPipelineCount() const {
+    std::lock_guard lock(pipelinesMutex_);
+    return pipelines_.size();
+}
+
 void Context::destroy() {
     if (device_) {
         vkDeviceWaitIdle(device_);
+        for (const auto& [key, stored] : pipelines_) {
+            vkDestroyPipeline(device_, stored.pipeline, nullptr);
+            vkDestroyPipelineLayout(device_, stored.layout, nullptr);
+        }
+        pipelines_.clear();
         if (pipelineCache_) vkDestroyPipelineCache(device_, pipelineCache_, nullptr);
         if (fence_) vkDestroyFence(device_, fence_, nullptr);
         if (commandPool_) vkDestroyCommandPool(device_, commandPool_, nullptr);

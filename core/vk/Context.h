@@ -1,6 +1,6 @@
 // A headless Vulkan compute context: instance, the chosen physical device (discrete GPU, then integrated,
-// then CPU; RIPPLE_VK_DEVICE=<index or name substring> overrides), one compute queue, a pipeline cache,
-// and one-shot command submission. Validation layers and a message counter when asked (tests do).
+// then CPU; RIPPLE_VK_DEVICE=<index or name substring> overrides), one compute queue, a pipeline cache, the
+// compute pipelines built on it, and one-shot command submission. Validation layers and a message counter when asked (tests do).
 #pragma once
 
 #include "core/vk/Check.h"
@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -73,6 +74,19 @@ public:
     // Attaches a debug name to any Vulkan object (shows in validation messages and GPU debuggers).
     void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
 
+    // Compute pipelines are built once per device and kept until it is destroyed (ComputePipeline's
+    // constructor looks them up here): building one costs lavapipe up to tens of milliseconds, its
+    // VkPipelineCache keeps nothing, and every PathTracer (one per ANARI frame, one per test render) asks for
+    // the same kernels again. `key` tells the pipelines apart (ComputePipeline makes it from the SPIR-V's
+    // words, the push constant size and the specialization constants); `build` makes the one not stored yet.
+    // Safe to call from several threads.
+    struct StoredPipeline {
+        VkPipeline pipeline = VK_NULL_HANDLE;
+        VkPipelineLayout layout = VK_NULL_HANDLE;
+    };
+    StoredPipeline storedPipeline(const std::string& key, const std::function<StoredPipeline()>& build) const;
+    size_t storedPipelineCount() const;
+
     // Validation messages seen so far (warnings and errors); tests require zero.
     uint64_t validationMessageCount() const { return validationMessages_.load(); }
     std::string lastValidationMessage() const;
@@ -107,6 +121,8 @@ private:
     std::atomic<uint64_t> validationMessages_{0};
     mutable std::mutex validationMutex_;  // the callback runs on whichever thread made the call (pipelines
     std::string lastValidationMessage_;   // are built on several at once)
+    mutable std::mutex pipelinesMutex_;
+    mutable std::map<std::string, StoredPipeline> pipelines_;  // see storedPipeline()
 };
 
 }  // namespace ripple::vk
