@@ -111,6 +111,30 @@ TEST_CASE("feature set: a triangle-only scene runs triangle-only kernels") {
     CHECK(cachedTriangleVariants == 1);
 }
 
+// Exact: the device keeps the pipelines it built (vk::Context::storedPipeline), so a second tracer, as a
+// new ANARI frame or the next test render makes one, builds none and renders the same image bit for bit.
+TEST_CASE("feature set: a second tracer on the same device builds no pipeline") {
+    test::ValidationGuard guard;
+    core::Scene scene(testContext(), litSquare(true));
+    core::RenderSettings settings;
+    settings.pixelSamples = 2;
+    std::vector<glm::vec4> first(64), second(64);
+    {
+        core::PathTracer tracer(testContext());
+        tracer.resize({8, 8}, false);
+        tracer.render(scene, test::lookingDown(2.0f, 3.0f), settings);
+        tracer.readColor(core::ColorFormat::Rgba32Float, first.data());
+    }
+    const size_t built = testContext().storedPipelineCount();
+    CHECK(built >= 3);  // at least the trace, surface and shading kernels
+    core::PathTracer tracer(testContext());
+    tracer.resize({8, 8}, false);
+    tracer.render(scene, test::lookingDown(2.0f, 3.0f), settings);
+    tracer.readColor(core::ColorFormat::Rgba32Float, second.data());
+    CHECK(testContext().storedPipelineCount() == built);
+    CHECK(std::memcmp(first.data(), second.data(), first.size() * sizeof(glm::vec4)) == 0);
+}
+
 // Exact byte counts: no optional channel, no bytes; each one asked for adds exactly its buffer.
 TEST_CASE("feature set: unrequested channels allocate nothing") {
     core::PathTracer tracer(testContext());
