@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 namespace {
@@ -131,16 +132,19 @@ TEST_CASE("compositing Ripple matches single-rank Ripple without cross-rank effe
     const int32_t seeds = 4;
     double colorSquared = 0.0, alphaSquared = 0.0;
     Image composited, single;
+    // One device of each kind for all the seeds: each seed's render has a frame, world and renderer of its own.
+    RenderSession compositing("ripple_ptc");
+    std::optional<RenderSession> alone;
+    if (rank == 0) renderAlone(alone.emplace());
     for (int32_t seed = 1; seed <= seeds; ++seed) {
         {
-            RenderSession s("ripple_ptc");
+            RenderSession& s = compositing;
             ANARIFrame frame = s.frame(layerWorld(s, rank, ranks.size()), s.perspective({0, 0, 8}, {0, 0, 0}),
                                        localRenderer(s, samples, seed), kSize, ANARI_FLOAT32_VEC4, true);
             composited = renderOnRoot(s, frame, rank);
         }
         if (rank != 0) continue;
-        RenderSession s;
-        renderAlone(s);
+        RenderSession& s = *alone;
         ANARIFrame frame = s.frame(layerWorld(s, -1, 1), s.perspective({0, 0, 8}, {0, 0, 0}),
                                    localRenderer(s, samples, seed), kSize, ANARI_FLOAT32_VEC4, true);
         single = s.render(frame);
