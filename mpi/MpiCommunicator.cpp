@@ -334,11 +334,9 @@ void Communicator::abort(const std::string& message) const {
 
 namespace ripple::mpi {
 
-// Serialized: Ripple calls MPI from one thread at a time (a data-parallel frame renders on the thread that
-// called anariRenderFrame), which is all the application is promised too.
 namespace {
 
-// See Runtime.h.
+// Whether an MPI launcher started this process (see Runtime.h).
 bool launchedByMpi() {
     for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "MV2_COMM_WORLD_SIZE"})
         if (std::getenv(name)) return true;
@@ -348,6 +346,8 @@ bool launchedByMpi() {
 
 }  // namespace
 
+// Serialized: Ripple calls MPI from one thread at a time (a data-parallel frame renders on the thread that
+// called anariRenderFrame), which is all the application is promised too.
 Runtime::Runtime(int* argc, char*** argv) {
     if (mpiActive() || !launchedByMpi()) return;
     int provided = 0;

@@ -1,6 +1,7 @@
 // A headless Vulkan compute context: instance, the chosen physical device (discrete GPU, then integrated,
 // then CPU; RIPPLE_VK_DEVICE=<index or name substring> overrides), one compute queue, a pipeline cache, the
-// compute pipelines built on it, and one-shot command submission. Validation layers and a message counter when asked (tests do).
+// compute pipelines built on it, and one-shot command submission. Validation layers and a message counter
+// when asked (tests do).
 #pragma once
 
 #include "core/vk/Check.h"
