@@ -24,6 +24,6 @@ export LSAN_OPTIONS="suppressions=$PWD/cmake/lsan-suppressions.txt:print_suppres
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 start=$(date +%s)
 status=0
-ctest --test-dir "$build" --output-on-failure --timeout 1800 "$@" || status=$?
+ctest --test-dir "$build" --output-on-failure --timeout 1800 --parallel "$(nproc)" "$@" || status=$?
 echo "sanitize: ctest took $(( $(date +%s) - start )) s"
 exit $status
