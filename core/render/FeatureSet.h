@@ -53,9 +53,11 @@ struct KernelSource {
     uint32_t relevantFeatures = gpu::FEATURE_ALL;
 };
 
-// Pipelines per (kernel, relevant features), built on first use and kept. The kernel in use sits in the
-// owner's own vk::ComputePipeline member (its "slot"), so code that holds a reference to that member
-// always dispatches the selected variant; select() swaps variants in and out of the slot.
+// A tracer's pipelines per (kernel, relevant features): which variant sits in each of its slots, and the
+// others it has used. The kernel in use sits in the owner's own vk::ComputePipeline member (its "slot"), so
+// code that holds a reference to that member always dispatches the selected variant; select() swaps
+// variants in and out of the slot. The device builds each variant once and owns it
+// (vk::Context::storedPipeline), so a second tracer's select() builds nothing either.
 class PipelineCache {
 public:
     explicit PipelineCache(const vk::Context& context) : context_(&context) {}
