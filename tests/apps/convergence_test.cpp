@@ -228,8 +228,8 @@ TEST_CASE("the estimate tracks the true relMSE, which falls as 1/spp") {
 
 // Calibration against an independently seeded reference: each shared scene (and the default demo) at 64x64,
 // 128 spp with seed 2 reported at 8, 32 and 128 spp, against a stored reference of 4096 spp with seed 1,
-// tests/apps/references/calibration-SCENE.pfm, rendered once with
-//   ripple-render SCENE --size 64x64 --spp 4096 --seed 1 -o calibration-SCENE.pfm  (SCENE: the file, or --demo default)
+// tests/apps/references/calibration-SCENE.pfm, rendered once (SCENE: the file, or --demo default) with
+//   ripple-render SCENE --size 64x64 --spp 4096 --seed 1 -o calibration-SCENE.pfm
 // (39 to 82 s each on two CPU cores with lavapipe; rendering a 1024-spp one in every run took 86 of this
 // suite's seconds). Render them again when a change moves the renderer's mean on these scenes: this test then
 // fails, as it should. The reference's own noise adds Var(F) n / 4096 to the measured relMSE in expectation,
