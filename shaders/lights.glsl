@@ -25,6 +25,10 @@ float misWeight(float a, float b) {
     return r * r / (1.0 + r * r);
 }
 
+// Whether next-event estimation has any of the scene's lights to pick (ambientLightChance on the host,
+// core/scene/LightTable.h, counts them the same way: a power total above 0).
+bool sceneHasLights(SceneDesc scene) { return scene.lightCount > 0u && scene.lightPowerTotal > 0.0; }
+
 // Index of the light whose cdf interval holds u (binary search over the cdfs in position.w).
 uint pickLight(SceneDesc scene, float u) {
     LightsRef lights = LightsRef(scene.lights);

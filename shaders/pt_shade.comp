@@ -86,8 +86,7 @@ void appendShadow(Ray ray, vec3 contribution, uint pixel) {
 // BSDF sampling alone, which has little variance on surfaces open to the sky, while taking next-event
 // samples from a sun for it doubled the noise of the studio-lit shared scenes (docs/sampling.md).
 float ambientChance(FrameConstants f, SceneDesc scene, bool lastVertex) {
-    bool noLights = !(scene.lightPowerTotal > 0.0);  // as ambientLightChance (LightTable.h) counts them
-    return lastVertex || noLights ? f.ambient.w : 0.0;
+    return lastVertex || !sceneHasLights(scene) ? f.ambient.w : 0.0;
 }
 
 // Next-event estimation: the ambient light with chance ambientChance(), else one of the scene's lights picked
@@ -109,7 +108,7 @@ void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 p
         ls.incident = f.ambient.rgb / (chance * ls.pdf);
         misPdf = chance * ls.pdf;
     } else {
-        if (scene.lightCount == 0u || !(scene.lightPowerTotal > 0.0)) return;
+        if (!sceneHasLights(scene)) return;
         float lightsChance = 1.0 - chance;
         LightRecord light = LightsRef(scene.lights).lights[pickLight(scene, min((u.x - chance) / lightsChance, 1.0))];
         float selection = lightsChance * light.emission.w;

@@ -203,7 +203,7 @@ double lightSelectionPower(const gpu::LightRecord& light, float sceneRadius, flo
 float ambientLightChance(const glm::vec3& ambient, float sceneRadius, float lightPowerTotal) {
     const double power = double(luminance(ambient)) * kPi * kPi * double(sceneRadius) * sceneRadius;
     if (!(power > 0.0) || !std::isfinite(power)) return 0.0f;
-    // "No lights" as the kernels test it (ambientChance in pt_shade.comp): a total that is not above 0.
+    // "No lights" as the kernels test it (sceneHasLights in lights.glsl): a total that is not above 0.
     if (!(lightPowerTotal > 0.0f)) return 1.0f;
     // Below 1 whenever there are lights, however faint, so that they keep a chance of being sampled.
     return std::min(float(power / (power + double(lightPowerTotal))), std::nextafter(1.0f, 0.0f));

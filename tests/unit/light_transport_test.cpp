@@ -22,6 +22,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+core::Material matte(float albedo) {
+    core::Material m;
+    m.baseColor = glm::vec3(albedo);
+    return m;
+}
+
 core::SceneDescription meshScene(core::TriangleMesh mesh) {
     core::SceneDescription d;
     d.meshes.push_back(std::move(mesh));
@@ -106,9 +112,7 @@ TEST_CASE("light transport: white furnace per material and roughness") {
         core::Material material;
     };
     std::vector<Case> cases;
-    core::Material matte;
-    matte.baseColor = glm::vec3(1.0f);
-    cases.push_back({"matte", matte});
+    cases.push_back({"matte", matte(1.0f)});
     for (float roughness : {0.05f, 0.3f, 0.6f, 1.0f}) {
         cases.push_back({"metal", physicallyBased(1.0f, roughness)});
         cases.push_back({"dielectric", physicallyBased(0.0f, roughness)});
@@ -144,9 +148,7 @@ TEST_CASE("light transport: white furnace per material and roughness") {
 TEST_CASE("light transport: spot light cone edges where the spec puts them") {
     test::ValidationGuard guard;
     core::SceneDescription d = meshScene(test::squareMesh(100.0f));
-    core::Material white;
-    white.baseColor = glm::vec3(0.6f);
-    d.materials.push_back(white);
+    d.materials.push_back(matte(0.6f));
     const float h = 1.0f, intensity = 4.0f, view = 3.0f;
     core::Light spot;
     spot.kind = core::Light::Kind::Spot;
@@ -252,12 +254,8 @@ TEST_CASE("light transport: light sampling, BSDF sampling and MIS converge to th
 TEST_CASE("light transport: the ambient light by next-event estimation, BSDF sampling and MIS") {
     test::ValidationGuard guard;
     core::SceneDescription d = meshScene(test::squareMesh(200.0f));
-    core::Material floor;
-    floor.baseColor = glm::vec3(0.5f);
-    d.materials.push_back(floor);
-    core::Material black;
-    black.baseColor = glm::vec3(0.0f);
-    d.materials.push_back(black);
+    d.materials.push_back(matte(0.5f));
+    d.materials.push_back(matte(0.0f));  // the sphere
     core::SphereSet sphere;
     sphere.centers = {{0.0f, 0.0f, 1.0f}};
     sphere.radii = {1.0f};
@@ -309,9 +307,7 @@ TEST_CASE("light transport: a sun disc by light sampling, BSDF sampling and MIS"
 
     SUBCASE("matte floor facing the sun") {
         core::SceneDescription d = meshScene(test::squareMesh(100.0f));
-        core::Material floor;
-        floor.baseColor = glm::vec3(0.5f);
-        d.materials.push_back(floor);
+        d.materials.push_back(matte(0.5f));
         sun.direction = {0.0f, 0.0f, -1.0f};
         d.lights.push_back(sun);
         // Only the first vertex's light counts: the floor is all there is, so a second vertex never happens.
@@ -355,9 +351,7 @@ TEST_CASE("light transport: a sun disc by light sampling, BSDF sampling and MIS"
 // that miss, combined by MIS. Metric: mean within 1% of L (and 4 standard errors).
 TEST_CASE("light transport: hdri furnace") {
     test::ValidationGuard guard;
-    core::Material matte;
-    matte.baseColor = glm::vec3(1.0f);
-    core::SceneDescription d = oneSphere(matte);
+    core::SceneDescription d = oneSphere(matte(1.0f));
     core::Texture env;
     env.width = 8;
     env.height = 4;
