@@ -13,12 +13,14 @@ void main() {
     if (i >= stageCount()) return;
     PathState path = PathsRef(params.paths).paths[i];
     if ((path.flags & PATH_FLAG_CAMERA) == 0u || ((path.flags >> PATH_PASS_THROUGH_SHIFT) & 0xFFu) != 0u) return;
+    PixelSample ps = pixelSample(FrameRef(params.frame).frame, path.slot);
+    if (!ps.latest) return;
     SurfaceRecord r = SurfacesRef(params.surfaces).records[i];
     if (r.status != HIT_FOUND) return;  // pt_generate left the miss values
     ChannelBuffers c = ChannelsRef(params.results).channels;
-    if (c.albedo != 0ul) Vec4sRef(c.albedo).values[path.pixel] = vec4(r.baseColor.rgb, 0.0);
-    if (c.normal != 0ul) Vec4sRef(c.normal).values[path.pixel] = vec4(r.shadingNormal.xyz, 0.0);
-    if (c.primitiveId != 0ul) UintsRef(c.primitiveId).values[path.pixel] = r.primitiveId;
-    if (c.objectId != 0ul) UintsRef(c.objectId).values[path.pixel] = r.objectId;
-    if (c.instanceId != 0ul) UintsRef(c.instanceId).values[path.pixel] = r.instanceId;
+    if (c.albedo != 0ul) Vec4sRef(c.albedo).values[ps.pixel] = vec4(r.baseColor.rgb, 0.0);
+    if (c.normal != 0ul) Vec4sRef(c.normal).values[ps.pixel] = vec4(r.shadingNormal.xyz, 0.0);
+    if (c.primitiveId != 0ul) UintsRef(c.primitiveId).values[ps.pixel] = r.primitiveId;
+    if (c.objectId != 0ul) UintsRef(c.objectId).values[ps.pixel] = r.objectId;
+    if (c.instanceId != 0ul) UintsRef(c.instanceId).values[ps.pixel] = r.instanceId;
 }

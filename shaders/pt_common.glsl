@@ -37,4 +37,22 @@ uint stageCount() {
 
 bool allFinite(vec4 v) { return !any(isnan(v)) && !any(isinf(v)); }
 
+// The pixel sample behind a slot of the pass (PathState::slot). A frame of few pixels traces several of
+// each pixel's samples in one pass (PathTracer::render): slot k * width * height + pixel is the pixel's
+// sample sampleIndex + k. Random numbers are keyed by the pixel and that index, so the image is the same
+// bit for bit however many samples a pass holds.
+struct PixelSample {
+    uint pixel;       // y * width + x, row 0 at the bottom
+    uint index;       // the sample, counted over all render() calls
+    uint stratified;  // its point in the pixel's stratified sequences (StageParams::stratifiedSample)
+    bool latest;      // the render()'s last sample: the one depth and the surface channels show
+};
+
+PixelSample pixelSample(FrameConstants f, uint slot) {
+    uint pixels = f.width * f.height;
+    uint k = slot / pixels;
+    uint index = params.sampleIndex + k;
+    return PixelSample(slot - k * pixels, index, params.stratifiedSample + (k << 1u), index == f.latestSample);
+}
+
 #endif

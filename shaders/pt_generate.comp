@@ -1,8 +1,8 @@
 #version 460
-// Stage 1 of a sample pass: one camera ray per pixel of the wave (perspective with an optional thin lens,
-// orthographic, or omnidirectional equirectangular, through the image region, jittered within the pixel by
-// a stratified sequence), a fresh path state beside it, and the pixel's sample radiance, depth and surface
-// channels cleared.
+// Stage 1 of a sample pass: one camera ray per sample slot of the wave (perspective with an optional thin
+// lens, orthographic, or omnidirectional equirectangular, through the image region, jittered within the
+// pixel by a stratified sequence), a fresh path state beside it, and the slot's sample radiance cleared; the
+// render()'s last sample also clears its pixel's depth and surface channels.
 #extension GL_GOOGLE_include_directive : require
 #include "pt_common.glsl"
 #include "rng.glsl"
@@ -33,11 +33,13 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= params.count) return;
     FrameConstants f = FrameRef(params.frame).frame;
-    uint pixel = params.firstPixel + i;
+    uint slot = params.firstPixel + i;
+    PixelSample s = pixelSample(f, slot);
+    uint pixel = s.pixel;
     uvec2 xy = uvec2(pixel % f.width, pixel / f.width);  // row 0 is the bottom row
 
-    vec4 u = random4(pixel, params.sampleIndex, 0u, RNG_CAMERA, f.seed);
-    vec2 jitter = stratified2D(pixel, params.stratifiedSample, RNG_CAMERA_JITTER, f.seed);
+    vec4 u = random4(pixel, s.index, 0u, RNG_CAMERA, f.seed);
+    vec2 jitter = stratified2D(pixel, s.stratified, RNG_CAMERA_JITTER, f.seed);
     vec2 onImage = (vec2(xy) + jitter) / vec2(f.width, f.height);
     vec2 screen = mix(f.imageRegion.xy, f.imageRegion.zw, onImage);
     vec2 centered = 2.0 * screen - 1.0;  // [-1, 1] over the screen
@@ -76,8 +78,9 @@ void main() {
         }
     }
     RaysRef(params.rays).rays[i] = Ray(vec4(origin, tmin), vec4(direction, tmax));
-    PathsRef(params.paths).paths[i] = PathState(vec4(1.0), pixel, PATH_FLAG_CAMERA, 0.0, 0.0);
-    Vec4sRef(f.sampleRadiance).values[pixel] = vec4(0.0);
+    PathsRef(params.paths).paths[i] = PathState(vec4(1.0), slot, PATH_FLAG_CAMERA, 0.0, 0.0);
+    Vec4sRef(f.sampleRadiance).values[slot] = vec4(0.0);
+    if (!s.latest) return;
     if (f.depth != 0ul) FloatsRef(f.depth).values[pixel] = INFINITY;
     clearChannels(pixel);
 }

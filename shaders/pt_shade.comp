@@ -66,18 +66,18 @@ vec3 clamped(FrameConstants f, vec3 c) {
 // one of each), so the bound check only keeps a bug from writing out of range.
 void appendPath(Ray ray, PathState path) {
     CountersRef c = CountersRef(FrameRef(params.frame).frame.counters);
-    uint slot = atomicAdd(c.counters.nextPaths, 1u);
-    if (slot >= stageCount()) return;
-    RaysRef(params.nextRays).rays[slot] = ray;
-    PathsRef(params.nextPaths).paths[slot] = path;
+    uint entry = atomicAdd(c.counters.nextPaths, 1u);
+    if (entry >= stageCount()) return;
+    RaysRef(params.nextRays).rays[entry] = ray;
+    PathsRef(params.nextPaths).paths[entry] = path;
 }
 
-void appendShadow(Ray ray, vec3 contribution, uint pixel) {
+void appendShadow(Ray ray, vec3 contribution, uint slot) {
     CountersRef c = CountersRef(FrameRef(params.frame).frame.counters);
-    uint slot = atomicAdd(c.counters.shadowRays, 1u);
-    if (slot >= stageCount()) return;
-    RaysRef(params.shadowRays).rays[slot] = ray;
-    ShadowRequestsRef(params.shadowRequests).requests[slot] = ShadowRequest(vec4(contribution, 0.0), pixel, 0u, 0u, 0u);
+    uint entry = atomicAdd(c.counters.shadowRays, 1u);
+    if (entry >= stageCount()) return;
+    RaysRef(params.shadowRays).rays[entry] = ray;
+    ShadowRequestsRef(params.shadowRequests).requests[entry] = ShadowRequest(vec4(contribution, 0.0), slot, 0u, 0u, 0u);
 }
 
 // The chance that next-event estimation picks the ambient light over the scene's lights at a vertex. At a
@@ -95,7 +95,7 @@ float ambientChance(FrameConstants f, SceneDesc scene, bool lastVertex) {
 // In a medium (m.kind MATERIAL_VOLUME) the BSDF is the phase function (times the albedo) and the shadow ray
 // starts at the collision itself.
 void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
-                    vec3 wo, vec3 throughput, uint pixel, vec4 u, bool lastVertex) {
+                    vec3 wo, vec3 throughput, uint slot, vec4 u, bool lastVertex) {
     bool medium = m.kind == MATERIAL_VOLUME;
     float chance = ambientChance(f, scene, lastVertex);
     LightSample ls;
@@ -127,7 +127,7 @@ void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 p
     // Stop just short of the light, so geometry at the light itself does not shadow it.
     float tmax = isinf(ls.distance) ? INFINITY : ls.distance * (1.0 - 1e-4);
     vec3 origin = medium ? position : offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
-    if (maxComponent(contribution) > 0.0) appendShadow(Ray(vec4(origin, 0.0), vec4(ls.direction, tmax)), contribution, pixel);
+    if (maxComponent(contribution) > 0.0) appendShadow(Ray(vec4(origin, 0.0), vec4(ls.direction, tmax)), contribution, slot);
 }
 
 void main() {
@@ -138,6 +138,7 @@ void main() {
     Ray ray = RaysRef(params.rays).rays[i];
     SurfaceRecord r = SurfacesRef(params.surfaces).records[i];
     PathState path = PathsRef(params.paths).paths[i];
+    PixelSample ps = pixelSample(f, path.slot);
     Vec4sRef radiance = Vec4sRef(f.sampleRadiance);
     bool camera = (path.flags & PATH_FLAG_CAMERA) != 0u;
     uint passThroughs = (path.flags >> PATH_PASS_THROUGH_SHIFT) & 0xFFu;
@@ -147,29 +148,29 @@ void main() {
 
     if ((r.status & ~0xFFu) != 0u) atomicAdd(CountersRef(f.counters).counters.flagged, 1u);
     if (!camera)
-        radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * testedLightsRadiance(scene, ray.origin.xyz, direction,
+        radiance.values[path.slot].rgb += clamped(f, path.throughput.rgb * testedLightsRadiance(scene, ray.origin.xyz, direction,
                                                    hitT, path.throughput.w, path.bsdfPdf, f.lightSampling));
     if (!found) {
         if (camera) {
-            radiance.values[path.pixel] += vec4(path.throughput.rgb * f.background.rgb, f.background.a);
+            radiance.values[path.slot] += vec4(path.throughput.rgb * f.background.rgb, f.background.a);
         } else {  // the ambient light, weighted against its next-event estimation at the vertex before
             float lightPdf = path.ambientPdf;
             float w = !(lightPdf > 0.0) || !(path.bsdfPdf > 0.0) ? 1.0  // next-event estimation cannot reach it
                     : f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 0.0
                     : f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY ? 1.0
                     : misWeight(path.bsdfPdf, lightPdf);
-            radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * f.ambient.rgb * w);
+            radiance.values[path.slot].rgb += clamped(f, path.throughput.rgb * f.ambient.rgb * w);
         }
         return;
     }
-    if (camera && passThroughs == 0u && f.depth != 0ul) FloatsRef(f.depth).values[path.pixel] = r.position.w;
+    if (camera && passThroughs == 0u && f.depth != 0ul && ps.latest) FloatsRef(f.depth).values[ps.pixel] = r.position.w;
 
     vec3 position = r.position.xyz;
     vec3 geometricNormal = r.geometricNormal.xyz;
     vec3 wo = -direction;
-    vec4 uLight = random4(path.pixel, params.sampleIndex, params.bounce, RNG_LIGHT, f.seed);
+    vec4 uLight = random4(ps.pixel, ps.index, params.bounce, RNG_LIGHT, f.seed);
     if ((path.flags >> PATH_DEPTH_SHIFT) == 0u)
-        uLight.yz = stratified2D(path.pixel, params.stratifiedSample, RNG_FIRST_LIGHT, f.seed);
+        uLight.yz = stratified2D(ps.pixel, ps.stratified, RNG_FIRST_LIGHT, f.seed);
 
     // Transparency: continue straight on, unchanged, with probability 1 - opacity.
     if (uLight.w >= r.geometricNormal.w) {
@@ -181,7 +182,7 @@ void main() {
         appendPath(Ray(vec4(offsetRayOrigin(position, -geometricNormal, scene.originUnit), 0.0), vec4(ray.direction.xyz, reach)), path);
         return;
     }
-    if (camera) radiance.values[path.pixel].a = 1.0;
+    if (camera) radiance.values[path.slot].a = 1.0;
     float emissionWeight = 1.0;
     if (!camera && r.shadingNormal.w > 0.0) {  // a light that next-event estimation samples too
         float lightPdf = surfaceLightPdf(scene, r.shadingNormal.w, path.throughput.w + hitT, dot(geometricNormal, wo));
@@ -189,24 +190,24 @@ void main() {
                        : f.lightSampling == LIGHT_SAMPLING_BSDF_ONLY || !(path.bsdfPdf > 0.0) ? 1.0
                        : misWeight(path.bsdfPdf, lightPdf);
     }
-    radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * r.emission.rgb * emissionWeight);
+    radiance.values[path.slot].rgb += clamped(f, path.throughput.rgb * r.emission.rgb * emissionWeight);
 
     SurfaceMaterial m = surfaceMaterial(r, scene);
     vec3 n = r.shadingNormal.xyz;
     if (dot(n, wo) <= 0.0) n = geometricNormal;  // interpolated normals can face away from the viewer
     if (f.shading == SHADING_EYE_LIGHT) {  // the quick look ends at the first interaction (see path.h)
         float facing = m.kind == MATERIAL_VOLUME ? 1.0 : abs(dot(n, wo));
-        radiance.values[path.pixel].rgb += clamped(f, path.throughput.rgb * m.baseColor * f.ambient.rgb *
+        radiance.values[path.slot].rgb += clamped(f, path.throughput.rgb * m.baseColor * f.ambient.rgb *
                                                           mix(1.0, facing, f.eyeLightBlendRatio));
         return;
     }
     uint depth = (path.flags >> PATH_DEPTH_SHIFT) + 1u;
-    sampleOneLight(f, scene, m, position, geometricNormal, n, wo, path.throughput.rgb, path.pixel, uLight,
+    sampleOneLight(f, scene, m, position, geometricNormal, n, wo, path.throughput.rgb, path.slot, uLight,
                    depth >= f.maxPathLength);
 
     if (depth >= f.maxPathLength) return;
-    vec4 uBsdf = random4(path.pixel, params.sampleIndex, params.bounce, RNG_BSDF, f.seed);
-    if (depth == 1u) uBsdf.yz = stratified2D(path.pixel, params.stratifiedSample, RNG_FIRST_BSDF, f.seed);
+    vec4 uBsdf = random4(ps.pixel, ps.index, params.bounce, RNG_BSDF, f.seed);
+    if (depth == 1u) uBsdf.yz = stratified2D(ps.pixel, ps.stratified, RNG_FIRST_BSDF, f.seed);
     vec3 wi;
     vec3 weight;
     float pdf;
@@ -232,6 +233,6 @@ void main() {
     vec3 origin = medium ? position : offsetRayOrigin(position, side > 0.0 ? geometricNormal : -geometricNormal, scene.originUnit);
     uint flags = (path.flags & ~PATH_FLAG_CAMERA & ((1u << PATH_DEPTH_SHIFT) - 1u)) | (depth << PATH_DEPTH_SHIFT);
     appendPath(Ray(vec4(origin, 0.0), vec4(wi, INFINITY)),
-               PathState(vec4(throughput, 0.0), path.pixel, flags, pdf,
+               PathState(vec4(throughput, 0.0), path.slot, flags, pdf,
                          ambientChance(f, scene, false) * ambientPdf(n, wi, medium)));
 }

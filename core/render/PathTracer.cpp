@@ -73,11 +73,12 @@ struct PathTracer::Impl {
     vk::ComputePipeline volume, shadowVolume;                       // built for the first world with volumes
     VolumeParking parking;                                          // their marches' resume rounds
     vk::Buffer frame, counters;                                     // FrameConstants, PathCounters
-    vk::Buffer sampleRadiance, accumulation, sampleCount, depth, color;  // per pixel
+    vk::Buffer accumulation, sampleCount, depth, color;             // per pixel
+    vk::Buffer sampleRadiance;                                      // per sample slot of a pass (pixels or more)
     Queue queues[2];
     int current = 0;                                                // the queue the next bounce consumes
     vk::Buffer hits, surfaces, shadowRays, shadowRequests, occlusion; // per path in flight
-    uint32_t capacity = 0;
+    uint32_t capacity = 0;                                          // paths in flight
     bool lengthsOnDevice = false;                                   // one rank: see the header comment
     uint32_t stratifiedSample = 0;                                  // the sample's StageParams::stratifiedSample
     LocalRayExchange localExchange;
@@ -155,6 +156,30 @@ struct PathTracer::Impl {
         traced.get();
         kernelsBuilt();
         kernelFeatures = bits;
+    }
+
+    // The path queues for `paths` in flight, and the sample radiance for `slots` sample slots of a pass.
+    void allocatePaths(uint32_t paths, uint64_t slots) {
+        capacity = paths;
+        for (int q = 0; q < 2; ++q) {
+            queues[q].paths = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::PathState), "path queue " + std::to_string(q) + " states");
+            queues[q].rays = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::Ray), "path queue " + std::to_string(q) + " rays");
+        }
+        hits = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::Hit), "path hits");
+        surfaces = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::SurfaceRecord), "path surface records");
+        shadowRays = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::Ray), "shadow rays");
+        shadowRequests = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::ShadowRequest), "shadow requests");
+        occlusion = vk::Buffer(context, uint64_t(paths) * sizeof(uint32_t), "shadow occlusion");
+        sampleRadiance = vk::Buffer(context, slots * sizeof(gpu::vec4), "frame sample radiance");
+    }
+
+    // How many of each pixel's samples a pass of this frame traces together: several where one rank renders
+    // fewer pixels than options.packedWavePaths (and the queue capacity allows), else one.
+    uint32_t samplesPerPass(uint64_t pixels, uint32_t pixelSamples, bool oneRank) const {
+        const uint64_t oneDispatch = uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * options.workgroupSize;
+        const uint64_t paths = std::min<uint64_t>({options.packedWavePaths, options.queueCapacity, oneDispatch});
+        if (!oneRank || pixels * 2 > paths) return 1;
+        return static_cast<uint32_t>(std::min<uint64_t>(pixelSamples, paths / pixels));
     }
 
     // Camera and settings plus the frame's buffer addresses. resize() uploads it too (with no camera), so
@@ -346,6 +371,9 @@ struct PathTracer::Impl {
         p.rays = in.rays.address();
         p.hits = hits.address();
         p.surfaces = surfaces.address();
+        p.bounce = bounce;
+        p.sampleIndex = sampleIndex;
+        p.stratifiedSample = stratifiedSample;
         if (bounce == 0 && channels.any()) {  // the camera rays' first hits fill the surface channels
             gpu::StageParams c = p;
             c.results = channels.tableAddress();
@@ -356,9 +384,6 @@ struct PathTracer::Impl {
         p.nextRays = out.rays.address();
         p.shadowRays = shadowRays.address();
         p.shadowRequests = shadowRequests.address();
-        p.bounce = bounce;
-        p.sampleIndex = sampleIndex;
-        p.stratifiedSample = stratifiedSample;
         dispatchQueue(cmd, shade, p, gpu::COUNT_PATH_QUEUE, count);
         mark(cmd, Stage::Shade);
     }
@@ -492,7 +517,6 @@ void PathTracer::resize(glm::uvec2 size, const FrameChannels& channels) {
                                     " pixels (need at least one, and fewer than 2^32)");
     Impl& m = *impl_;
     const vk::Context& ctx = m.context;
-    m.sampleRadiance = vk::Buffer(ctx, pixels * sizeof(gpu::vec4), "frame sample radiance");
     m.accumulation = vk::Buffer(ctx, pixels * sizeof(gpu::vec4), "frame accumulation");
     m.sampleCount = vk::Buffer(ctx, pixels * sizeof(uint32_t), "frame sample count");
     m.depth = wantDepth ? vk::Buffer(ctx, pixels * sizeof(float), "frame depth") : vk::Buffer();
@@ -501,16 +525,8 @@ void PathTracer::resize(glm::uvec2 size, const FrameChannels& channels) {
     m.channelBits = channelFeatures(channels);
     // Queue stages index their queue by invocation, so one dispatch must cover a whole queue.
     const uint64_t oneDispatch = uint64_t(ctx.properties().limits.maxComputeWorkGroupCount[0]) * m.options.workgroupSize;
-    m.capacity = static_cast<uint32_t>(std::min<uint64_t>({pixels, m.options.queueCapacity, oneDispatch}));
-    for (int q = 0; q < 2; ++q) {
-        m.queues[q].paths = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::PathState), "path queue " + std::to_string(q) + " states");
-        m.queues[q].rays = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::Ray), "path queue " + std::to_string(q) + " rays");
-    }
-    m.hits = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::Hit), "path hits");
-    m.surfaces = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::SurfaceRecord), "path surface records");
-    m.shadowRays = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::Ray), "shadow rays");
-    m.shadowRequests = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(gpu::ShadowRequest), "shadow requests");
-    m.occlusion = vk::Buffer(ctx, uint64_t(m.capacity) * sizeof(uint32_t), "shadow occlusion");
+    // (render() enlarges them for a pass of several samples of each pixel.)
+    m.allocatePaths(static_cast<uint32_t>(std::min<uint64_t>({pixels, m.options.queueCapacity, oneDispatch})), pixels);
     size_ = size;
     m.uploadFrame(gpu::FrameConstants{}, size);
     resetAccumulation();
@@ -535,6 +551,12 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     Impl& m = *impl_;
     gpu::FrameConstants constants = frameConstants(camera, settings);
     constants.ambient.w = scene.ambientLightChance(glm::vec3(constants.ambient));
+    RayExchange& ranks = m.exchange();
+    const uint32_t pixels = size_.x * size_.y;  // fewer than 2^32 (resize)
+    const uint32_t passSamples = m.samplesPerPass(pixels, std::max(1u, settings.pixelSamples), ranks.rankCount() == 1);
+    if (uint64_t(passSamples) * pixels > m.capacity) m.allocatePaths(passSamples * pixels, passSamples * pixels);
+    constants.passSamples = passSamples;
+    constants.latestSample = accumulatedSamples_ + settings.pixelSamples - 1;
     m.uploadFrame(constants, size_);
     m.writeCounters({});
     m.stageSeconds = {};
@@ -552,17 +574,23 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
         settings.shading == RenderSettings::Shading::EyeLight ? 1u : std::max(1u, settings.maxPathLength);
     const uint32_t maxBounces = pathLength + gpu::PATH_MAX_PASS_THROUGHS + 2;
     // This rank's pixels (all of them with one rank); every rank runs as many waves and bounces as the
-    // busiest one, since each exchange needs all ranks.
-    RayExchange& ranks = m.exchange();
+    // busiest one, since each exchange needs all ranks. A pass of several samples of each pixel (one rank)
+    // traces the slots of all of them, as one wave.
     if (ranks.rankCount() > 1) ranks.shareRegions(scene.regions());
     const std::vector<PixelRange> owned = ownedPixels(size_, ranks.rank(), ranks.rankCount());
-    const std::vector<Wave> waves = packWaves(owned, m.capacity);
+    const auto passWaves = [&](uint32_t samples) {
+        return samples == 1 ? packWaves(owned, m.capacity) : packWaves({PixelRange{0, samples * pixels}}, m.capacity);
+    };
+    std::vector<Wave> waves = passWaves(passSamples);
     const uint64_t waveCount = ranks.max(waves.size());
     m.lengthsOnDevice = ranks.rankCount() == 1;
     const uint32_t sequence = accumulatedFrames_ % 2;
-    for (uint32_t s = 0; s < settings.pixelSamples; ++s) {
+    for (uint32_t s = 0; s < settings.pixelSamples; s += passSamples) {
+        const uint32_t samples = std::min(passSamples, settings.pixelSamples - s);
+        if (samples != passSamples) waves = passWaves(samples);  // the last pass, with fewer (one rank: one wave)
         const uint32_t sampleIndex = accumulatedSamples_;
-        m.stratifiedSample = (stratifiedSamples_[sequence]++ << 1) | sequence;
+        m.stratifiedSample = (stratifiedSamples_[sequence] << 1) | sequence;
+        stratifiedSamples_[sequence] += samples;
         for (uint64_t w = 0; w < waveCount; ++w) {
             const Wave* wave = w < waves.size() ? &waves[w] : nullptr;  // this rank may have fewer waves
             if (m.lengthsOnDevice)
@@ -574,12 +602,13 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
             for (const PixelRange& range : owned) {
                 gpu::StageParams p = m.params(nullptr);
                 p.firstPixel = range.first;
+                p.sampleIndex = sampleIndex;
                 m.dispatch(cmd, m.accumulate, p, range.count);
             }
             m.mark(cmd, Stage::Accumulate);
             Impl::hostReadBarrier(cmd);
         });
-        ++accumulatedSamples_;
+        accumulatedSamples_ += samples;
     }
     ++accumulatedFrames_;
     const gpu::PathCounters c = m.readCounters();

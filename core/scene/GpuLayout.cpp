@@ -74,14 +74,15 @@ static_assert(offsetof(LightRecord, distribution) == 92);
 static_assert(offsetof(LightRecord, kind) == 80);
 
 static_assert(sizeof(PathState) == 32);
-static_assert(offsetof(PathState, pixel) == 16);
+static_assert(offsetof(PathState, slot) == 16);
 static_assert(sizeof(ShadowRequest) == 32);
 static_assert(sizeof(PathCounters) == 112);
 static_assert(offsetof(PathCounters, parkedMarches) == 104);
 static_assert(offsetof(PathCounters, realCollisions) == 80);
 static_assert(offsetof(PathCounters, pathGroups) == 32);
 static_assert(sizeof(QueueAdvanceParams) == 24);
-static_assert(sizeof(FrameConstants) == 192);
+static_assert(sizeof(FrameConstants) == 208);
+static_assert(offsetof(FrameConstants, latestSample) == 196);
 static_assert(offsetof(FrameConstants, shading) == 184);
 static_assert(offsetof(FrameConstants, phaseAnisotropy) == 176);
 static_assert(offsetof(FrameConstants, cameraFar) == 180);

@@ -16,17 +16,18 @@ RIPPLE_CONST uint PATH_DEPTH_SHIFT = 16u;         // flags >> this = surface int
 // The home part of a path, parallel to its ray in the same queue slot (the ray is gpu::Ray).
 struct PathState {
     vec4 throughput;  // rgb; w: distance from the last scattering point to this ray's origin (pass-throughs)
-    uint pixel;       // y * width + x of the full image, row 0 at the bottom
+    uint slot;        // the pixel sample's slot in the pass: k * width * height + y * width + x for the pass's
+                      // k-th sample of pixel (x, y), row 0 at the bottom (pixelSample in pt_common.glsl)
     uint flags;       // PATH_FLAG_* | pass-throughs << PATH_PASS_THROUGH_SHIFT | depth << PATH_DEPTH_SHIFT
     float bsdfPdf;    // solid-angle pdf of the BSDF sample that made this ray (for MIS at what it finds); 0: none
     float ambientPdf; // solid-angle pdf with which next-event estimation at the same vertex would have picked the
                       // ambient light in this ray's direction (its chance included): MIS if the ray escapes
 };
 
-// What an unoccluded shadow ray adds to its pixel (the ray itself sits in a gpu::Ray queue beside it).
+// What an unoccluded shadow ray adds to its pixel sample (the ray itself sits in a gpu::Ray queue beside it).
 struct ShadowRequest {
     vec4 contribution;  // rgb; w unused
-    uint pixel;
+    uint slot;          // the PathState::slot it adds to
     uint pad0;
     uint pad1;
     uint pad2;
@@ -138,7 +139,7 @@ struct FrameConstants {
     uint height;
     uint maxPathLength;
     uint seed;
-    uint64_t sampleRadiance;  // vec4 per pixel: this sample's RGBA, summed over the bounces
+    uint64_t sampleRadiance;  // vec4 per sample slot of the pass (PathState::slot): its RGBA, summed over the bounces
     uint64_t accumulation;    // vec4 per pixel: sum of the accepted samples
     uint64_t sampleCount;     // uint per pixel: accepted samples
     uint64_t depth;           // float per pixel, or 0 when no depth channel was asked for
@@ -149,6 +150,10 @@ struct FrameConstants {
     float cameraFar;          // far clip distance along forward (perspective, orthographic); INFINITY: none
     uint shading;             // SHADING_*
     float eyeLightBlendRatio; // SHADING_EYE_LIGHT: the share of the light that falls off with |cos|
+    uint passSamples;         // samples of each pixel a sample pass traces together (the last pass may have fewer)
+    uint latestSample;        // the index of this render()'s last sample: the one depth and the surface channels show
+    uint pad0;
+    uint pad1;
 };
 
 // Push constants of every pt_*.comp stage; each reads the fields it needs (0 where unused).
@@ -165,15 +170,15 @@ struct StageParams {
     uint64_t results;      // pt_resolve: the color buffer; pt_shadow_resolve: uint occlusion per shadow ray
     uint64_t surfaces;     // SurfaceRecord[] beside the queue being consumed (pt_surface writes, pt_shade reads)
     uint count;            // items to process (paths, shadow rays or pixels)
-    uint firstPixel;       // pixel of invocation 0 (pt_generate, pt_accumulate, pt_resolve)
-    uint sampleIndex;      // the pixel sample this pass computes (over all render() calls)
+    uint firstPixel;       // pixel of invocation 0 (pt_accumulate, pt_resolve); pt_generate: its sample slot
+    uint sampleIndex;      // the pass's first pixel sample (over all render() calls); its k-th is sampleIndex + k
     uint bounce;           // pt_shade: interactions every path in the queue has had (RNG key)
     uint mode;             // pt_resolve: OUTPUT_*
     uint countSource;      // COUNT_*: the queue stages' item count (count, or a queue length on the device)
     uint resumeRound;      // pt_volume, pt_shadow_volume: 0 for the stage's items, r > 0 for the marches
                            // parked in round r - 1 (VolumeParkingHeader)
-    uint stratifiedSample; // pt_generate, pt_shade: this pass's point in its pixel's stratified sequences,
-                           // (index << 1) | sequence (PathTracer::render; stratified2D in rng.glsl)
+    uint stratifiedSample; // pt_generate, pt_shade: the pass's first point in its pixel's stratified sequences,
+                           // (index << 1) | sequence, its k-th sample's + 2k (PathTracer::render; stratified2D)
     uint64_t volumeParking; // pt_volume, pt_shadow_volume: VolumeParkingHeader then its pools (VolumeParking::run)
 };
 

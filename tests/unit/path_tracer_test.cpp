@@ -422,6 +422,70 @@ TEST_CASE("path tracer: same seed, same image, bit for bit, whatever the wave si
     CHECK(std::memcmp(a.color.data(), c.color.data(), a.color.size() * sizeof(glm::vec4)) != 0);
 }
 
+// A frame of few pixels traces several samples of each pixel per pass (PathTracerOptions::packedWavePaths),
+// each keyed by its own sample index, and sums them in index order: colour, depth and the surface channels
+// (of the frame's last sample) must be those of one sample per pass, bit for bit. Two render() calls of 5
+// samples each, packed 5 to a pass (the default on 16x16), 2 to a pass (passes of 2, 2 and 1), and 1.
+TEST_CASE("path tracer: several samples of a pixel in one pass give the image of one per pass, bit for bit") {
+    test::ValidationGuard guard;
+    core::SceneDescription d = matteFloor(glm::vec3(0.6f, 0.5f, 0.4f));
+    core::SphereSet balls = test::randomSpheres(12, 5, 1.0f, 0.1f, 0.3f);
+    for (glm::vec3& c : balls.centers) c.z = std::abs(c.z) + 0.3f;
+    d.sphereSets.push_back(balls);
+    d.instances.push_back({{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f), 0});
+    core::Light light;
+    light.direction = glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f));
+    light.intensity = 2.0f;
+    d.lights.push_back(light);
+    core::RenderSettings settings;
+    settings.ambientRadiance = 0.3f;
+    settings.maxPathLength = 4;
+    settings.pixelSamples = 5;
+    core::Camera camera;
+    camera.position = {0.0f, -4.0f, 3.0f};
+    camera.direction = {0.0f, 1.0f, -0.7f};
+    camera.apertureRadius = 0.05f;  // the lens sample is keyed by the sample index too
+    camera.focusDistance = 4.0f;
+    const glm::uvec2 size{16, 16};
+    const size_t pixels = size_t(size.x) * size.y;
+    struct Frame {
+        std::vector<glm::vec4> color;
+        std::vector<float> depth, albedo;
+        std::vector<uint32_t> primitiveIds;
+        core::FrameStats stats;
+    };
+    const auto renderTwice = [&](uint32_t packedWavePaths) {
+        core::Scene scene(test::testContext(), d);
+        core::PathTracer tracer(test::testContext(), {}, {.packedWavePaths = packedWavePaths});
+        tracer.resize(size, core::FrameChannels{.depth = true, .albedo = true, .primitiveId = true});
+        Frame f;
+        tracer.render(scene, camera, settings);
+        f.stats = tracer.render(scene, camera, settings);
+        f.color.resize(pixels);
+        f.depth.resize(pixels);
+        f.albedo.resize(3 * pixels);
+        f.primitiveIds.resize(pixels);
+        tracer.readColor(core::ColorFormat::Rgba32Float, f.color.data());
+        tracer.readDepth(f.depth.data());
+        tracer.readChannel(core::SurfaceChannel::Albedo, f.albedo.data());
+        tracer.readChannel(core::SurfaceChannel::PrimitiveId, f.primitiveIds.data());
+        return f;
+    };
+    const Frame one = renderTwice(1);
+    CHECK(one.stats.raysTraced > 5 * pixels);
+    CHECK(std::count_if(one.depth.begin(), one.depth.end(), [](float z) { return std::isfinite(z); }) > 0);
+    for (const uint32_t packedWavePaths : {uint32_t(2 * pixels), core::PathTracerOptions{}.packedWavePaths}) {
+        CAPTURE(packedWavePaths);
+        const Frame packed = renderTwice(packedWavePaths);
+        CHECK(std::memcmp(one.color.data(), packed.color.data(), pixels * sizeof(glm::vec4)) == 0);
+        CHECK(std::memcmp(one.depth.data(), packed.depth.data(), pixels * sizeof(float)) == 0);
+        CHECK(one.albedo == packed.albedo);
+        CHECK(one.primitiveIds == packed.primitiveIds);
+        CHECK(one.stats.raysTraced == packed.stats.raysTraced);
+        CHECK(one.stats.shadowRays == packed.stats.shadowRays);
+    }
+}
+
 // The pixel jitter is stratified over the frames of an accumulation, in two independent sequences (even
 // and odd frames; stratified2D in shaders/rng.glsl). A straight edge crosses the image at a slant, and a
 // sample's alpha says whether it hit the surface. Against each pixel's exact coverage c, n independent

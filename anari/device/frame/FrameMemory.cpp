@@ -51,17 +51,19 @@ uint64_t hostAvailable() {
 std::optional<FrameMemory> estimateFrameMemory(glm::uvec2 size, ANARIDataType colorType,
                                                const core::FrameChannels& channels) {
     const uint64_t pixels = uint64_t(size.x) * uint64_t(size.y);  // two 32-bit factors: cannot overflow
-    // Per pixel on the device: sample radiance and accumulation (vec4 each), the sample count, the
-    // resolved color (always vec4, whatever format is read back), depth, and the surface channels
-    // (albedo and normal as vec4, ids as uint32).
-    uint64_t devicePerPixel = 16 + 16 + 4 + 16;
+    // Per pixel on the device: the accumulation (vec4), the sample count, the resolved color (always
+    // vec4, whatever format is read back), depth, and the surface channels (albedo and normal as vec4,
+    // ids as uint32).
+    uint64_t devicePerPixel = 16 + 4 + 16;
     if (channels.depth) devicePerPixel += 4;
     if (channels.albedo) devicePerPixel += 16;
     if (channels.normal) devicePerPixel += 16;
     devicePerPixel += 4 * (uint64_t(channels.primitiveId) + channels.objectId + channels.instanceId);
-    // Paths in flight are capped (PathTracerOptions::queueCapacity): two path queues, hits, surface
-    // records, shadow rays and requests, occlusion flags.
-    const uint64_t capacity = std::min<uint64_t>(pixels, core::PathTracerOptions{}.queueCapacity);
+    // Paths in flight are capped (PathTracerOptions::queueCapacity), and a frame of fewer pixels than
+    // packedWavePaths may trace up to that many: two path queues, hits, surface records, shadow rays and
+    // requests, occlusion flags; and a sample radiance (vec4) for each path or, where more, each pixel.
+    const core::PathTracerOptions tracer;
+    const uint64_t capacity = std::min<uint64_t>(std::max<uint64_t>(pixels, tracer.packedWavePaths), tracer.queueCapacity);
     const uint64_t perPath = 2 * (sizeof(gpu::PathState) + sizeof(gpu::Ray)) + sizeof(gpu::Hit) +
                              sizeof(gpu::SurfaceRecord) + sizeof(gpu::Ray) + sizeof(gpu::ShadowRequest) + 4;
     // On the host: the mapped copies, plus one readback staged through host memory at a time (vec4).
@@ -72,7 +74,8 @@ std::optional<FrameMemory> estimateFrameMemory(glm::uvec2 size, ANARIDataType co
     hostPerPixel += 4 * (uint64_t(channels.primitiveId) + channels.objectId + channels.instanceId);
     hostPerPixel += 16;
 
-    const std::optional<uint64_t> queues = mulAdd(capacity, perPath);
+    const std::optional<uint64_t> sampleRadiance = mulAdd(std::max(pixels, capacity), 16);
+    const std::optional<uint64_t> queues = sampleRadiance ? mulAdd(capacity, perPath, *sampleRadiance) : std::nullopt;
     if (!queues) return std::nullopt;
     const std::optional<uint64_t> device = mulAdd(pixels, devicePerPixel, *queues);
     const std::optional<uint64_t> host = mulAdd(pixels, hostPerPixel);
