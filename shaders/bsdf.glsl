@@ -22,6 +22,7 @@
 #ifndef RIPPLE_BSDF_GLSL
 #define RIPPLE_BSDF_GLSL
 
+#include "features.glsl"
 #include "sampling.glsl"
 
 struct SurfaceMaterial {
@@ -110,12 +111,16 @@ struct Lobes {
 Lobes lobesAt(SurfaceMaterial m, float nv) {
     Lobes l;
     l.specularF0 = mix(vec3(m.f0), m.baseColor, m.metallic);
-    LobeEnergy coat = lobeEnergy(m, vec3(CLEARCOAT_F0), nv, m.clearcoatAlpha);
     LobeEnergy spec = lobeEnergy(m, l.specularF0, nv, m.alpha);
     LobeEnergy dielectric = lobeEnergy(m, vec3(m.f0), nv, m.alpha);
-    l.coatCompensation = coat.compensation;
     l.specularCompensation = spec.compensation;
-    l.coatAlbedo = m.clearcoat * coat.albedo.x;
+    l.coatCompensation = vec3(1.0);
+    l.coatAlbedo = 0.0;  // m.clearcoat is 0 where the FeatureSet has no clear coat
+    if (hasFeature(FEATURE_CLEARCOAT)) {
+        LobeEnergy coat = lobeEnergy(m, vec3(CLEARCOAT_F0), nv, m.clearcoatAlpha);
+        l.coatCompensation = coat.compensation;
+        l.coatAlbedo = m.clearcoat * coat.albedo.x;
+    }
     l.underCoat = 1.0 - l.coatAlbedo;
     l.specularAlbedo = l.underCoat * spec.albedo;
     l.underDielectric = clamp(1.0 - dielectric.albedo.x, 0.0, 1.0);
@@ -194,7 +199,7 @@ vec3 evalBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi, out float pdf) {
     float nl = dot(n, wi);
     float nv = dot(n, wo);
     if (nv <= 0.0 || nl == 0.0) return vec3(0.0);
-    if (m.kind == MATERIAL_MATTE) {
+    if (!hasFeature(FEATURE_PHYSICALLY_BASED) || m.kind == MATERIAL_MATTE) {
         if (nl < 0.0) return vec3(0.0);
         pdf = nl / PI;
         return m.baseColor * (nl / PI);
@@ -203,7 +208,7 @@ vec3 evalBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi, out float pdf) {
     vec3 value = vec3(0.0);
     if (nl > 0.0) {
         float p;
-        if (m.clearcoat > 0.0 && !isSmooth(m.clearcoatAlpha)) {
+        if (hasFeature(FEATURE_CLEARCOAT) && m.clearcoat > 0.0 && !isSmooth(m.clearcoatAlpha)) {
             value += m.clearcoat * l.coatCompensation * ggxReflection(vec3(CLEARCOAT_F0), m.clearcoatAlpha, n, wo, wi, p);
             pdf += l.coat * p;
         }
@@ -214,7 +219,7 @@ vec3 evalBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi, out float pdf) {
         value += l.underCoat * (1.0 - m.metallic) * (1.0 - m.transmission) * l.underDielectric * m.baseColor * (nl / PI);
         pdf += l.diffuse * (nl / PI);
     }
-    if (m.transmission > 0.0 && !isSmooth(m.alpha)) {
+    if (hasFeature(FEATURE_TRANSMISSION) && m.transmission > 0.0 && !isSmooth(m.alpha)) {
         float p = transmissionPdf(m, n, wo, wi);
         value += l.underCoat * (1.0 - m.metallic) * m.transmission * l.underDielectric * m.baseColor * p;
         pdf += l.transmission * p;
@@ -253,7 +258,7 @@ vec3 sampleGgxReflection(vec3 v, float alpha, vec2 u) {
 bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec3 weight, out float pdf) {
     weight = vec3(0.0);
     pdf = 0.0;
-    if (m.kind == MATERIAL_MATTE) {
+    if (!hasFeature(FEATURE_PHYSICALLY_BASED) || m.kind == MATERIAL_MATTE) {
         wi = toWorld(sampleCosineHemisphere(u.yz), n);
         weight = m.baseColor;  // (base / pi) * cos / (cos / pi)
         pdf = dot(n, wi) / PI;
@@ -264,7 +269,7 @@ bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec
     Lobes l = lobesAt(m, nv);
     vec3 v = toLocal(wo, n);
     float pick = u.x;
-    if (pick < l.coat) {
+    if (hasFeature(FEATURE_CLEARCOAT) && pick < l.coat) {
         if (isSmooth(m.clearcoatAlpha)) {
             wi = reflect(-wo, n);
             weight = vec3(l.coatAlbedo / l.coat);
@@ -280,7 +285,7 @@ bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec
         wi = toWorld(sampleGgxReflection(v, m.alpha, u.yz), n);
     } else if ((pick -= l.specular) < l.diffuse) {
         wi = toWorld(sampleCosineHemisphere(u.yz), n);
-    } else if (l.transmission > 0.0) {
+    } else if (hasFeature(FEATURE_TRANSMISSION) && l.transmission > 0.0) {
         vec3 h = isSmooth(m.alpha) ? vec3(0.0, 0.0, 1.0) : sampleVisibleNormal(v, m.alpha, u.yz);
         vec3 t = refract(-v, h, 1.0 / m.eta);
         wi = toWorld(dot(t, t) > 0.0 ? t : reflect(-v, h), n);

@@ -96,7 +96,7 @@ float ambientChance(FrameConstants f, SceneDesc scene, bool lastVertex) {
 // starts at the collision itself.
 void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
                     vec3 wo, vec3 throughput, uint slot, vec4 u, bool lastVertex) {
-    bool medium = m.kind == MATERIAL_VOLUME;
+    bool medium = hasFeature(FEATURE_VOLUMES) && m.kind == MATERIAL_VOLUME;
     float chance = ambientChance(f, scene, lastVertex);
     LightSample ls;
     float misPdf;  // the light strategy's pdf in the MIS weight, selection included
@@ -196,7 +196,7 @@ void main() {
     vec3 n = r.shadingNormal.xyz;
     if (dot(n, wo) <= 0.0) n = geometricNormal;  // interpolated normals can face away from the viewer
     if (f.shading == SHADING_EYE_LIGHT) {  // the quick look ends at the first interaction (see path.h)
-        float facing = m.kind == MATERIAL_VOLUME ? 1.0 : abs(dot(n, wo));
+        float facing = hasFeature(FEATURE_VOLUMES) && m.kind == MATERIAL_VOLUME ? 1.0 : abs(dot(n, wo));
         radiance.values[path.slot].rgb += clamped(f, path.throughput.rgb * m.baseColor * f.ambient.rgb *
                                                           mix(1.0, facing, f.eyeLightBlendRatio));
         return;
@@ -211,7 +211,7 @@ void main() {
     vec3 wi;
     vec3 weight;
     float pdf;
-    bool medium = m.kind == MATERIAL_VOLUME;
+    bool medium = hasFeature(FEATURE_VOLUMES) && m.kind == MATERIAL_VOLUME;
     if (medium) {  // the phase function sampled exactly: phase / pdf = 1, so the weight is the albedo
         wi = samplePhase(-wo, f.phaseAnisotropy, uBsdf.yz);
         weight = m.baseColor;

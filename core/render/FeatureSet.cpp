@@ -21,7 +21,9 @@ std::string FeatureSet::describe() const {
         {gpu::FEATURE_CHANNEL_DEPTH, "depth"},      {gpu::FEATURE_CHANNEL_ALBEDO, "albedo"},
         {gpu::FEATURE_CHANNEL_NORMAL, "normal"},    {gpu::FEATURE_CHANNEL_PRIMITIVE_ID, "primitiveId"},
         {gpu::FEATURE_CHANNEL_OBJECT_ID, "objectId"}, {gpu::FEATURE_CHANNEL_INSTANCE_ID, "instanceId"},
-        {gpu::FEATURE_MULTI_RANK, "ranks"},        {gpu::FEATURE_ISOSURFACES, "isosurfaces"}};
+        {gpu::FEATURE_MULTI_RANK, "ranks"},        {gpu::FEATURE_ISOSURFACES, "isosurfaces"},
+        {gpu::FEATURE_PHYSICALLY_BASED, "physicallyBased"}, {gpu::FEATURE_CLEARCOAT, "clearcoat"},
+        {gpu::FEATURE_TRANSMISSION, "transmission"}};
     std::string text;
     auto add = [&](const std::string& word) { text += (text.empty() ? "" : " ") + word; };
     for (const auto& [bit, name] : names)
@@ -44,6 +46,11 @@ uint32_t shadingFeatures(const SceneDescription& description) {
             if (texture != kNoTexture) bits |= gpu::FEATURE_TEXTURES;
         if (glm::any(glm::greaterThan(material.emissive, glm::vec3(0.0f)))) bits |= gpu::FEATURE_EMISSIVE;
         if (material.opacity < 1.0f) bits |= gpu::FEATURE_ALPHA;
+        if (material.kind == Material::Kind::PhysicallyBased) {
+            bits |= gpu::FEATURE_PHYSICALLY_BASED;
+            if (material.clearcoat > 0.0f) bits |= gpu::FEATURE_CLEARCOAT;
+            if (material.transmission > 0.0f) bits |= gpu::FEATURE_TRANSMISSION;
+        }
     }
     for (const Light& light : description.lights) {
         const uint32_t kind = static_cast<uint32_t>(light.kind);

@@ -27,9 +27,11 @@ struct FeatureSet {
 };
 
 // The material and light part of a scene's features: FEATURE_TEXTURES when a material used by an instance
-// reads a texture, FEATURE_EMISSIVE when one emits, FEATURE_ALPHA when one has opacity below 1, and one
-// FEATURE_LIGHT_SHIFT + kind bit per light kind present. (The geometry bits come from the instances that
-// core::Scene keeps; see Scene::features.)
+// reads a texture, FEATURE_EMISSIVE when one emits, FEATURE_ALPHA when one has opacity below 1,
+// FEATURE_PHYSICALLY_BASED (and FEATURE_CLEARCOAT, FEATURE_TRANSMISSION) when one is physicallyBased (with a
+// clear coat, with transmission), and one FEATURE_LIGHT_SHIFT + kind bit per light kind present. (The
+// geometry bits come from the instances that core::Scene keeps, and the bit of emissive triangles from its
+// light records; see Scene::features.)
 uint32_t shadingFeatures(const SceneDescription& description);
 
 // The frame channels besides color, each of which gets a buffer only when asked for.

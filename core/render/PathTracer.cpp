@@ -83,6 +83,7 @@ struct PathTracer::Impl {
     uint32_t stratifiedSample = 0;                                  // the sample's StageParams::stratifiedSample
     LocalRayExchange localExchange;
     PipelineCache pipelines;                                        // variants of `surface` per FeatureSet
+    PipelineCache shadePipelines;                                   // and of `shade` (built beside it)
     SurfaceChannels channels;                                       // albedo, normal and id channels
     uint32_t channelBits = 0;                                       // FEATURE_CHANNEL_* asked for in resize
     FeatureSet features = FeatureSet::all();                        // of the latest render
@@ -98,12 +99,11 @@ struct PathTracer::Impl {
 
     Impl(const vk::Context& ctx, const TraceOptions& traceOptions, const PathTracerOptions& opts)
         : context(ctx), options(opts), trace(ctx, traceOptions), parking(ctx, opts.volumeParking), pipelines(ctx),
-          channels(ctx, opts.workgroupSize), visitors(ctx, trace, opts.workgroupSize), profile(ctx) {
+          shadePipelines(ctx), channels(ctx, opts.workgroupSize), visitors(ctx, trace, opts.workgroupSize), profile(ctx) {
         if (options.queueCapacity == 0 || options.workgroupSize == 0)
             throw std::invalid_argument("PathTracerOptions: queueCapacity and workgroupSize must be positive");
         fixedKernels = std::async(std::launch::async, [this] {
             generate = stageKernel(shaders::pt_generate, "pt_generate");
-            shade = stageKernel(shaders::pt_shade, "pt_shade");
             shadowResolve = stageKernel(shaders::pt_shadow_resolve, "pt_shadow_resolve");
             accumulate = stageKernel(shaders::pt_accumulate, "pt_accumulate");
             resolve = stageKernel(shaders::pt_resolve, "pt_resolve");
@@ -136,10 +136,21 @@ struct PathTracer::Impl {
     }
 
     // The kernels the FeatureSet `bits` specialise, and the volume kernels when it has volumes, built where
-    // missing: the trace kernels on a thread of their own while this one builds pt_surface (the largest).
+    // missing: the trace kernels and pt_shade on threads of their own while this one builds pt_surface.
     void selectKernels(uint32_t bits) {
         if (kernelFeatures == bits) return;
         auto traced = std::async(std::launch::async, [&] { trace.useFeatures(bits); });
+        // With several ranks, a path's home also shades what the other ranks' surfaces and volumes packed,
+        // whose materials this rank's FeatureSet does not know: there pt_shade keeps every material model.
+        // (Lights are gathered from every rank, so their kinds are known.)
+        const uint32_t materialModels = gpu::FEATURE_VOLUMES | gpu::FEATURE_PHYSICALLY_BASED | gpu::FEATURE_CLEARCOAT |
+                                        gpu::FEATURE_TRANSMISSION;
+        const uint32_t shadeBits = bits & gpu::FEATURE_MULTI_RANK ? bits | materialModels : bits;
+        auto shaded = std::async(std::launch::async, [&] {
+            shadePipelines.select({shaders::pt_shade, "pt_shade", static_cast<uint32_t>(sizeof(gpu::StageParams)),
+                                   options.workgroupSize, gpu::FEATURE_LIGHTS | materialModels},
+                                  shadeBits, shade);
+        });
         try {
             pipelines.select({shaders::pt_surface, "pt_surface", static_cast<uint32_t>(sizeof(gpu::StageParams)),
                               options.workgroupSize,
@@ -150,10 +161,12 @@ struct PathTracer::Impl {
                 shadowVolume = stageKernel(shaders::pt_shadow_volume, "pt_shadow_volume");
             }
         } catch (...) {
-            traced.wait();  // it refers to this frame's locals
+            traced.wait();  // they refer to this frame's locals
+            shaded.wait();
             throw;
         }
         traced.get();
+        shaded.get();
         kernelsBuilt();
         kernelFeatures = bits;
     }
@@ -647,6 +660,7 @@ FeatureSet PathTracer::features() const { return impl_->features; }
 
 std::vector<PipelineCache::Entry> PathTracer::pipelines() const {
     std::vector<PipelineCache::Entry> list = impl_->pipelines.entries();
+    for (const PipelineCache::Entry& e : impl_->shadePipelines.entries()) list.push_back(e);
     for (const PipelineCache::Entry& e : impl_->trace.pipelines().entries()) list.push_back(e);
     return list;
 }

@@ -471,6 +471,8 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     lightCount_ = static_cast<uint32_t>(shading.lights.size());
     lightPowerTotal_ = shading.lightPowerTotal;
     features_ |= shadingFeatures(description);  // materials and lights: see FeatureSet.h
+    for (const gpu::LightRecord& light : shading.lights)  // also emissive triangles, this rank's and the others'
+        features_ |= light.kind < 8 ? 1u << (gpu::FEATURE_LIGHT_SHIFT + light.kind) : gpu::FEATURE_LIGHTS;
 
     // 4. Upload. Empty arrays still get a (tiny) buffer so every address in SceneDesc is valid.
     auto upload = [&](vk::Buffer& buffer, const auto& items, const char* name, VkBufferUsageFlags usage = 0) {

@@ -18,7 +18,8 @@ RIPPLE_CONST uint FEATURE_VOLUMES = 1u << 4;   // the world has volumes: pt_volu
 RIPPLE_CONST uint FEATURE_TEXTURES = 1u << 5;  // a material reads a texture
 RIPPLE_CONST uint FEATURE_EMISSIVE = 1u << 6;  // a material emits
 RIPPLE_CONST uint FEATURE_ALPHA = 1u << 7;     // a material has opacity below 1
-// Light kinds: bit 8 + core::Light::Kind; any of them means shadow rays.
+// Light kinds: bit 8 + the kind of a light record (LIGHT_* in shared/material.h: core::Light::Kind, and
+// LIGHT_TRIANGLE for the triangles of emissive surfaces); any of them means shadow rays.
 RIPPLE_CONST uint FEATURE_LIGHT_SHIFT = 8u;
 RIPPLE_CONST uint FEATURE_LIGHTS = 0xFFu << 8;
 // Frame channels besides color.
@@ -30,7 +31,11 @@ RIPPLE_CONST uint FEATURE_CHANNEL_OBJECT_ID = 1u << 20;
 RIPPLE_CONST uint FEATURE_CHANNEL_INSTANCE_ID = 1u << 21;
 RIPPLE_CONST uint FEATURE_SURFACE_CHANNELS = 0x1Fu << 17;  // written by pt_channels from the first hit
 RIPPLE_CONST uint FEATURE_MULTI_RANK = 1u << 22;           // rays cross ranks: exchange stages run
-RIPPLE_CONST uint FEATURE_ALL = 0xFFFFFFu;
+// Material models besides matte (which every scene may use: it is the default material).
+RIPPLE_CONST uint FEATURE_PHYSICALLY_BASED = 1u << 24;     // a physicallyBased material
+RIPPLE_CONST uint FEATURE_CLEARCOAT = 1u << 25;            // one with a clear coat
+RIPPLE_CONST uint FEATURE_TRANSMISSION = 1u << 26;         // one with transmission
+RIPPLE_CONST uint FEATURE_ALL = 0x7FFFFFFu;
 
 RIPPLE_GPU_END
 #endif

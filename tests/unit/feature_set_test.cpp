@@ -35,9 +35,10 @@ TEST_CASE("feature set: what a scene holds") {
     mixed.materials[0].emissive = glm::vec3(1.0f);
     mixed.materials[0].opacity = 0.5f;
     core::Scene all(testContext(), mixed);
-    CHECK(all.features() == (gpu::FEATURE_TRIANGLES | gpu::FEATURE_SPHERES | gpu::FEATURE_EMISSIVE |
-                             gpu::FEATURE_ALPHA | (1u << gpu::FEATURE_LIGHT_SHIFT)));
-    CHECK(core::FeatureSet{all.features()}.describe() == "triangles spheres emissive alpha light:0");
+    // The emissive square's triangles are lights too (LIGHT_TRIANGLE).
+    CHECK(all.features() == (gpu::FEATURE_TRIANGLES | gpu::FEATURE_SPHERES | gpu::FEATURE_EMISSIVE | gpu::FEATURE_ALPHA |
+                             (1u << gpu::FEATURE_LIGHT_SHIFT) | (1u << (gpu::FEATURE_LIGHT_SHIFT + gpu::LIGHT_TRIANGLE))));
+    CHECK(core::FeatureSet{all.features()}.describe() == "triangles spheres emissive alpha light:0 light:5");
     // Any one of a material's six texture slots makes the scene textured: without FEATURE_TEXTURES,
     // pt_surface is built without its texture code.
     for (int slot = 0; slot < 6; ++slot) {
@@ -86,8 +87,9 @@ TEST_CASE("feature set: a triangle-only scene runs triangle-only kernels") {
         CHECK((e.features & unwanted) == 0);
         // trace_any_rq under ray-query traversal.
         if (e.kernel.starts_with("trace_any")) CHECK(e.features == gpu::FEATURE_TRIANGLES);
+        if (e.kernel == "pt_shade") CHECK(e.features == 0);  // no light kind, matte only
     }
-    CHECK(inUse == 3);  // trace_closest, trace_any (or their _rq forms), pt_surface
+    CHECK(inUse == 4);  // trace_closest, trace_any (or their _rq forms), pt_surface, pt_shade
 
     core::PathTracerOptions unspecialisedOptions;
     unspecialisedOptions.specialize = false;
@@ -109,6 +111,91 @@ TEST_CASE("feature set: a triangle-only scene runs triangle-only kernels") {
         if (!e.inUse && e.kernel.starts_with("trace_closest") && e.features == gpu::FEATURE_TRIANGLES)
             ++cachedTriangleVariants;
     CHECK(cachedTriangleVariants == 1);
+}
+
+// pt_shade keeps the code of the light kinds and material models a scene has, and the image is the
+// unspecialised one bit for bit. Two scenes between them have every light kind but hdri and every material model: a sun
+// and a quad light over matte and physically based surfaces; point, spot and ring lights and an emissive
+// triangle over a clear-coated and a transmissive material.
+TEST_CASE("feature set: pt_shade is built for the scene's light kinds and material models, same image") {
+    test::ValidationGuard guard;
+    const auto lightOf = [](core::Light::Kind kind, glm::vec3 position) {
+        core::Light light;
+        light.kind = kind;
+        light.position = position;
+        light.direction = glm::normalize(glm::vec3(0.2f, 0.1f, -1.0f));
+        light.edge1 = {0.6f, 0.0f, 0.0f};
+        light.edge2 = {0.0f, 0.6f, 0.0f};
+        light.intensity = 3.0f;
+        light.openingAngle = 2.0f;
+        light.radius = 0.4f;
+        light.innerRadius = 0.1f;
+        light.angularDiameter = kind == core::Light::Kind::Directional ? 0.05f : 0.0f;
+        return light;
+    };
+    core::SceneDescription first = test::sceneOf(test::squareMesh(4.0f));
+    first.sphereSets.push_back(core::SphereSet{{{-0.5f, 0.0f, 0.5f}, {0.6f, 0.3f, 0.4f}}, {0.45f, 0.35f}, {}, {}});
+    first.instances.push_back(core::InstanceDescription{{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f), 1});
+    first.materials.push_back(core::Material{});
+    core::Material metal;
+    metal.kind = core::Material::Kind::PhysicallyBased;
+    metal.roughness = 0.4f;
+    first.materials.push_back(metal);
+    first.lights = {lightOf(core::Light::Kind::Directional, {}), lightOf(core::Light::Kind::Quad, {-0.3f, -0.3f, 2.0f})};
+
+    core::SceneDescription second = first;
+    second.materials[1].metallic = 0.0f;
+    second.materials[1].clearcoat = 1.0f;
+    second.materials[1].clearcoatRoughness = 0.2f;
+    second.materials[1].transmission = 0.7f;
+    core::TriangleMesh emitter;
+    emitter.positions = {{1.5f, -1.5f, 1.0f}, {1.9f, -1.5f, 1.0f}, {1.5f, -1.1f, 1.0f}};
+    second.meshes.push_back(emitter);
+    second.instances.push_back(core::InstanceDescription{{core::GeometryKind::Triangles, 1}, glm::mat4(1.0f), 2});
+    core::Material glow;
+    glow.emissive = glm::vec3(4.0f);
+    second.materials.push_back(glow);
+    second.lights = {lightOf(core::Light::Kind::Point, {0.5f, 0.5f, 2.0f}), lightOf(core::Light::Kind::Spot, {-0.5f, 0.5f, 2.5f}),
+                     lightOf(core::Light::Kind::Ring, {0.0f, -0.5f, 2.2f})};
+
+    const auto lightBit = [](uint32_t kind) { return 1u << (gpu::FEATURE_LIGHT_SHIFT + kind); };
+    const uint32_t firstShade = lightBit(gpu::LIGHT_DIRECTIONAL) | lightBit(gpu::LIGHT_QUAD) | gpu::FEATURE_PHYSICALLY_BASED;
+    const uint32_t secondShade = lightBit(gpu::LIGHT_POINT) | lightBit(gpu::LIGHT_SPOT) | lightBit(gpu::LIGHT_RING) |
+                                 lightBit(gpu::LIGHT_TRIANGLE) | gpu::FEATURE_PHYSICALLY_BASED | gpu::FEATURE_CLEARCOAT |
+                                 gpu::FEATURE_TRANSMISSION;
+    core::RenderSettings settings;
+    settings.ambientRadiance = 0.2f;
+    settings.pixelSamples = 4;
+    core::Camera camera;
+    camera.position = {0.0f, -3.0f, 3.0f};
+    camera.direction = glm::normalize(glm::vec3(0.0f, 3.0f, -3.0f));
+    for (const auto& [description, shadeFeatures] : {std::pair{first, firstShade}, std::pair{second, secondShade}}) {
+        CAPTURE(shadeFeatures);
+        const core::Scene scene(testContext(), description);
+        core::PathTracer specialised(testContext());
+        specialised.resize({16, 16}, false);
+        specialised.render(scene, camera, settings);
+        int shadeVariants = 0;
+        for (const core::PipelineCache::Entry& e : specialised.pipelines())
+            if (e.inUse && e.kernel == "pt_shade") {
+                ++shadeVariants;
+                CHECK(e.features == shadeFeatures);
+            }
+        CHECK(shadeVariants == 1);
+        core::PathTracerOptions unspecialisedOptions;
+        unspecialisedOptions.specialize = false;
+        core::PathTracer unspecialised(testContext(), {}, unspecialisedOptions);
+        unspecialised.resize({16, 16}, false);
+        const core::FrameStats stats = unspecialised.render(scene, camera, settings);
+        CHECK(stats.shadowRays > 0);
+        std::vector<glm::vec4> a(256), b(256);
+        specialised.readColor(core::ColorFormat::Rgba32Float, a.data());
+        unspecialised.readColor(core::ColorFormat::Rgba32Float, b.data());
+        double sum = 0.0;
+        for (const glm::vec4& c : a) sum += c.r + c.g + c.b;
+        CHECK(sum > 0.0);
+        CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0);
+    }
 }
 
 // Exact: the device keeps the pipelines it built (vk::Context::storedPipeline), so a second tracer, as a
