@@ -49,6 +49,24 @@ core::SceneDescription matteFloor(const glm::vec3& albedo, float side = 200.0f) 
     return d;
 }
 
+// matteFloor with `count` random balls above it (material `ballMaterial`), and a camera looking at them
+// from the side: the scene of the tests that images are the same bit for bit however the work is split.
+core::SceneDescription ballsOnFloor(uint32_t count, uint32_t seed, uint32_t ballMaterial) {
+    core::SceneDescription d = matteFloor(glm::vec3(0.6f, 0.5f, 0.4f));
+    core::SphereSet balls = test::randomSpheres(count, seed, 1.0f, 0.1f, 0.3f);
+    for (glm::vec3& c : balls.centers) c.z = std::abs(c.z) + 0.3f;
+    d.sphereSets.push_back(balls);
+    d.instances.push_back({{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f), ballMaterial});
+    return d;
+}
+
+core::Camera ballsCamera() {
+    core::Camera camera;
+    camera.position = {0.0f, -4.0f, 3.0f};
+    camera.direction = {0.0f, 1.0f, -0.7f};
+    return camera;
+}
+
 glm::vec4 meanColor(const test::Rendered& r) {
     glm::dvec4 sum(0.0);
     for (const glm::vec4& c : r.color) sum += glm::dvec4(c);
@@ -387,11 +405,7 @@ TEST_CASE("path tracer: non-finite samples are counted and dropped") {
 // sizes); another seed gives another image.
 TEST_CASE("path tracer: same seed, same image, bit for bit, whatever the wave size") {
     test::ValidationGuard guard;
-    core::SceneDescription d = matteFloor(glm::vec3(0.6f, 0.5f, 0.4f));
-    core::SphereSet balls = test::randomSpheres(20, 51, 1.0f, 0.1f, 0.3f);
-    for (glm::vec3& c : balls.centers) c.z = std::abs(c.z) + 0.3f;
-    d.sphereSets.push_back(balls);
-    d.instances.push_back({{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f), 1});
+    core::SceneDescription d = ballsOnFloor(20, 51, 1);
     core::Material metal;
     metal.kind = core::Material::Kind::PhysicallyBased;
     metal.roughness = 0.3f;
@@ -408,9 +422,7 @@ TEST_CASE("path tracer: same seed, same image, bit for bit, whatever the wave si
     settings.maxPathLength = 6;
     settings.pixelSamples = 2;
     settings.seed = 7;
-    core::Camera camera;
-    camera.position = {0.0f, -4.0f, 3.0f};
-    camera.direction = {0.0f, 1.0f, -0.7f};
+    const core::Camera camera = ballsCamera();
     const test::Rendered a = test::render(d, camera, settings);
     const test::Rendered b = test::render(d, camera, settings, {32, 32}, false, {.queueCapacity = 100});
     REQUIRE(a.color.size() == b.color.size());
@@ -428,11 +440,7 @@ TEST_CASE("path tracer: same seed, same image, bit for bit, whatever the wave si
 // samples each, packed 5 to a pass (the default on 16x16), 2 to a pass (passes of 2, 2 and 1), and 1.
 TEST_CASE("path tracer: several samples of a pixel in one pass give the image of one per pass, bit for bit") {
     test::ValidationGuard guard;
-    core::SceneDescription d = matteFloor(glm::vec3(0.6f, 0.5f, 0.4f));
-    core::SphereSet balls = test::randomSpheres(12, 5, 1.0f, 0.1f, 0.3f);
-    for (glm::vec3& c : balls.centers) c.z = std::abs(c.z) + 0.3f;
-    d.sphereSets.push_back(balls);
-    d.instances.push_back({{core::GeometryKind::Spheres, 0}, glm::mat4(1.0f), 0});
+    core::SceneDescription d = ballsOnFloor(12, 5, 0);
     core::Light light;
     light.direction = glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f));
     light.intensity = 2.0f;
@@ -441,9 +449,7 @@ TEST_CASE("path tracer: several samples of a pixel in one pass give the image of
     settings.ambientRadiance = 0.3f;
     settings.maxPathLength = 4;
     settings.pixelSamples = 5;
-    core::Camera camera;
-    camera.position = {0.0f, -4.0f, 3.0f};
-    camera.direction = {0.0f, 1.0f, -0.7f};
+    core::Camera camera = ballsCamera();
     camera.apertureRadius = 0.05f;  // the lens sample is keyed by the sample index too
     camera.focusDistance = 4.0f;
     const glm::uvec2 size{16, 16};
