@@ -108,6 +108,9 @@ struct Lobes {
     float underDielectric; // what the dielectric specular passes on to diffuse and transmission
 };
 
+// A physicallyBased material's lobes seen from wo (nv = n.wo): what evalBsdf and sampleBsdf take, computed
+// once per shading point (six bilinear table reads, three with a clear coat) and shared by the light
+// sample's evaluation and the BSDF sample. A matte material needs none (noLobes).
 Lobes lobesAt(SurfaceMaterial m, float nv) {
     Lobes l;
     l.specularF0 = mix(vec3(m.f0), m.baseColor, m.metallic);
@@ -193,8 +196,23 @@ float transmissionPdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
     return visibleNormalPdf(nv, dot(n, h), vh, a2) * abs(lh) / max(denom * denom, 1e-12);
 }
 
-// f(wo, wi) * |cos(n, wi)| of the lobes that are not delta lobes, and the pdf with which sampleBsdf picks wi.
-vec3 evalBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi, out float pdf) {
+Lobes noLobes() {
+    Lobes l;
+    l.coat = l.specular = l.diffuse = l.transmission = 0.0;
+    l.coatCompensation = l.specularCompensation = l.specularF0 = l.specularAlbedo = vec3(0.0);
+    l.coatAlbedo = l.underCoat = l.underDielectric = 0.0;
+    return l;
+}
+
+// The lobes a material has at a shading point (n, wo).
+Lobes lobesOf(SurfaceMaterial m, vec3 n, vec3 wo) {
+    if (!hasFeature(FEATURE_PHYSICALLY_BASED) || m.kind != MATERIAL_PHYSICALLY_BASED) return noLobes();
+    return lobesAt(m, dot(n, wo));
+}
+
+// f(wo, wi) * |cos(n, wi)| of the lobes that are not delta lobes, and the pdf with which sampleBsdf picks wi;
+// l = lobesOf(m, n, wo).
+vec3 evalBsdf(SurfaceMaterial m, Lobes l, vec3 n, vec3 wo, vec3 wi, out float pdf) {
     pdf = 0.0;
     float nl = dot(n, wi);
     float nv = dot(n, wo);
@@ -204,7 +222,6 @@ vec3 evalBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi, out float pdf) {
         pdf = nl / PI;
         return m.baseColor * (nl / PI);
     }
-    Lobes l = lobesAt(m, nv);
     vec3 value = vec3(0.0);
     if (nl > 0.0) {
         float p;
@@ -254,8 +271,8 @@ vec3 sampleGgxReflection(vec3 v, float alpha, vec2 u) {
 }
 
 // Samples wi; weight = f * |cos| / pdf, and its pdf (0 for a delta lobe's direction, whose weight is its
-// albedo over its chance). False when the sample carries nothing.
-bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec3 weight, out float pdf) {
+// albedo over its chance). False when the sample carries nothing. l = lobesOf(m, n, wo).
+bool sampleBsdf(SurfaceMaterial m, Lobes l, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec3 weight, out float pdf) {
     weight = vec3(0.0);
     pdf = 0.0;
     if (!hasFeature(FEATURE_PHYSICALLY_BASED) || m.kind == MATERIAL_MATTE) {
@@ -266,7 +283,6 @@ bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec
     }
     float nv = dot(n, wo);
     if (nv <= 0.0) return false;
-    Lobes l = lobesAt(m, nv);
     vec3 v = toLocal(wo, n);
     float pick = u.x;
     if (hasFeature(FEATURE_CLEARCOAT) && pick < l.coat) {
@@ -296,7 +312,7 @@ bool sampleBsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 u, out vec3 wi, out vec
     } else {
         return false;
     }
-    vec3 fCos = evalBsdf(m, n, wo, wi, pdf);
+    vec3 fCos = evalBsdf(m, l, n, wo, wi, pdf);
     if (!(pdf > 0.0)) return false;
     weight = fCos / pdf;
     return true;

@@ -94,8 +94,8 @@ float ambientChance(FrameConstants f, SceneDesc scene, bool lastVertex) {
 // where the path ends here so no BSDF ray will follow), as a shadow request.
 // In a medium (m.kind MATERIAL_VOLUME) the BSDF is the phase function (times the albedo) and the shadow ray
 // starts at the collision itself.
-void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 position, vec3 geometricNormal, vec3 n,
-                    vec3 wo, vec3 throughput, uint slot, vec4 u, bool lastVertex) {
+void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, Lobes lobes, vec3 position, vec3 geometricNormal,
+                    vec3 n, vec3 wo, vec3 throughput, uint slot, vec4 u, bool lastVertex) {
     bool medium = hasFeature(FEATURE_VOLUMES) && m.kind == MATERIAL_VOLUME;
     float chance = ambientChance(f, scene, lastVertex);
     LightSample ls;
@@ -121,7 +121,7 @@ void sampleOneLight(FrameConstants f, SceneDesc scene, SurfaceMaterial m, vec3 p
     float side = dot(ls.direction, geometricNormal);
     if (!medium && (side == 0.0 || (side < 0.0 && m.transmission == 0.0))) return;
     float bsdfPdf = medium ? phaseHG(dot(-wo, ls.direction), f.phaseAnisotropy) : 0.0;
-    vec3 fCos = medium ? m.baseColor * bsdfPdf : evalBsdf(m, n, wo, ls.direction, bsdfPdf);
+    vec3 fCos = medium ? m.baseColor * bsdfPdf : evalBsdf(m, lobes, n, wo, ls.direction, bsdfPdf);
     float w = delta || lastVertex || f.lightSampling == LIGHT_SAMPLING_LIGHTS_ONLY ? 1.0 : misWeight(misPdf, bsdfPdf);
     vec3 contribution = clamped(f, throughput * fCos * ls.incident * w);
     // Stop just short of the light, so geometry at the light itself does not shadow it.
@@ -202,7 +202,8 @@ void main() {
         return;
     }
     uint depth = (path.flags >> PATH_DEPTH_SHIFT) + 1u;
-    sampleOneLight(f, scene, m, position, geometricNormal, n, wo, path.throughput.rgb, path.slot, uLight,
+    Lobes lobes = lobesOf(m, n, wo);
+    sampleOneLight(f, scene, m, lobes, position, geometricNormal, n, wo, path.throughput.rgb, path.slot, uLight,
                    depth >= f.maxPathLength);
 
     if (depth >= f.maxPathLength) return;
@@ -216,7 +217,7 @@ void main() {
         wi = samplePhase(-wo, f.phaseAnisotropy, uBsdf.yz);
         weight = m.baseColor;
         pdf = phaseHG(dot(-wo, wi), f.phaseAnisotropy);
-    } else if (!sampleBsdf(m, n, wo, uBsdf.xyz, wi, weight, pdf)) {
+    } else if (!sampleBsdf(m, lobes, n, wo, uBsdf.xyz, wi, weight, pdf)) {
         return;
     }
     float side = dot(wi, geometricNormal);
