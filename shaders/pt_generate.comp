@@ -34,12 +34,12 @@ void main() {
     if (i >= params.count) return;
     FrameConstants f = FrameRef(params.frame).frame;
     uint slot = params.firstPixel + i;
-    PixelSample s = pixelSample(f, slot);
-    uint pixel = s.pixel;
+    PixelSample ps = pixelSample(f, slot);
+    uint pixel = ps.pixel;
     uvec2 xy = uvec2(pixel % f.width, pixel / f.width);  // row 0 is the bottom row
 
-    vec4 u = random4(pixel, s.index, 0u, RNG_CAMERA, f.seed);
-    vec2 jitter = stratified2D(pixel, s.stratified, RNG_CAMERA_JITTER, f.seed);
+    vec4 u = random4(pixel, ps.index, 0u, RNG_CAMERA, f.seed);
+    vec2 jitter = stratified2D(pixel, ps.stratified, RNG_CAMERA_JITTER, f.seed);
     vec2 onImage = (vec2(xy) + jitter) / vec2(f.width, f.height);
     vec2 screen = mix(f.imageRegion.xy, f.imageRegion.zw, onImage);
     vec2 centered = 2.0 * screen - 1.0;  // [-1, 1] over the screen
@@ -80,7 +80,7 @@ void main() {
     RaysRef(params.rays).rays[i] = Ray(vec4(origin, tmin), vec4(direction, tmax));
     PathsRef(params.paths).paths[i] = PathState(vec4(1.0), slot, PATH_FLAG_CAMERA, 0.0, 0.0);
     Vec4sRef(f.sampleRadiance).values[slot] = vec4(0.0);
-    if (!s.latest) return;
+    if (!ps.latest) return;
     if (f.depth != 0ul) FloatsRef(f.depth).values[pixel] = INFINITY;
     clearChannels(pixel);
 }

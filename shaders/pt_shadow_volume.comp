@@ -27,7 +27,7 @@ void main() {
     if (params.resumeRound == 0u) march.t = ray.origin.w;
     bool visiting = params.shadowRequests == 0ul;
     PixelSample ps = visiting ? PixelSample(i, params.sampleIndex, 0u, false)
-                                  : pixelSample(f, ShadowRequestsRef(params.shadowRequests).requests[i].slot);
+                              : pixelSample(f, ShadowRequestsRef(params.shadowRequests).requests[i].slot);
     VolumeRng rng = volumeRng(ps.pixel, ps.index, params.bounce, RNG_VOLUME_SHADOW,
                               f.seed ^ (params.mode * 0x9E3779B9u), params.resumeRound);
     VolumeDataRef data = VolumeDataRef(scene.volumeData);

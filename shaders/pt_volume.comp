@@ -36,7 +36,7 @@ void main() {
     }
     // A path's pixel sample; a ray visiting from another rank (no paths), its index in the visitors' queue.
     PixelSample ps = params.paths != 0ul ? pixelSample(f, PathsRef(params.paths).paths[i].slot)
-                                             : PixelSample(i, params.sampleIndex, 0u, false);
+                                         : PixelSample(i, params.sampleIndex, 0u, false);
     VolumeRng rng = volumeRng(ps.pixel, ps.index, params.bounce, RNG_VOLUME, f.seed ^ (params.mode * 0x9E3779B9u),
                               params.resumeRound);
     VolumeDataRef data = VolumeDataRef(scene.volumeData);
