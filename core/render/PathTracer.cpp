@@ -79,6 +79,7 @@ struct PathTracer::Impl {
     int current = 0;                                                // the queue the next bounce consumes
     vk::Buffer hits, surfaces, shadowRays, shadowRequests, occlusion; // per path in flight
     uint32_t capacity = 0;                                          // paths in flight
+    uint64_t sampleSlots = 0;                                       // sample radiance entries
     bool lengthsOnDevice = false;                                   // one rank: see the header comment
     uint32_t stratifiedSample = 0;                                  // the sample's StageParams::stratifiedSample
     LocalRayExchange localExchange;
@@ -171,8 +172,17 @@ struct PathTracer::Impl {
         kernelFeatures = bits;
     }
 
-    // The path queues for `paths` in flight, and the sample radiance for `slots` sample slots of a pass.
-    void allocatePaths(uint32_t paths, uint64_t slots) {
+    // Room for at least `paths` in flight and `slots` sample slots of a pass; resize() sets it for one sample
+    // of each pixel per pass, render() enlarges it for several.
+    void reserve(uint64_t paths, uint64_t slots) {
+        if (paths > capacity) allocatePaths(static_cast<uint32_t>(paths));
+        if (slots > sampleSlots) {
+            sampleSlots = slots;
+            sampleRadiance = vk::Buffer(context, slots * sizeof(gpu::vec4), "frame sample radiance");
+        }
+    }
+
+    void allocatePaths(uint32_t paths) {
         capacity = paths;
         for (int q = 0; q < 2; ++q) {
             queues[q].paths = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::PathState), "path queue " + std::to_string(q) + " states");
@@ -183,16 +193,17 @@ struct PathTracer::Impl {
         shadowRays = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::Ray), "shadow rays");
         shadowRequests = vk::Buffer(context, uint64_t(paths) * sizeof(gpu::ShadowRequest), "shadow requests");
         occlusion = vk::Buffer(context, uint64_t(paths) * sizeof(uint32_t), "shadow occlusion");
-        sampleRadiance = vk::Buffer(context, slots * sizeof(gpu::vec4), "frame sample radiance");
     }
 
-    // How many of each pixel's samples a pass of this frame traces together: several where one rank renders
-    // fewer pixels than options.packedWavePaths (and the queue capacity allows), else one.
-    uint32_t samplesPerPass(uint64_t pixels, uint32_t pixelSamples, bool oneRank) const {
+    // How many of each pixel's samples a pass of this frame traces together, the same on every rank: as many
+    // as keep the busiest rank's pass (`busiest` pixels a sample) within options.packedWavePaths and one
+    // dispatch, and the pass's sample slots (all pixels times the samples) within the queue capacity.
+    uint32_t samplesPerPass(uint64_t pixels, uint64_t busiest, uint32_t pixelSamples) const {
         const uint64_t oneDispatch = uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * options.workgroupSize;
         const uint64_t paths = std::min<uint64_t>({options.packedWavePaths, options.queueCapacity, oneDispatch});
-        if (!oneRank || pixels * 2 > paths) return 1;
-        return static_cast<uint32_t>(std::min<uint64_t>(pixelSamples, paths / pixels));
+        if (busiest == 0 || busiest * 2 > paths) return 1;
+        const uint64_t samples = std::min<uint64_t>({pixelSamples, paths / busiest, options.queueCapacity / pixels});
+        return static_cast<uint32_t>(std::max<uint64_t>(samples, 1));
     }
 
     // Camera and settings plus the frame's buffer addresses. resize() uploads it too (with no camera), so
@@ -538,8 +549,9 @@ void PathTracer::resize(glm::uvec2 size, const FrameChannels& channels) {
     m.channelBits = channelFeatures(channels);
     // Queue stages index their queue by invocation, so one dispatch must cover a whole queue.
     const uint64_t oneDispatch = uint64_t(ctx.properties().limits.maxComputeWorkGroupCount[0]) * m.options.workgroupSize;
-    // (render() enlarges them for a pass of several samples of each pixel.)
-    m.allocatePaths(static_cast<uint32_t>(std::min<uint64_t>({pixels, m.options.queueCapacity, oneDispatch})), pixels);
+    m.capacity = 0;
+    m.sampleSlots = 0;
+    m.reserve(std::min<uint64_t>({pixels, m.options.queueCapacity, oneDispatch}), pixels);
     size_ = size;
     m.uploadFrame(gpu::FrameConstants{}, size);
     resetAccumulation();
@@ -565,13 +577,6 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     gpu::FrameConstants constants = frameConstants(camera, settings);
     constants.ambient.w = scene.ambientLightChance(glm::vec3(constants.ambient));
     RayExchange& ranks = m.exchange();
-    const uint32_t pixels = size_.x * size_.y;  // fewer than 2^32 (resize)
-    const uint32_t passSamples = m.samplesPerPass(pixels, std::max(1u, settings.pixelSamples), ranks.rankCount() == 1);
-    if (uint64_t(passSamples) * pixels > m.capacity) m.allocatePaths(passSamples * pixels, passSamples * pixels);
-    constants.passSamples = passSamples;
-    constants.latestSample = accumulatedSamples_ + settings.pixelSamples - 1;
-    m.uploadFrame(constants, size_);
-    m.writeCounters({});
     m.stageSeconds = {};
     // Leave out what this frame does not need: kernels specialised for its FeatureSet (FeatureSet.h).
     m.features = m.options.specialize ? FeatureSet{scene.features() | m.channelBits |
@@ -586,21 +591,40 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     const uint32_t pathLength =
         settings.shading == RenderSettings::Shading::EyeLight ? 1u : std::max(1u, settings.maxPathLength);
     const uint32_t maxBounces = pathLength + gpu::PATH_MAX_PASS_THROUGHS + 2;
-    // This rank's pixels (all of them with one rank); every rank runs as many waves and bounces as the
-    // busiest one, since each exchange needs all ranks. A pass of several samples of each pixel (one rank)
-    // traces the slots of all of them, as one wave.
+    // This rank's pixels (all of them with one rank); every rank runs as many passes, waves and bounces as
+    // the busiest one, since each exchange needs all ranks. A pass of several samples of each pixel traces
+    // the slots k * pixels + pixel of this rank's pixels for each of them (pixelSample in pt_common.glsl).
     if (ranks.rankCount() > 1) ranks.shareRegions(scene.regions());
     const std::vector<PixelRange> owned = ownedPixels(size_, ranks.rank(), ranks.rankCount());
+    const uint32_t pixels = size_.x * size_.y;  // fewer than 2^32 (resize)
+    uint64_t ownedPixelCount = 0;
+    for (const PixelRange& range : owned) ownedPixelCount += range.count;
+    const uint32_t passSamples = m.samplesPerPass(pixels, ranks.max(ownedPixelCount), settings.pixelSamples);
+    m.reserve(passSamples * ownedPixelCount, uint64_t(passSamples) * pixels);
+    constants.passSamples = passSamples;
+    constants.latestSample = accumulatedSamples_ + settings.pixelSamples - 1;
+    m.uploadFrame(constants, size_);
+    m.writeCounters({});
     const auto passWaves = [&](uint32_t samples) {
-        return samples == 1 ? packWaves(owned, m.capacity) : packWaves({PixelRange{0, samples * pixels}}, m.capacity);
+        std::vector<PixelRange> slots;
+        for (uint32_t k = 0; k < samples; ++k)
+            for (const PixelRange& range : owned) {
+                const uint32_t first = k * pixels + range.first;
+                if (!slots.empty() && slots.back().first + slots.back().count == first) slots.back().count += range.count;
+                else slots.push_back({first, range.count});
+            }
+        return packWaves(slots, m.capacity);
     };
     std::vector<Wave> waves = passWaves(passSamples);
-    const uint64_t waveCount = ranks.max(waves.size());
+    uint64_t waveCount = ranks.max(waves.size());
     m.lengthsOnDevice = ranks.rankCount() == 1;
     const uint32_t sequence = accumulatedFrames_ % 2;
     for (uint32_t s = 0; s < settings.pixelSamples; s += passSamples) {
         const uint32_t samples = std::min(passSamples, settings.pixelSamples - s);
-        if (samples != passSamples) waves = passWaves(samples);  // the last pass, with fewer (one rank: one wave)
+        if (samples != passSamples) {  // the last pass, with fewer (the same on every rank)
+            waves = passWaves(samples);
+            waveCount = ranks.max(waves.size());
+        }
         const uint32_t sampleIndex = accumulatedSamples_;
         m.stratifiedSample = (stratifiedSamples_[sequence] << 1) | sequence;
         stratifiedSamples_[sequence] += samples;

@@ -81,10 +81,11 @@ struct PathTracerOptions {
     // Paths in flight at once: a frame with more pixels is rendered in waves of this many, so queue memory
     // (about 220 bytes per path) does not grow with the image.
     uint32_t queueCapacity = 1u << 20;
-    // With one rank, a frame of fewer pixels traces several of each pixel's samples in one pass, up to this
-    // many paths (and queueCapacity): small dispatches cost lavapipe more per path (default scene, GPU time
-    // per path of a frame: 3.6 us at 1,024 paths, 1.8 at 4,096, 0.75-0.87 from 16,384 up). The image is
-    // the same bit for bit (PixelSample in shaders/pt_common.glsl). 1: one sample of each pixel per pass.
+    // A frame of fewer pixels (on the busiest rank) traces several of each pixel's samples in one pass, up to
+    // this many paths (and queueCapacity): small dispatches cost lavapipe more per path (default scene, GPU
+    // time per path of a frame: 3.6 us at 1,024 paths, 1.8 at 4,096, 0.75-0.87 from 16,384 up), and with
+    // several ranks each pass costs exchange rounds. The image is the same bit for bit (PixelSample in
+    // shaders/pt_common.glsl). 1: one sample of each pixel per pass.
     uint32_t packedWavePaths = 1u << 16;
     uint32_t workgroupSize = 64;
     // Build the kernels for the FeatureSet of each frame (see FeatureSet.h). false: every kernel keeps
