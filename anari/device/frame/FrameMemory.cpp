@@ -61,7 +61,8 @@ std::optional<FrameMemory> estimateFrameMemory(glm::uvec2 size, ANARIDataType co
     devicePerPixel += 4 * (uint64_t(channels.primitiveId) + channels.objectId + channels.instanceId);
     // Paths in flight are capped (PathTracerOptions::queueCapacity), and a frame of fewer pixels than
     // packedWavePaths may trace up to that many: two path queues, hits, surface records, shadow rays and
-    // requests, occlusion flags; and a sample radiance (vec4) for each path or, where more, each pixel.
+    // requests, occlusion flags. The sample radiance (vec4) of a pass's slots: one per pixel, or for several
+    // samples of each pixel up to queueCapacity (PathTracer's samplesPerPass).
     const core::PathTracerOptions tracer;
     const uint64_t capacity = std::min<uint64_t>(std::max<uint64_t>(pixels, tracer.packedWavePaths), tracer.queueCapacity);
     const uint64_t perPath = 2 * (sizeof(gpu::PathState) + sizeof(gpu::Ray)) + sizeof(gpu::Hit) +
@@ -74,7 +75,7 @@ std::optional<FrameMemory> estimateFrameMemory(glm::uvec2 size, ANARIDataType co
     hostPerPixel += 4 * (uint64_t(channels.primitiveId) + channels.objectId + channels.instanceId);
     hostPerPixel += 16;
 
-    const std::optional<uint64_t> sampleRadiance = mulAdd(std::max(pixels, capacity), 16);
+    const std::optional<uint64_t> sampleRadiance = mulAdd(std::max<uint64_t>(pixels, tracer.queueCapacity), 16);
     const std::optional<uint64_t> queues = sampleRadiance ? mulAdd(capacity, perPath, *sampleRadiance) : std::nullopt;
     if (!queues) return std::nullopt;
     const std::optional<uint64_t> device = mulAdd(pixels, devicePerPixel, *queues);
