@@ -199,8 +199,7 @@ struct PathTracer::Impl {
     // as keep the busiest rank's pass (`busiest` pixels a sample) within options.packedWavePaths and one
     // dispatch, and the pass's sample slots (all pixels times the samples) within the queue capacity.
     uint32_t samplesPerPass(uint64_t pixels, uint64_t busiest, uint32_t pixelSamples) const {
-        const uint64_t oneDispatch = uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * options.workgroupSize;
-        const uint64_t paths = std::min<uint64_t>({options.packedWavePaths, options.queueCapacity, oneDispatch});
+        const uint64_t paths = std::min<uint64_t>({options.packedWavePaths, options.queueCapacity, itemsPerDispatch()});
         if (busiest == 0 || busiest * 2 > paths) return 1;
         const uint64_t samples = std::min<uint64_t>({pixelSamples, paths / busiest, options.queueCapacity / pixels});
         return static_cast<uint32_t>(std::max<uint64_t>(samples, 1));
@@ -253,13 +252,18 @@ struct PathTracer::Impl {
         return p;
     }
 
+    // The most items one dispatch covers: the device's workgroup-count limit times the workgroup size.
+    uint64_t itemsPerDispatch() const {
+        return uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * options.workgroupSize;
+    }
+
     // One stage over `count` items, in as many dispatches as the device's workgroup-count limit needs;
     // firstPixel advances with each one (only the per-pixel stages get more than one: queues are capped
     // to one dispatch in resize).
     void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, gpu::StageParams p, uint64_t count) {
         vk::computeBarrier(cmd);
         pipeline.bind(cmd);
-        const uint64_t perDispatch = uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * options.workgroupSize;
+        const uint64_t perDispatch = itemsPerDispatch();
         for (uint64_t done = 0; done < count; done += perDispatch) {
             gpu::StageParams chunk = p;
             chunk.count = static_cast<uint32_t>(std::min(perDispatch, count - done));
@@ -548,10 +552,9 @@ void PathTracer::resize(glm::uvec2 size, const FrameChannels& channels) {
     m.channels.resize(pixels, channels);
     m.channelBits = channelFeatures(channels);
     // Queue stages index their queue by invocation, so one dispatch must cover a whole queue.
-    const uint64_t oneDispatch = uint64_t(ctx.properties().limits.maxComputeWorkGroupCount[0]) * m.options.workgroupSize;
     m.capacity = 0;
     m.sampleSlots = 0;
-    m.reserve(std::min<uint64_t>({pixels, m.options.queueCapacity, oneDispatch}), pixels);
+    m.reserve(std::min<uint64_t>({pixels, m.options.queueCapacity, m.itemsPerDispatch()}), pixels);
     size_ = size;
     m.uploadFrame(gpu::FrameConstants{}, size);
     resetAccumulation();
