@@ -58,6 +58,31 @@ TEST_CASE("instanced copies of meshes and spheres equal the reference") {
     checkAgainstReference(scene, test::raysTowardPoints(scene, 2048, 14, /*normalised=*/false));
 }
 
+// Geometries of 1 to 12 primitives: up to 8 the BLAS is one leaf, which entering an instance tests
+// directly (gpu::InstancePrim::blasRootEntry); above, the root holds several children, leaves among them.
+TEST_CASE("instances of small geometries (one leaf, or a root of several) equal the reference") {
+    core::SceneDescription base;
+    for (uint32_t n = 1; n <= 12; ++n) {
+        base.meshes.push_back(test::randomTriangleSoup(n, 100 + n, 0.3f));
+        base.instances.push_back({{core::GeometryKind::Triangles, n - 1}, glm::mat4(1.0f)});
+        base.sphereSets.push_back(test::randomSpheres(n, 200 + n, 0.3f, 0.02f, 0.08f));
+        base.instances.push_back({{core::GeometryKind::Spheres, n - 1}, glm::mat4(1.0f)});
+    }
+    // Nested spheres about one center: no split helps, so each set up to 8 is one leaf of all of them.
+    for (uint32_t n = 2; n <= 8; ++n) {
+        core::SphereSet nested;
+        for (uint32_t i = 0; i < n; ++i) {
+            nested.centers.push_back(glm::vec3(0.001f * float(i)));
+            nested.radii.push_back(0.05f + 0.01f * float((i * 5) % n));
+        }
+        base.sphereSets.push_back(nested);
+        base.instances.push_back({{core::GeometryKind::Spheres, uint32_t(base.sphereSets.size() - 1)}, glm::mat4(1.0f)});
+    }
+    const auto scene = test::instancedCopies(base, 4, 15, 1.5f);
+    checkAgainstReference(scene, test::raysTowardPoints(scene, 4096, 16));
+    checkAgainstReference(scene, test::randomRays(4096, 17, glm::vec3(-2), glm::vec3(2)));
+}
+
 TEST_CASE("watertight: rays from inside a closed perturbed sphere never miss") {
     test::ValidationGuard guard;
     const core::TriangleMesh mesh = test::perturbedSphereMesh(5, 15, 0.1f);
