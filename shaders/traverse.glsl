@@ -201,7 +201,7 @@ void main() {
             nodeBase = instance.blasNodeOffset;
             // With nothing left in the TLAS the traversal ends with the BLAS: no way back is needed.
             if (stackSize > 0u) push(ENTRY_LEAVE_BLAS);
-            push(instance.blasRootEntry);
+            push(0u);
         } else if ((entry & BVH4_LEAF_BIT) != 0u) {
             leafFirst = (entry >> 3) & BVH4_MAX_LEAF_FIRST;
             leafRemaining = (entry & 7u) + 1u;

@@ -238,16 +238,6 @@ void flattenIsosurfaces(const IsosurfaceSet& set, UsedGeometry& g, FlatScene& fl
     appendGeometryAttributes(set.attributes, 0, isoCount, {}, name, flat, record, report);
 }
 
-// What the traversal pushes on entering an instance of this BLAS (gpu::InstancePrim::blasRootEntry): the
-// root's only child when that is a leaf, else the root node.
-uint32_t blasRootEntry(const bvh::Bvh4& blas) {
-    if (blas.nodes.empty()) return 0;
-    const gpu::uvec4 children = blas.nodes[0].children;
-    const bool oneChild = children.y == gpu::BVH4_EMPTY_CHILD && children.z == gpu::BVH4_EMPTY_CHILD &&
-                          children.w == gpu::BVH4_EMPTY_CHILD;
-    return oneChild && (children.x & gpu::BVH4_LEAF_BIT) != 0 ? children.x : 0;
-}
-
 // Appends a geometry's BLAS, primitives, slot map and attributes; returns its GeometryRecord index.
 uint32_t flattenGeometry(const SceneDescription& description, UsedGeometry& g, FlatScene& flat, SceneReport& report) {
     const PreparedGeometry& p = *g.prepared;
@@ -436,7 +426,6 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         prim.primOffset = g.primOffset;
         prim.geometryKind = static_cast<uint32_t>(g.kind);
         prim.instanceId = v.input;
-        prim.blasRootEntry = blasRootEntry(g.prepared->blas4);
         instances.push_back(prim);
     }
     instanceCount_ = static_cast<uint32_t>(instances.size());

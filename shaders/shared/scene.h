@@ -98,12 +98,6 @@ struct InstancePrim {
     uint primOffset;        // first primitive of the BLAS in triangles[], spheres[], cylinders[], cones[] or isoCells[]
     uint geometryKind;      // GEOMETRY_*
     uint instanceId;        // the instance's index in SceneDescription::instances (what a Hit reports)
-    // The first stack entry of the BLAS: 0 (its root node), or the root's only child when that is a leaf,
-    // so entering the instance goes straight to the primitive tests (the TLAS leaf's box bounds them).
-    uint blasRootEntry;
-    uint pad0;
-    uint pad1;
-    uint pad2;
 };
 
 // What shading needs of an instance, indexed by Hit.instanceId (the input order; instances that were

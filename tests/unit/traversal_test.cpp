@@ -58,8 +58,8 @@ TEST_CASE("instanced copies of meshes and spheres equal the reference") {
     checkAgainstReference(scene, test::raysTowardPoints(scene, 2048, 14, /*normalised=*/false));
 }
 
-// Geometries of 1 to 12 primitives: up to 8 the BLAS is one leaf, which entering an instance tests
-// directly (gpu::InstancePrim::blasRootEntry); above, the root holds several children, leaves among them.
+// Geometries of 1 to 12 primitives, instanced: BLASes of one leaf (nested spheres: no split helps), and
+// roots holding several children, leaves among them.
 TEST_CASE("instances of small geometries (one leaf, or a root of several) equal the reference") {
     core::SceneDescription base;
     for (uint32_t n = 1; n <= 12; ++n) {
