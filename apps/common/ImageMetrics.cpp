@@ -3,6 +3,8 @@
 
 #include "apps/common/ImageMetricsDetail.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,22 +30,35 @@ void requireComparable(const LinearImage& test, const LinearImage& reference, co
 Plane convolveSeparable(const Plane& plane, const std::vector<float>& kernelX, const std::vector<float>& kernelY) {
     const int w = int(plane.width), h = int(plane.height);
     const int rx = int(kernelX.size() / 2), ry = int(kernelY.size() / 2);
+    // Every output is one double sum (SSIM subtracts squares of these means, float sums would leave noise)
+    // of its taps in kernel order, whatever the row or thread: the interior skips the clamp, and the column
+    // pass adds whole rows, so both read memory in order. Rows run in parallel.
     Plane rows{plane.width, plane.height, std::vector<float>(plane.values.size())};
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            double sum = 0;  // double: SSIM subtracts squares of these means, float sums would leave noise
-            for (int k = -rx; k <= rx; ++k)
-                sum += double(kernelX[size_t(k + rx)]) * plane.at(uint32_t(std::clamp(x + k, 0, w - 1)), uint32_t(y));
-            rows.at(uint32_t(x), uint32_t(y)) = float(sum);
-        }
-    Plane result{plane.width, plane.height, std::vector<float>(plane.values.size())};
-    for (int y = 0; y < h; ++y)
+    tbb::parallel_for(0, h, [&](int y) {
+        const float* in = plane.values.data() + size_t(y) * size_t(w);
+        float* out = rows.values.data() + size_t(y) * size_t(w);
         for (int x = 0; x < w; ++x) {
             double sum = 0;
-            for (int k = -ry; k <= ry; ++k)
-                sum += double(kernelY[size_t(k + ry)]) * rows.at(uint32_t(x), uint32_t(std::clamp(y + k, 0, h - 1)));
-            result.at(uint32_t(x), uint32_t(y)) = float(sum);
+            if (x >= rx && x + rx < w) {
+                const float* taps = in + (x - rx);
+                for (size_t k = 0; k < kernelX.size(); ++k) sum += double(kernelX[k]) * taps[k];
+            } else {
+                for (int k = -rx; k <= rx; ++k) sum += double(kernelX[size_t(k + rx)]) * in[std::clamp(x + k, 0, w - 1)];
+            }
+            out[x] = float(sum);
         }
+    });
+    Plane result{plane.width, plane.height, std::vector<float>(plane.values.size())};
+    tbb::parallel_for(0, h, [&](int y) {
+        std::vector<double> sums(size_t(w), 0.0);
+        for (int k = -ry; k <= ry; ++k) {
+            const float* in = rows.values.data() + size_t(std::clamp(y + k, 0, h - 1)) * size_t(w);
+            const double weight = kernelY[size_t(k + ry)];
+            for (size_t x = 0; x < sums.size(); ++x) sums[x] += weight * in[x];
+        }
+        float* out = result.values.data() + size_t(y) * size_t(w);
+        for (size_t x = 0; x < sums.size(); ++x) out[x] = float(sums[x]);
+    });
     return result;
 }
 
