@@ -5,6 +5,9 @@
 
 #include "apps/common/ImageMetricsDetail.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -18,6 +21,14 @@ namespace {
 
 using detail::Plane;
 using Vec3 = std::array<float, 3>;
+
+// Runs body(p) for every pixel index p in [0, count), spread over the cores (each pixel is independent).
+template <class Body>
+void forEachPixel(size_t count, const Body& body) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1024), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t p = range.begin(); p != range.end(); ++p) body(p);
+    });
+}
 
 // Linear sRGB (D65) <-> CIE XYZ with the matrix FLIP publishes (its entries are exact fractions; the inverse is
 // given to ten digits), so that Ripple's Lab and YCxCz values are FLIP's own.
@@ -133,8 +144,9 @@ std::vector<float> colourError(const YcxczPlanes& test, const YcxczPlanes& refer
         return huntAdjust(xyzToLab(linearRgbToXyz(rgb)));
     };
     std::vector<float> error(filteredTest[0].values.size());
-    for (size_t p = 0; p < error.size(); ++p)
+    forEachPixel(error.size(), [&](size_t p) {
         error[p] = detail::flipRedistributeColourError(hyab(perceived(filteredTest, p), perceived(filteredReference, p)));
+    });
     return error;
 }
 
@@ -168,10 +180,10 @@ FeatureResponses features(const YcxczPlanes& image, double pixelsPerDegree) {
     const Plane edgeX = convolveSeparable(luminance, first, gaussian), edgeY = convolveSeparable(luminance, gaussian, first);
     const Plane pointX = convolveSeparable(luminance, second, gaussian), pointY = convolveSeparable(luminance, gaussian, second);
     FeatureResponses responses{std::vector<float>(luminance.values.size()), std::vector<float>(luminance.values.size())};
-    for (size_t p = 0; p < luminance.values.size(); ++p) {
+    forEachPixel(luminance.values.size(), [&](size_t p) {
         responses.edge[p] = std::hypot(edgeX.values[p], edgeY.values[p]);
         responses.point[p] = std::hypot(pointX.values[p], pointY.values[p]);
-    }
+    });
     return responses;
 }
 
@@ -181,13 +193,13 @@ std::vector<float> ldrErrorMap(const LinearImage& test, const LinearImage& refer
     std::vector<float> error = colourError(testPlanes, referencePlanes, pixelsPerDegree);
     const FeatureResponses testFeatures = features(testPlanes, pixelsPerDegree);
     const FeatureResponses referenceFeatures = features(referencePlanes, pixelsPerDegree);
-    for (size_t p = 0; p < error.size(); ++p) {
+    forEachPixel(error.size(), [&](size_t p) {
         const float featureDifference = std::max(std::abs(referenceFeatures.edge[p] - testFeatures.edge[p]),
                                                  std::abs(referenceFeatures.point[p] - testFeatures.point[p]));
         const float featureError = std::pow(std::min(featureDifference / std::numbers::sqrt2_v<float>, 1.0f), kQf);
         // Features raise the colour error toward 1 (the exponent shrinks) where edges or points differ.
         error[p] = std::pow(error[p], 1 - featureError);
-    }
+    });
     return error;
 }
 

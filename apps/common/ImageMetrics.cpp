@@ -31,22 +31,25 @@ Plane convolveSeparable(const Plane& plane, const std::vector<float>& kernelX, c
     const int w = int(plane.width), h = int(plane.height);
     const int rx = int(kernelX.size() / 2), ry = int(kernelY.size() / 2);
     // Every output is one double sum (SSIM subtracts squares of these means, float sums would leave noise)
-    // of its taps in kernel order, whatever the row or thread: the interior skips the clamp, and the column
-    // pass adds whole rows, so both read memory in order. Rows run in parallel.
+    // of its taps in kernel order, whatever the row or thread. Both passes add one tap to a whole run of
+    // outputs at a time (the columns: whole rows; the rows: the pixels whose taps need no clamp), so the
+    // sums of neighbouring outputs proceed side by side and memory is read in order. Rows run in parallel.
     Plane rows{plane.width, plane.height, std::vector<float>(plane.values.size())};
+    const int interiorBegin = std::min(rx, w), interiorEnd = std::max(interiorBegin, w - rx);
     tbb::parallel_for(0, h, [&](int y) {
         const float* in = plane.values.data() + size_t(y) * size_t(w);
-        float* out = rows.values.data() + size_t(y) * size_t(w);
-        for (int x = 0; x < w; ++x) {
-            double sum = 0;
-            if (x >= rx && x + rx < w) {
-                const float* taps = in + (x - rx);
-                for (size_t k = 0; k < kernelX.size(); ++k) sum += double(kernelX[k]) * taps[k];
-            } else {
-                for (int k = -rx; k <= rx; ++k) sum += double(kernelX[size_t(k + rx)]) * in[std::clamp(x + k, 0, w - 1)];
-            }
-            out[x] = float(sum);
+        std::vector<double> sums(size_t(w), 0.0);
+        for (int k = -rx; k <= rx; ++k) {
+            const double weight = kernelX[size_t(k + rx)];
+            for (int x = interiorBegin; x < interiorEnd; ++x) sums[size_t(x)] += weight * in[x + k];
         }
+        for (int x = 0; x < w; ++x) {
+            if (x == interiorBegin) x = interiorEnd;
+            if (x >= w) break;
+            for (int k = -rx; k <= rx; ++k) sums[size_t(x)] += double(kernelX[size_t(k + rx)]) * in[std::clamp(x + k, 0, w - 1)];
+        }
+        float* out = rows.values.data() + size_t(y) * size_t(w);
+        for (size_t x = 0; x < sums.size(); ++x) out[x] = float(sums[x]);
     });
     Plane result{plane.width, plane.height, std::vector<float>(plane.values.size())};
     tbb::parallel_for(0, h, [&](int y) {
