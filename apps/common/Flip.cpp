@@ -130,32 +130,31 @@ Plane csfFilter(const Plane& plane, const CsfParameters& csf, double pixelsPerDe
     return result;
 }
 
-// Per-pixel colour error in [0, 1]: HyAB of the Hunt-adjusted Lab of the filtered images, raised to q_c and
-// redistributed so that the p_c fraction of the largest possible error (green against blue) covers [0, p_t].
-std::vector<float> colourError(const YcxczPlanes& test, const YcxczPlanes& reference, double pixelsPerDegree) {
-    std::array<Plane, 3> filteredTest, filteredReference;
-    for (size_t c = 0; c < 3; ++c) {
-        filteredTest[c] = detail::flipCsfFilter(test.channels[c], int(c), pixelsPerDegree);
-        filteredReference[c] = detail::flipCsfFilter(reference.channels[c], int(c), pixelsPerDegree);
-    }
-    auto perceived = [](const std::array<Plane, 3>& planes, size_t p) {
-        Vec3 rgb = xyzToLinearRgb(ycxczToXyz({planes[0].values[p], planes[1].values[p], planes[2].values[p]}));
+// The Hunt-adjusted Lab colour of each pixel of CSF-filtered YCxCz planes: what the colour error compares.
+std::vector<Vec3> perceivedColours(const std::array<Plane, 3>& filtered) {
+    std::vector<Vec3> colours(filtered[0].values.size());
+    forEachPixel(colours.size(), [&](size_t p) {
+        Vec3 rgb = xyzToLinearRgb(ycxczToXyz({filtered[0].values[p], filtered[1].values[p], filtered[2].values[p]}));
         for (float& v : rgb) v = std::clamp(v, 0.0f, 1.0f);  // filtering may leave the gamut
-        return huntAdjust(xyzToLab(linearRgbToXyz(rgb)));
-    };
-    std::vector<float> error(filteredTest[0].values.size());
-    forEachPixel(error.size(), [&](size_t p) {
-        error[p] = detail::flipRedistributeColourError(hyab(perceived(filteredTest, p), perceived(filteredReference, p)));
+        colours[p] = huntAdjust(xyzToLab(linearRgbToXyz(rgb)));
     });
-    return error;
+    return colours;
 }
 
 // Edge (first derivative) and point (second derivative) responses of Gaussians of the feature width, on the
 // UNFILTERED YCxCz luminance normalised to [0, 1] as (Yy + 16) / 116, as FLIP does. Each derivative kernel's positive weights sum to 1 and its negative
 // weights to -1, so a step from 0 to 1 gives an edge response near 1.
+}  // namespace
+
+namespace detail {
 struct FeatureResponses {
     std::vector<float> edge, point;
 };
+}  // namespace detail
+
+namespace {
+
+using detail::FeatureResponses;
 
 FeatureResponses features(const YcxczPlanes& image, double pixelsPerDegree) {
     const float sigma = 0.5f * kFeatureWidth * float(pixelsPerDegree);
@@ -187,18 +186,39 @@ FeatureResponses features(const YcxczPlanes& image, double pixelsPerDegree) {
     return responses;
 }
 
-// The LDR-FLIP map of two images whose linear values are already in [0, 1].
-std::vector<float> ldrErrorMap(const LinearImage& test, const LinearImage& reference, double pixelsPerDegree) {
-    const YcxczPlanes testPlanes = toYcxcz(test), referencePlanes = toYcxcz(reference);
-    std::vector<float> error = colourError(testPlanes, referencePlanes, pixelsPerDegree);
-    const FeatureResponses testFeatures = features(testPlanes, pixelsPerDegree);
-    const FeatureResponses referenceFeatures = features(referencePlanes, pixelsPerDegree);
+}  // namespace
+
+// One image as LDR-FLIP compares it (linear values already in [0, 1]): the perceived colours of its YCxCz
+// planes filtered by the contrast sensitivity functions, and its edge and point responses.
+struct FlipReference::Side {
+    std::vector<Vec3> perceived;  // Hunt-adjusted Lab of the CSF-filtered image
+    FeatureResponses features;
+};
+
+namespace {
+
+FlipReference::Side flipSide(const LinearImage& image, double pixelsPerDegree) {
+    const YcxczPlanes planes = toYcxcz(image);
+    std::array<Plane, 3> filtered;
+    for (size_t c = 0; c < 3; ++c) filtered[c] = detail::flipCsfFilter(planes.channels[c], int(c), pixelsPerDegree);
+    FlipReference::Side side;
+    side.perceived = perceivedColours(filtered);
+    side.features = features(planes, pixelsPerDegree);
+    return side;
+}
+
+// The LDR-FLIP map of two prepared images. The colour error: HyAB of the perceived colours, raised to q_c
+// and redistributed so that the p_c fraction of the largest possible error (green against blue) covers
+// [0, p_t]; edges and points that differ then raise it toward 1.
+std::vector<float> ldrErrorMap(const FlipReference::Side& test, const FlipReference::Side& reference) {
+    std::vector<float> error(test.perceived.size());
     forEachPixel(error.size(), [&](size_t p) {
-        const float featureDifference = std::max(std::abs(referenceFeatures.edge[p] - testFeatures.edge[p]),
-                                                 std::abs(referenceFeatures.point[p] - testFeatures.point[p]));
+        const float colourError = detail::flipRedistributeColourError(hyab(test.perceived[p], reference.perceived[p]));
+        const float featureDifference = std::max(std::abs(reference.features.edge[p] - test.features.edge[p]),
+                                                 std::abs(reference.features.point[p] - test.features.point[p]));
         const float featureError = std::pow(std::min(featureDifference / std::numbers::sqrt2_v<float>, 1.0f), kQf);
         // Features raise the colour error toward 1 (the exponent shrinks) where edges or points differ.
-        error[p] = std::pow(error[p], 1 - featureError);
+        error[p] = std::pow(colourError, 1 - featureError);
     });
     return error;
 }
@@ -229,6 +249,11 @@ void requirePixelsPerDegree(double pixelsPerDegree) {
 constexpr float kAcesA = 0.6f * 0.6f * 2.51f, kAcesB = 0.6f * 0.03f, kAcesC = 0.6f * 0.6f * 2.43f,
                 kAcesD = 0.6f * 0.59f, kAcesE = 0.14f;
 
+// HDR-FLIP's view of a linear value at one exposure: scaled, then ACES tone-mapped (as a transformed() transform).
+auto toneMappedBy(float scale) {
+    return [scale](float v) { return detail::flipToneMap(std::max(v, 0.0f) * scale); };
+}
+
 // The input the tone mapper maps to `target` (the positive root of a quadratic).
 float acesInverse(float target) {
     const float a = kAcesA - target * kAcesC, b = kAcesB - target * kAcesD, c = -target * kAcesE;
@@ -249,7 +274,7 @@ float flipColourDistance(const std::array<float, 3>& rgbA, const std::array<floa
 }
 
 float flipRedistributeColourError(float hyabDistance) {
-    const float largest = std::pow(flipColourDistance({0, 1, 0}, {0, 0, 1}), kQc);
+    static const float largest = std::pow(flipColourDistance({0, 1, 0}, {0, 0, 1}), kQc);
     const float e = std::pow(hyabDistance, kQc), knee = kPc * largest;
     const float redistributed = e < knee ? kPt / knee * e : kPt + (e - knee) / (largest - knee) * (1 - kPt);
     // FLIP leaves this unclamped; only a pair further apart than green and blue could exceed 1.
@@ -283,34 +308,68 @@ FlipExposures flipExposures(const LinearImage& reference) {
 
 }  // namespace detail
 
-double flipLdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap,
-               double pixelsPerDegree) {
-    detail::requireComparable(test, reference, "FLIP");
+FlipReference::FlipReference(const LinearImage& reference, FlipModes modes, double pixelsPerDegree)
+    : width_(reference.width), height_(reference.height), pixelsPerDegree_(pixelsPerDegree) {
     requirePixelsPerDegree(pixelsPerDegree);
-    auto identity = [](float v) { return v; };
-    std::vector<float> map = ldrErrorMap(transformed(test, identity), transformed(reference, identity), pixelsPerDegree);
+    detail::requireComparable(reference, reference, "FLIP");
+    if (modes & kFlipLdr) ldrSide_.push_back(flipSide(transformed(reference, [](float v) { return v; }), pixelsPerDegree));
+    if (modes & kFlipHdr) {
+        const detail::FlipExposures exposures = detail::flipExposures(reference);
+        for (int i = 0; i < exposures.count; ++i) {
+            const double exposure = exposures.start + (exposures.stop - exposures.start) * i / std::max(exposures.count - 1, 1);
+            const float scale = float(std::exp2(exposure));
+            exposureScales_.push_back(scale);
+            hdrSides_.push_back(flipSide(transformed(reference, toneMappedBy(scale)), pixelsPerDegree));
+        }
+    }
+}
+
+FlipReference::~FlipReference() = default;
+FlipReference::FlipReference(FlipReference&&) noexcept = default;
+FlipReference& FlipReference::operator=(FlipReference&&) noexcept = default;
+
+void FlipReference::requireTest(const LinearImage& test, bool prepared, const char* metric) const {
+    if (!prepared) throw std::logic_error(std::string(metric) + ": the FlipReference was not prepared for it");
+    auto size = [](uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); };
+    if (test.width != width_ || test.height != height_)
+        throw std::invalid_argument(std::string(metric) + ": image sizes differ (test " + size(test.width, test.height) +
+                                    ", reference " + size(width_, height_) + ")");
+    if (test.rgb.size() != size_t(test.width) * test.height * 3)
+        throw std::invalid_argument(std::string(metric) + ": a " + size(test.width, test.height) + " image holds " +
+                                    std::to_string(test.rgb.size()) + " floats, not 3 per pixel");
+}
+
+double FlipReference::ldr(const LinearImage& test, std::vector<float>* errorMap) const {
+    requireTest(test, !ldrSide_.empty(), "FLIP");
+    std::vector<float> map = ldrErrorMap(flipSide(transformed(test, [](float v) { return v; }), pixelsPerDegree_), ldrSide_[0]);
     const double mean = meanOf(map);
     if (errorMap) *errorMap = std::move(map);
     return mean;
 }
 
-double flipHdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap,
-               double pixelsPerDegree) {
-    detail::requireComparable(test, reference, "HDR-FLIP");
-    requirePixelsPerDegree(pixelsPerDegree);
-    const detail::FlipExposures exposures = detail::flipExposures(reference);
-    std::vector<float> map(size_t(reference.width) * reference.height, 0.0f);
-    for (int i = 0; i < exposures.count; ++i) {
-        const double exposure = exposures.start + (exposures.stop - exposures.start) * i / std::max(exposures.count - 1, 1);
-        const float scale = float(std::exp2(exposure));
-        auto toneMapped = [scale](float v) { return detail::flipToneMap(std::max(v, 0.0f) * scale); };
+double FlipReference::hdr(const LinearImage& test, std::vector<float>* errorMap) const {
+    requireTest(test, !hdrSides_.empty(), "HDR-FLIP");
+    std::vector<float> map(size_t(width_) * height_, 0.0f);
+    for (size_t i = 0; i < hdrSides_.size(); ++i) {
         const std::vector<float> exposureMap =
-            ldrErrorMap(transformed(test, toneMapped), transformed(reference, toneMapped), pixelsPerDegree);
+            ldrErrorMap(flipSide(transformed(test, toneMappedBy(exposureScales_[i])), pixelsPerDegree_), hdrSides_[i]);
         for (size_t p = 0; p < map.size(); ++p) map[p] = std::max(map[p], exposureMap[p]);
     }
     const double mean = meanOf(map);
     if (errorMap) *errorMap = std::move(map);
     return mean;
+}
+
+double flipLdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap,
+               double pixelsPerDegree) {
+    detail::requireComparable(test, reference, "FLIP");
+    return FlipReference(reference, kFlipLdr, pixelsPerDegree).ldr(test, errorMap);
+}
+
+double flipHdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap,
+               double pixelsPerDegree) {
+    detail::requireComparable(test, reference, "HDR-FLIP");
+    return FlipReference(reference, kFlipHdr, pixelsPerDegree).hdr(test, errorMap);
 }
 
 }  // namespace ripple::apps

@@ -36,4 +36,32 @@ double flipLdr(const LinearImage& test, const LinearImage& reference, std::vecto
 double flipHdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap = nullptr,
                double pixelsPerDegree = 67.0);
 
+// Which of FLIP's measures a FlipReference is prepared for.
+enum FlipModes : unsigned { kFlipLdr = 1, kFlipHdr = 2, kFlipBoth = 3 };
+
+// FLIP of many images against one reference (a convergence series): the reference's side of LDR-FLIP and of
+// every HDR-FLIP exposure (its filtered colour planes and feature responses) is computed once, here, instead
+// of at every comparison. ldr() and hdr() give exactly flipLdr() and flipHdr() against the same reference.
+class FlipReference {
+public:
+    explicit FlipReference(const LinearImage& reference, FlipModes modes = kFlipBoth, double pixelsPerDegree = 67.0);
+    ~FlipReference();
+    FlipReference(FlipReference&&) noexcept;
+    FlipReference& operator=(FlipReference&&) noexcept;
+
+    double ldr(const LinearImage& test, std::vector<float>* errorMap = nullptr) const;
+    double hdr(const LinearImage& test, std::vector<float>* errorMap = nullptr) const;
+
+    struct Side;  // one image as LDR-FLIP compares it (Flip.cpp)
+
+private:
+    void requireTest(const LinearImage& test, bool prepared, const char* metric) const;
+
+    uint32_t width_ = 0, height_ = 0;
+    double pixelsPerDegree_ = 67.0;
+    std::vector<Side> ldrSide_;         // one, when prepared for LDR-FLIP
+    std::vector<Side> hdrSides_;        // one per HDR-FLIP exposure
+    std::vector<float> exposureScales_;  // each exposure's linear scale
+};
+
 }  // namespace ripple::apps

@@ -9,13 +9,13 @@
 
 namespace ripple::apps {
 
-ReferenceMetrics compareToReference(const LinearImage& image, const LinearImage& reference) {
+ReferenceMetrics compareToReference(const LinearImage& image, const LinearImage& reference, const FlipReference& flip) {
     ReferenceMetrics m;
     m.relMse = relMse(image, reference, kRelMseEpsilon);
     m.psnr = psnr(image, reference);
     m.ssim = ssim(image, reference);
-    m.flipLdr = flipLdr(image, reference);
-    m.flipHdr = flipHdr(image, reference);
+    m.flipLdr = flip.ldr(image);
+    m.flipHdr = flip.hdr(image);
     return m;
 }
 

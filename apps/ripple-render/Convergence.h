@@ -18,7 +18,8 @@ namespace ripple::apps {
 struct ReferenceMetrics {
     double relMse = 0.0, psnr = 0.0, ssim = 0.0, flipLdr = 0.0, flipHdr = 0.0;
 };
-ReferenceMetrics compareToReference(const LinearImage& image, const LinearImage& reference);
+// `flip` is `reference` prepared for both FLIP measures (built once for a whole series).
+ReferenceMetrics compareToReference(const LinearImage& image, const LinearImage& reference, const FlipReference& flip);
 
 struct ConvergencePoint {
     double seconds = 0.0;  // render time so far, time spent on reference metrics excluded

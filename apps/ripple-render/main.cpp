@@ -411,6 +411,7 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
                            const mpi::Communicator& ranks, Session& s, RankStats& stats, TimeBudget& budget) {
     // Only rank 0 holds the image, so only it needs the estimator's buffers.
     RenderOutcome out{HalfBufferEstimator(plan.root ? plan.size.x : 0, plan.root ? plan.size.y : 0), {}, 0, {}};
+    std::optional<FlipReference> flipReference;  // the reference prepared for FLIP, at the first report point
     const bool stopOnSpp = options.sppGiven || (!options.seconds && !options.targetError);
     const uint32_t sppLimit = stopOnSpp ? options.spp : kMaxSpp;
     const bool printPoints = options.reporting() && !options.quiet && plan.root;
@@ -469,7 +470,10 @@ RenderOutcome renderFrames(const Options& options, const RenderPlan& plan, const
             if (options.reporting() && (spp >= nextReport || stop)) {
                 clock.pause();  // metrics and printing are not render time
                 ConvergencePoint point{clock.seconds(), spp, estimated ? estimate : out.estimator.estimate(), std::nullopt};
-                if (plan.reference) point.reference = compareToReference(out.estimator.meanImage(), *plan.reference);
+                if (plan.reference) {
+                    if (!flipReference) flipReference.emplace(*plan.reference);
+                    point.reference = compareToReference(out.estimator.meanImage(), *plan.reference, *flipReference);
+                }
                 if (printPoints) std::printf("%s\n", formatConvergencePoint(point).c_str());
                 std::fflush(stdout);
                 out.series.push_back(point);

@@ -127,6 +127,30 @@ TEST_CASE("HDR-FLIP sees errors in highlights that LDR-FLIP clamps away") {
     CHECK(ripple::apps::flipHdr(test, reference) > 0.05);
 }
 
+// A reference prepared once (a convergence series) judges each image as a fresh comparison does, in any
+// order and as often as asked; a test of another size, or a measure it was not prepared for, is refused.
+TEST_CASE("FlipReference: one prepared reference gives every image its own FLIP, and refuses what does not fit") {
+    LinearImage reference = pattern(40);
+    for (float& v : reference.rgb) v *= 3.0f;  // past 1, so HDR-FLIP has several exposures
+    const std::vector<LinearImage> tests{withNoise(reference, 0.3f, 1), withNoise(reference, 0.05f, 2), reference,
+                                         constant(40, 40, 0.5f)};
+    const ripple::apps::FlipReference prepared(reference);
+    for (int round = 0; round < 2; ++round)
+        for (size_t i = 0; i < tests.size(); ++i) {
+            CAPTURE(i);
+            std::vector<float> map, freshMap;
+            CHECK(prepared.ldr(tests[i], &map) == ripple::apps::flipLdr(tests[i], reference, &freshMap));
+            CHECK(map == freshMap);
+            CHECK(prepared.hdr(tests[i], &map) == ripple::apps::flipHdr(tests[i], reference, &freshMap));
+            CHECK(map == freshMap);
+        }
+    CHECK(prepared.ldr(reference) == 0.0);
+    CHECK(prepared.hdr(tests[0]) > prepared.hdr(tests[1]));
+    CHECK_THROWS_WITH_AS(prepared.ldr(constant(40, 41, 0.5f)), doctest::Contains("sizes differ"), std::invalid_argument);
+    const ripple::apps::FlipReference ldrOnly(reference, ripple::apps::kFlipLdr);
+    CHECK_THROWS_WITH_AS(ldrOnly.hdr(tests[0]), doctest::Contains("not prepared"), std::logic_error);
+}
+
 // The expected values below come from evaluating FLIP's published formulas in double precision: the sRGB->XYZ
 // matrix and D65 white FLIP uses, CIE Lab, the Hunt adjustment (chroma * L / 100), HyAB, q_c = 0.7, p_c = 0.4,
 // p_t = 0.95, the CSF (a1, b1, a2, b2) = (1, 0.0047, 0, -), (1, 0.0053, 0, -), (34.1, 0.04, 13.5, 0.025) and the
