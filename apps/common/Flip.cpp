@@ -141,11 +141,12 @@ std::vector<Vec3> perceivedColours(const std::array<Plane, 3>& filtered) {
     return colours;
 }
 
-// Edge (first derivative) and point (second derivative) responses of Gaussians of the feature width, on the
-// UNFILTERED YCxCz luminance normalised to [0, 1] as (Yy + 16) / 116, as FLIP does. Each derivative kernel's positive weights sum to 1 and its negative
-// weights to -1, so a step from 0 to 1 gives an edge response near 1.
 }  // namespace
 
+// Edge (first derivative) and point (second derivative) responses of Gaussians of the feature width, on the
+// UNFILTERED YCxCz luminance normalised to [0, 1] as (Yy + 16) / 116, as FLIP does. Each derivative kernel's positive weights sum to 1 and its negative
+// weights to -1, so a step from 0 to 1 gives an edge response near 1. (Outside the anonymous namespace:
+// FlipReference::Side holds them.)
 namespace detail {
 struct FeatureResponses {
     std::vector<float> edge, point;

@@ -43,11 +43,11 @@ Plane convolveSeparable(const Plane& plane, const std::vector<float>& kernelX, c
             const double weight = kernelX[size_t(k + rx)];
             for (int x = interiorBegin; x < interiorEnd; ++x) sums[size_t(x)] += weight * in[x + k];
         }
-        for (int x = 0; x < w; ++x) {
-            if (x == interiorBegin) x = interiorEnd;
-            if (x >= w) break;
+        auto clampedSum = [&](int x) {
             for (int k = -rx; k <= rx; ++k) sums[size_t(x)] += double(kernelX[size_t(k + rx)]) * in[std::clamp(x + k, 0, w - 1)];
-        }
+        };
+        for (int x = 0; x < interiorBegin; ++x) clampedSum(x);
+        for (int x = interiorEnd; x < w; ++x) clampedSum(x);
         float* out = rows.values.data() + size_t(y) * size_t(w);
         for (size_t x = 0; x < sums.size(); ++x) out[x] = float(sums[x]);
     });

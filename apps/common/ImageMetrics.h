@@ -40,8 +40,8 @@ double flipHdr(const LinearImage& test, const LinearImage& reference, std::vecto
 enum FlipModes : unsigned { kFlipLdr = 1, kFlipHdr = 2, kFlipBoth = 3 };
 
 // FLIP of many images against one reference (a convergence series): the reference's side of LDR-FLIP and of
-// every HDR-FLIP exposure (its filtered colour planes and feature responses) is computed once, here, instead
-// of at every comparison. ldr() and hdr() give exactly flipLdr() and flipHdr() against the same reference.
+// every HDR-FLIP exposure (the perceived colours of its filtered planes, its feature responses) is computed
+// once, here, instead of at every comparison. ldr() and hdr() give exactly flipLdr() and flipHdr() against the same reference.
 class FlipReference {
 public:
     explicit FlipReference(const LinearImage& reference, FlipModes modes = kFlipBoth, double pixelsPerDegree = 67.0);
