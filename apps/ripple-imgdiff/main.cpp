@@ -74,9 +74,25 @@ std::vector<float> differenceMap(const ripple::apps::LinearImage& test, const ri
     return map;
 }
 
+// Says on stderr how many channel values of `image` are NaN or infinite and where the first one is: the
+// metrics still run (relMSE, PSNR and SSIM take them as they are; FLIP reads NaN and -infinity as black,
+// +infinity as white), but are not to be trusted.
+void warnNonFinite(const ripple::apps::LinearImage& image, const std::string& file) {
+    size_t count = 0, first = 0;
+    for (size_t i = 0; i < image.rgb.size(); ++i)
+        if (!std::isfinite(image.rgb[i]) && count++ == 0) first = i / 3;
+    if (count == 0) return;
+    std::fprintf(stderr,
+                 "[ripple-imgdiff] warning: %s holds %zu non-finite values (NaN or infinity), the first at pixel (%zu, %zu);"
+                 " relMSE, PSNR and SSIM include them; FLIP reads NaN and -infinity as black, +infinity as white\n",
+                 file.c_str(), count, first % image.width, first / image.width);
+}
+
 int run(const Options& options) {
     const ripple::apps::LinearImage test = ripple::apps::readLinearImage(options.test);
     const ripple::apps::LinearImage reference = ripple::apps::readLinearImage(options.reference);
+    warnNonFinite(test, options.test);
+    warnNonFinite(reference, options.reference);
     if (test.width != reference.width || test.height != reference.height)
         throw std::runtime_error("the images differ in size: " + options.test + " is " + std::to_string(test.width) + "x" +
                                  std::to_string(test.height) + ", " + options.reference + " is " +

@@ -11,6 +11,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 using namespace ripple::test;
@@ -76,6 +77,18 @@ TEST_CASE("ripple-imgdiff: black against white, heat map at the top of the colou
         stbi_image_free(pixels);
         CHECK(outside == 0);
     }
+}
+
+TEST_CASE("ripple-imgdiff: non-finite values are counted and located in a warning, and the metrics still print") {
+    TempFolder dir;
+    const auto finite = writeConstantPfm(dir / "finite.pfm", 4, 3, 0.5f);
+    const auto notANumber = writeConstantPfm(dir / "nan.pfm", 4, 3, std::numeric_limits<float>::quiet_NaN());
+    const ProgramRun run = runImgdiff(quoted(notANumber) + " " + quoted(finite));
+    CAPTURE(run.output);
+    CHECK(run.exitCode == 0);
+    CHECK(contains(run.output, "nan.pfm holds 36 non-finite values (NaN or infinity), the first at pixel (0, 0)"));
+    CHECK(contains(run.output, "HDR-FLIP"));
+    CHECK(!contains(run.output, "finite.pfm holds"));
 }
 
 TEST_CASE("ripple-imgdiff: missing files, size mismatch and malformed headers are clear errors") {
