@@ -312,7 +312,7 @@ FlipExposures flipExposures(const LinearImage& reference) {
 FlipReference::FlipReference(const LinearImage& reference, FlipModes modes, double pixelsPerDegree)
     : width_(reference.width), height_(reference.height), pixelsPerDegree_(pixelsPerDegree) {
     requirePixelsPerDegree(pixelsPerDegree);
-    detail::requireComparable(reference, reference, "FLIP");
+    detail::requireComparable(reference, reference, modes == kFlipHdr ? "HDR-FLIP" : "FLIP");
     if (modes & kFlipLdr) ldrSide_.push_back(flipSide(transformed(reference, [](float v) { return v; }), pixelsPerDegree));
     if (modes & kFlipHdr) {
         const detail::FlipExposures exposures = detail::flipExposures(reference);
@@ -331,13 +331,7 @@ FlipReference& FlipReference::operator=(FlipReference&&) noexcept = default;
 
 void FlipReference::requireTest(const LinearImage& test, bool prepared, const char* metric) const {
     if (!prepared) throw std::logic_error(std::string(metric) + ": the FlipReference was not prepared for it");
-    auto size = [](uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); };
-    if (test.width != width_ || test.height != height_)
-        throw std::invalid_argument(std::string(metric) + ": image sizes differ (test " + size(test.width, test.height) +
-                                    ", reference " + size(width_, height_) + ")");
-    if (test.rgb.size() != size_t(test.width) * test.height * 3)
-        throw std::invalid_argument(std::string(metric) + ": a " + size(test.width, test.height) + " image holds " +
-                                    std::to_string(test.rgb.size()) + " floats, not 3 per pixel");
+    detail::requireComparable(test, width_, height_, metric);
 }
 
 double FlipReference::ldr(const LinearImage& test, std::vector<float>* errorMap) const {
@@ -363,13 +357,11 @@ double FlipReference::hdr(const LinearImage& test, std::vector<float>* errorMap)
 
 double flipLdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap,
                double pixelsPerDegree) {
-    detail::requireComparable(test, reference, "FLIP");
     return FlipReference(reference, kFlipLdr, pixelsPerDegree).ldr(test, errorMap);
 }
 
 double flipHdr(const LinearImage& test, const LinearImage& reference, std::vector<float>* errorMap,
                double pixelsPerDegree) {
-    detail::requireComparable(test, reference, "HDR-FLIP");
     return FlipReference(reference, kFlipHdr, pixelsPerDegree).hdr(test, errorMap);
 }
 

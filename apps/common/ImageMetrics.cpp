@@ -15,16 +15,29 @@ namespace ripple::apps {
 
 namespace detail {
 
-void requireComparable(const LinearImage& test, const LinearImage& reference, const char* metric) {
-    auto size = [](const LinearImage& image) { return std::to_string(image.width) + "x" + std::to_string(image.height); };
-    if (test.width != reference.width || test.height != reference.height)
-        throw std::invalid_argument(std::string(metric) + ": image sizes differ (test " + size(test) + ", reference " +
-                                    size(reference) + ")");
+namespace {
+
+std::string sizeText(uint32_t width, uint32_t height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+void requireThreeFloatsPerPixel(const LinearImage& image, const char* metric) {
+    if (image.rgb.size() != size_t(image.width) * image.height * 3)
+        throw std::invalid_argument(std::string(metric) + ": a " + sizeText(image.width, image.height) + " image holds " +
+                                    std::to_string(image.rgb.size()) + " floats, not 3 per pixel");
+}
+
+}  // namespace
+
+void requireComparable(const LinearImage& test, uint32_t referenceWidth, uint32_t referenceHeight, const char* metric) {
+    if (test.width != referenceWidth || test.height != referenceHeight)
+        throw std::invalid_argument(std::string(metric) + ": image sizes differ (test " + sizeText(test.width, test.height) +
+                                    ", reference " + sizeText(referenceWidth, referenceHeight) + ")");
     if (test.width == 0 || test.height == 0) throw std::invalid_argument(std::string(metric) + ": the images are empty");
-    for (const LinearImage* image : {&test, &reference})
-        if (image->rgb.size() != size_t(image->width) * image->height * 3)
-            throw std::invalid_argument(std::string(metric) + ": a " + size(*image) + " image holds " +
-                                        std::to_string(image->rgb.size()) + " floats, not 3 per pixel");
+    requireThreeFloatsPerPixel(test, metric);
+}
+
+void requireComparable(const LinearImage& test, const LinearImage& reference, const char* metric) {
+    requireComparable(test, reference.width, reference.height, metric);
+    requireThreeFloatsPerPixel(reference, metric);
 }
 
 Plane convolveSeparable(const Plane& plane, const std::vector<float>& kernelX, const std::vector<float>& kernelY) {

@@ -21,6 +21,8 @@ inline float srgbDecode(float encoded) {
 
 // Throws std::invalid_argument naming the metric and both sizes when the images differ in size or are empty.
 void requireComparable(const LinearImage& test, const LinearImage& reference, const char* metric);
+// The same for a test against a reference known by its size only (the reference checked before).
+void requireComparable(const LinearImage& test, uint32_t referenceWidth, uint32_t referenceHeight, const char* metric);
 
 // One channel of an image, row 0 at the top.
 struct Plane {

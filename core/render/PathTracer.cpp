@@ -199,7 +199,7 @@ struct PathTracer::Impl {
     // as keep the busiest rank's pass (`busiest` pixels a sample) within options.packedWavePaths and one
     // dispatch, and the pass's sample slots (all pixels times the samples) within the queue capacity.
     uint32_t samplesPerPass(uint64_t pixels, uint64_t busiest, uint32_t pixelSamples) const {
-        const uint64_t paths = std::min<uint64_t>({options.packedWavePaths, options.queueCapacity, itemsPerDispatch()});
+        const uint64_t paths = std::min<uint64_t>(options.packedWavePaths, pathLimit());
         if (busiest == 0 || busiest * 2 > paths) return 1;
         const uint64_t samples = std::min<uint64_t>({pixelSamples, paths / busiest, options.queueCapacity / pixels});
         return static_cast<uint32_t>(std::max<uint64_t>(samples, 1));
@@ -256,6 +256,10 @@ struct PathTracer::Impl {
     uint64_t itemsPerDispatch() const {
         return uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * options.workgroupSize;
     }
+
+    // The most paths in flight: the queue capacity, within one dispatch (queue stages index their queue by
+    // invocation, so one dispatch must cover a whole queue).
+    uint64_t pathLimit() const { return std::min<uint64_t>(options.queueCapacity, itemsPerDispatch()); }
 
     // One stage over `count` items, in as many dispatches as the device's workgroup-count limit needs;
     // firstPixel advances with each one (only the per-pixel stages get more than one: queues are capped
@@ -551,10 +555,9 @@ void PathTracer::resize(glm::uvec2 size, const FrameChannels& channels) {
     m.color = vk::Buffer();  // allocated by the first readColor
     m.channels.resize(pixels, channels);
     m.channelBits = channelFeatures(channels);
-    // Queue stages index their queue by invocation, so one dispatch must cover a whole queue.
     m.capacity = 0;
     m.sampleSlots = 0;
-    m.reserve(std::min<uint64_t>({pixels, m.options.queueCapacity, m.itemsPerDispatch()}), pixels);
+    m.reserve(std::min<uint64_t>(pixels, m.pathLimit()), pixels);
     size_ = size;
     m.uploadFrame(gpu::FrameConstants{}, size);
     resetAccumulation();
@@ -603,7 +606,9 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
     uint64_t ownedPixelCount = 0;
     for (const PixelRange& range : owned) ownedPixelCount += range.count;
     const uint32_t passSamples = m.samplesPerPass(pixels, ranks.max(ownedPixelCount), settings.pixelSamples);
-    m.reserve(passSamples * ownedPixelCount, uint64_t(passSamples) * pixels);
+    // Several samples a pass fit within pathLimit() (samplesPerPass); one sample of a frame larger than it
+    // is traced in waves.
+    m.reserve(std::min<uint64_t>(passSamples * ownedPixelCount, m.pathLimit()), uint64_t(passSamples) * pixels);
     constants.passSamples = passSamples;
     constants.latestSample = accumulatedSamples_ + settings.pixelSamples - 1;
     m.uploadFrame(constants, size_);
@@ -631,6 +636,7 @@ FrameStats PathTracer::render(const Scene& scene, const Camera& camera, const Re
         const uint32_t sampleIndex = accumulatedSamples_;
         m.stratifiedSample = (stratifiedSamples_[sequence] << 1) | sequence;
         stratifiedSamples_[sequence] += samples;
+        stats.waves += waveCount;
         for (uint64_t w = 0; w < waveCount; ++w) {
             const Wave* wave = w < waves.size() ? &waves[w] : nullptr;  // this rank may have fewer waves
             if (m.lengthsOnDevice)

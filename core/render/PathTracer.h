@@ -102,6 +102,7 @@ struct PathTracerOptions {
 enum class ColorFormat : uint32_t { Rgba8Unorm = 0, Rgba8Srgb = 1, Rgba32Float = 2 };
 
 struct FrameStats {
+    uint64_t waves = 0;                   // waves traced, over all passes (the busiest rank's count)
     uint64_t raysTraced = 0;              // closest-hit rays over all bounces
     uint64_t shadowRays = 0;
     uint64_t nonFiniteSamples = 0;        // dropped, never accumulated

@@ -429,6 +429,9 @@ TEST_CASE("path tracer: same seed, same image, bit for bit, whatever the wave si
     CHECK(std::memcmp(a.color.data(), b.color.data(), a.color.size() * sizeof(glm::vec4)) == 0);
     CHECK(a.stats.raysTraced == b.stats.raysTraced);
     CHECK(a.stats.raysTraced > 2 * 32 * 32);
+    // a: both samples of the 1,024 pixels in one pass, one wave; b: one sample a pass, in waves of 100.
+    CHECK(a.stats.waves == 1);
+    CHECK(b.stats.waves == 2 * 11);
     settings.seed = 8;
     const test::Rendered c = test::render(d, camera, settings);
     CHECK(std::memcmp(a.color.data(), c.color.data(), a.color.size() * sizeof(glm::vec4)) != 0);
