@@ -14,6 +14,27 @@
 
 namespace ripple::mpi {
 
+// World boxes laid out for the entry test: one array per axis and bound, so the test of a ray runs across
+// the boxes in SIMD lanes (the exchange tests every ray against every other rank's boxes, twice a bounce).
+class RegionBoxes {
+public:
+    RegionBoxes() = default;
+    explicit RegionBoxes(std::span<const bvh::Aabb> boxes) {
+        for (const bvh::Aabb& box : boxes) add(box);
+    }
+    void add(const bvh::Aabb& box);
+    size_t size() const { return lo_[0].size(); }
+
+    // The smallest t in [ray tmin, tmax] at which the ray enters any of the boxes; +infinity where it
+    // enters none. A zero direction component tests the origin against the slab (a point on its face is
+    // inside); NaN slab distances widen the interval (never cull a ray that might hit). Each slab distance
+    // is widened by 1e-6 of itself, as the kernels' box test, so a grazing far ray is kept.
+    float entry(const gpu::Ray& ray, float tmax) const;
+
+private:
+    std::vector<float> lo_[3], hi_[3];
+};
+
 class BoundsExchange final : public core::RayExchange {
 public:
     explicit BoundsExchange(Communicator communicator);
@@ -31,11 +52,6 @@ public:
     const Communicator& communicator() const { return communicator_; }
 
 private:
-    // regionEntry into rank r's boxes, testing each run of kGroupSize boxes (siblings in the k-d split of
-    // Scene::regions()) against their union first.
-    static constexpr size_t kGroupSize = 8;
-    float entryInto(const gpu::Ray& ray, float tmax, size_t rank) const;
-
     // One round: each rank sends the rays listed for each destination, traces what it receives and
     // answers; the answers are merged into `rays` in sender order.
     void visitClosest(std::vector<core::WireRay>& rays, const std::vector<std::vector<uint32_t>>& destinations,
@@ -44,14 +60,13 @@ private:
     Communicator communicator_;
     // Every rank's boxes as shared by the last shareRegions (this rank's own included), each grown by a
     // margin that covers float rounding in the entry test; indexed by rank.
-    std::vector<std::vector<bvh::Aabb>> regions_;
-    std::vector<std::vector<bvh::Aabb>> groups_;  // per rank: the union of each run of kGroupSize regions
+    std::vector<RegionBoxes> regions_;
     core::ExchangeStats stats_;
 };
 
-// The smallest t in [ray tmin, tmax] at which the ray enters any of `boxes`; +infinity where it enters
-// none. A zero direction component tests the origin against the slab; NaN slab distances widen the
-// interval (never cull a ray that might hit).
-float regionEntry(const gpu::Ray& ray, float tmax, std::span<const bvh::Aabb> boxes);
+// RegionBoxes::entry for boxes given as they are.
+inline float regionEntry(const gpu::Ray& ray, float tmax, std::span<const bvh::Aabb> boxes) {
+    return RegionBoxes(boxes).entry(ray, tmax);
+}
 
 }  // namespace ripple::mpi
