@@ -111,16 +111,9 @@ std::vector<Item> sendVisitors(const Communicator& communicator, const Items& it
     return visitors;
 }
 
-}  // namespace
-
-void RegionBoxes::add(const bvh::Aabb& box) {
-    for (int a = 0; a < 3; ++a) {
-        lo_[a].push_back(box.lo[a]);
-        hi_[a].push_back(box.hi[a]);
-    }
-}
-
-RIPPLE_WIDE_SIMD float RegionBoxes::entry(const gpu::Ray& ray, float tmax) const {
+// RegionBoxes::entry over `count` boxes given by their bounds per axis.
+RIPPLE_WIDE_SIMD float nearestEntry(const float* const (&lo)[3], const float* const (&hi)[3], size_t count,
+                                    const gpu::Ray& ray, float tmax) {
     // With 1 / d, a zero component gives infinite slab distances of the origin's side (the ray misses the
     // slab) or, for an origin on a face, 0 * infinity = NaN (kept, as on the face). The reciprocal rounds
     // once more than a division, well inside the 1e-6 widening.
@@ -136,13 +129,13 @@ RIPPLE_WIDE_SIMD float RegionBoxes::entry(const gpu::Ray& ray, float tmax) const
     // across boxes), then their minimum is taken.
     constexpr size_t kChunk = 16;
     float entries[kChunk];
-    for (size_t first = 0; first < size(); first += kChunk) {
-        const size_t count = std::min(kChunk, size() - first);
-        for (size_t k = 0; k < count; ++k) {
+    for (size_t first = 0; first < count; first += kChunk) {
+        const size_t chunk = std::min(kChunk, count - first);
+        for (size_t k = 0; k < chunk; ++k) {
             const size_t i = first + k;
             float t0 = tmin, t1 = tmax;
             for (int a = 0; a < 3; ++a) {
-                const float toLo = (lo_[a][i] - origin[a]) * inverse[a], toHi = (hi_[a][i] - origin[a]) * inverse[a];
+                const float toLo = (lo[a][i] - origin[a]) * inverse[a], toHi = (hi[a][i] - origin[a]) * inverse[a];
                 // Ordered as the two compare, so a NaN stays where it was and leaves its bound as it was.
                 const float near0 = toLo > toHi ? toHi : toLo, far0 = toLo > toHi ? toLo : toHi;
                 // Widened by a scale, not a difference, so an infinite distance stays infinite.
@@ -153,9 +146,24 @@ RIPPLE_WIDE_SIMD float RegionBoxes::entry(const gpu::Ray& ray, float tmax) const
             }
             entries[k] = t0 <= t1 ? t0 : std::numeric_limits<float>::infinity();
         }
-        for (size_t k = 0; k < count; ++k) nearest = std::min(nearest, entries[k]);
+        for (size_t k = 0; k < chunk; ++k) nearest = std::min(nearest, entries[k]);
     }
     return nearest;
+}
+
+}  // namespace
+
+void RegionBoxes::add(const bvh::Aabb& box) {
+    for (int a = 0; a < 3; ++a) {
+        lo_[a].push_back(box.lo[a]);
+        hi_[a].push_back(box.hi[a]);
+    }
+}
+
+float RegionBoxes::entry(const gpu::Ray& ray, float tmax) const {
+    const float* const lo[3] = {lo_[0].data(), lo_[1].data(), lo_[2].data()};
+    const float* const hi[3] = {hi_[0].data(), hi_[1].data(), hi_[2].data()};
+    return nearestEntry(lo, hi, size(), ray, tmax);
 }
 
 BoundsExchange::BoundsExchange(Communicator communicator) : communicator_(std::move(communicator)) {}
