@@ -171,10 +171,14 @@ void main() {
 
     uint leafFirst = 0u;      // primitives of the leaf being tested, relative to the BLAS
     uint leafRemaining = 0u;
+    // The entry to take next, held here instead of pushed and popped at once (the stack is per-lane
+    // memory: each push and pop is a scatter or gather across the SIMD lanes).
+    uint nextEntry = 0u;
+    bool hasNext = false;
     // Loop iterations so far, counting the resume copy above and reserving the park copy below.
     uint steps = stackSize + TRAVERSAL_STACK_SIZE + 2u;
     bool budgetSpent = false;
-    while (leafRemaining > 0u || stackSize > 0u) {
+    while (leafRemaining > 0u || hasNext || stackSize > 0u) {
         // Parking happens after the loop: its copy loop and atomics inside this one cost lavapipe 8-15% of
         // the traversal time even when no lane parks (measured with ripple-bench).
         if (++steps > params.stepBudget) {
@@ -190,7 +194,13 @@ void main() {
             continue;
         }
 
-        uint entry = stack[--stackSize];
+        uint entry;
+        if (hasNext) {
+            entry = nextEntry;
+            hasNext = false;
+        } else {
+            entry = stack[--stackSize];
+        }
         if (entry == ENTRY_LEAVE_BLAS) {
             instanceSlot = NO_INSTANCE;
             nodeBase = 0u;
@@ -201,21 +211,25 @@ void main() {
             nodeBase = instance.blasNodeOffset;
             // With nothing left in the TLAS the traversal ends with the BLAS: no way back is needed.
             if (stackSize > 0u) push(ENTRY_LEAVE_BLAS);
-            push(0u);
+            nextEntry = 0u;
+            hasNext = true;
         } else if ((entry & BVH4_LEAF_BIT) != 0u) {
             leafFirst = (entry >> 3) & BVH4_MAX_LEAF_FIRST;
             leafRemaining = (entry & 7u) + 1u;
         } else {
             uint child[4];
             uint entered = bvh4EnteredChildren(nodes.nodes[nodeBase + entry], origin, invDirection, tmin, best.t, child);
-            // Farthest first, so the nearest is popped next (unrolled: a nested loop would count against the cap).
+            // Farthest first, so the nearer are popped first (unrolled: a nested loop would count against
+            // the cap); the nearest is taken next.
             if (entered > 3u) push(child[3]);
             if (entered > 2u) push(child[2]);
             if (entered > 1u) push(child[1]);
-            if (entered > 0u) push(child[0]);
+            nextEntry = child[0];
+            hasNext = entered > 0u;
         }
         if (overflow) break;
     }
+    if (budgetSpent && hasNext) push(nextEntry);
     if (budgetSpent && leafRemaining > 0u) push(BVH4_LEAF_BIT | leafFirst << 3 | (leafRemaining - 1u));
     if (overflow) best.status |= HIT_FLAG_STACK_OVERFLOW;
     else if (budgetSpent && park(rayIndex)) return;

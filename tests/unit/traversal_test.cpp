@@ -293,6 +293,21 @@ TEST_CASE("several instances at the smallest step budget: resumed exactly, or fl
     const auto occludedExpected = normal.traceAny(gpuScene, rays);
     const auto occludedResumed = tiny.traceAny(gpuScene, rays);
     CHECK(std::equal(occludedExpected.begin(), occludedExpected.end(), occludedResumed.begin()));
+    // Budgets one step apart park each ray at every kind of step in turn: inside a leaf, right after an
+    // inner node (the nearest child held outside the stack), right after entering an instance.
+    for (uint32_t extra = 1; extra < 8; ++extra) {
+        core::TraceKernels shifted(testContext(), {.stepBudget = core::kMinStepBudget + extra, .resumeRounds = 100,
+                                                   .traversal = core::Traversal::Software});
+        const auto hits = shifted.traceClosest(gpuScene, rays);
+        uint64_t equal = 0;
+        for (size_t i = 0; i < rays.size(); ++i)
+            equal += hits[i].status == expected[i].status && hits[i].t == expected[i].t &&
+                     hits[i].primId == expected[i].primId && hits[i].instanceId == expected[i].instanceId;
+        CHECK_MESSAGE(equal == rays.size(), "step budget ", core::kMinStepBudget + extra);
+        const auto occluded = shifted.traceAny(gpuScene, rays);
+        CHECK_MESSAGE(std::equal(occluded.begin(), occluded.end(), occludedExpected.begin()), "step budget ",
+                      core::kMinStepBudget + extra);
+    }
 
     core::TraceKernels unresumed(testContext(), {.stepBudget = core::kMinStepBudget, .resumeRounds = 0, .traversal = core::Traversal::Software});
     const Agreement cut = compareClosest(scene, rays, unresumed.traceClosest(gpuScene, rays), ref);
