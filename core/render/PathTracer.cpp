@@ -691,6 +691,8 @@ void PathTracer::readChannel(SurfaceChannel channel, void* destination) const {
 
 FeatureSet PathTracer::features() const { return impl_->features; }
 
+Traversal PathTracer::traversal() const { return impl_->trace.traversal(); }
+
 std::vector<PipelineCache::Entry> PathTracer::pipelines() const {
     std::vector<PipelineCache::Entry> list = impl_->pipelines.entries();
     for (const PipelineCache::Entry& e : impl_->shadePipelines.entries()) list.push_back(e);

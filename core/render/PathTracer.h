@@ -150,6 +150,8 @@ public:
 
     // What the latest render() was specialised for, and every pipeline variant built so far.
     FeatureSet features() const;
+    // The traversal back-end the tracer uses: Software or RayQuery (TraceOptions::traversal resolved).
+    Traversal traversal() const;
     std::vector<PipelineCache::Entry> pipelines() const;
     // Bytes of the optional per-pixel channels (depth, albedo, normal, ids): 0 when none was asked for.
     uint64_t channelBytes() const;

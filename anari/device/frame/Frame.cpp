@@ -321,6 +321,7 @@ void Frame::renderJob(const Job& job, const std::chrono::steady_clock::time_poin
         const double rays = double(stats.raysTraced + stats.shadowRays);
         results.raysTraced = stats.raysTraced + stats.shadowRays;
         results.raysPerSecond = stats.seconds > 0.0 ? float(rays / stats.seconds) : 0.0f;
+        results.traversal = core::traversalName(tracer_->traversal());
         results.flaggedRays = stats.flaggedRays;
         results.realCollisions = stats.realCollisions;
         results.nullCollisions = stats.nullCollisions;
@@ -435,6 +436,10 @@ bool Frame::getProperty(std::string_view name, ANARIDataType type, void* mem, ui
     }
     if (name == "ripple.raysPerSecond" && type == ANARI_FLOAT32 && size >= sizeof(float)) {
         std::memcpy(mem, &results_.raysPerSecond, sizeof(float));
+        return true;
+    }
+    if (name == "ripple.traversal" && type == ANARI_STRING && size >= sizeof(const char*)) {
+        std::memcpy(mem, &results_.traversal, sizeof(const char*));  // a static name: valid after the frame
         return true;
     }
     if (name == "numSamples" && type == ANARI_UINT32 && size >= sizeof(uint32_t)) {

@@ -29,7 +29,8 @@ public:
 
     void commit() override;
     // "duration" (FLOAT32 seconds of the last frame), "numSamples" (UINT32 accumulated samples per pixel),
-    // "ripple.raysPerSecond" (FLOAT32, closest-hit and shadow rays of the last frame), and for tests of
+    // "ripple.raysPerSecond" (FLOAT32, closest-hit and shadow rays of the last frame), "ripple.traversal"
+    // (STRING, the traversal back-end that traced it: "software" or "rayQuery"), and for tests of
     // what a change rebuilds: "ripple.sceneBuilds" (UINT64, scenes built so far) and "ripple.blasBuilt" /
     // "ripple.blasReused", "ripple.volumeVoxelsUploaded" / "ripple.volumeVoxelsReused" (UINT64, of the latest
     // scene build); "ripple.raysSent", "ripple.bytesSent" (UINT64,
@@ -77,6 +78,7 @@ private:
         float duration = 0.0f;
         uint32_t numSamples = 0;
         float raysPerSecond = 0.0f;
+        const char* traversal = "";          // core::traversalName of the back-end that traced it
         uint64_t sceneBuilds = 0;
         uint64_t blasBuilt = 0;
         uint64_t blasReused = 0;
