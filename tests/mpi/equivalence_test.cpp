@@ -57,13 +57,14 @@ constexpr core::ExchangeKind kExchanges[] = {core::ExchangeKind::Ring, core::Exc
 
 // Renders the scene split over all ranks and, on rank 0, compares it with the whole scene rendered by
 // rank 0 alone. Collective.
-void checkEquivalence(const ScenePart& part, const core::Camera& camera, core::ExchangeKind kind) {
+void checkEquivalence(const ScenePart& part, const core::Camera& camera, core::ExchangeKind kind,
+                      glm::uvec2 size = kSize, uint32_t pixelSamples = 2) {
     test::ValidationGuard guard;
     const mpi::Communicator world = mpi::Communicator::world();
     const auto rank = uint32_t(world.rank()), ranks = uint32_t(world.size());
     core::RenderSettings settings;
     settings.maxPathLength = 3;  // direct light, one indirect bounce and a second one
-    settings.pixelSamples = 2;
+    settings.pixelSamples = pixelSamples;
     settings.background = {0.1f, 0.1f, 0.15f, 1.0f};
 
     core::SceneDescription mine = part(rank, ranks);
@@ -76,9 +77,9 @@ void checkEquivalence(const ScenePart& part, const core::Camera& camera, core::E
     const std::unique_ptr<core::RayExchange> exchange = makeExchange(kind, world);
     core::PathTracerOptions options;
     options.exchange = exchange.get();
-    test::Rendered split = test::render(mine, camera, settings, kSize, true, options);
-    mpi::gatherFrame(world, kSize, sizeof(glm::vec4), split.color.data());
-    mpi::gatherFrame(world, kSize, sizeof(float), split.depth.data());
+    test::Rendered split = test::render(mine, camera, settings, size, true, options);
+    mpi::gatherFrame(world, size, sizeof(glm::vec4), split.color.data());
+    mpi::gatherFrame(world, size, sizeof(float), split.depth.data());
     const uint64_t raysSent = world.sum(exchange->stats().raysSent);
     if (ranks > 1) CHECK(raysSent > 0);
     CHECK(split.stats.flaggedRays == 0);
@@ -88,7 +89,7 @@ void checkEquivalence(const ScenePart& part, const core::Camera& camera, core::E
     const bvh::Aabb allBounds = test::worldBounds(all);
     all.lightSceneRadius = 0.5f * glm::length(allBounds.hi - allBounds.lo);
     CHECK(all.lightSceneRadius == mine.lightSceneRadius);
-    const test::Rendered whole = test::render(all, camera, settings, kSize, true);
+    const test::Rendered whole = test::render(all, camera, settings, size, true);
     const Comparison c = compare(split.color, whole.color);
     MESSAGE(ranks << " ranks, " << std::string(core::exchangeKindName(kind)) << " exchange: " << c.equal << " of " << c.pixels << " pixels equal the one-rank render; rays sent "
                   << raysSent);
@@ -100,7 +101,7 @@ void checkEquivalence(const ScenePart& part, const core::Camera& camera, core::E
     // The split matters: rank 0's part alone (its own lights, no exchange) renders a clearly different
     // image, so agreement above is the exchange's doing.
     if (ranks > 1) {
-        const test::Rendered alone = test::render(part(0, ranks), camera, settings, kSize, true);
+        const test::Rendered alone = test::render(part(0, ranks), camera, settings, size, true);
         CHECK(compare(alone.color, whole.color).equal * 10 < c.pixels * 9);
     }
 }
@@ -109,6 +110,15 @@ void checkEquivalence(const ScenePart& part, const core::Camera& camera, core::E
 
 TEST_CASE("data parallel: 4x4x4 boxes split over the ranks render as one rank holding all of them") {
     for (const core::ExchangeKind kind : kExchanges) checkEquivalence(test::boxesPart, test::boxesCamera(), kind);
+}
+
+// 100x40 pixels are ten bands of four rows: at 3 ranks 4, 3 and 3 bands, at 4 ranks 3, 3, 2 and 2. A pass
+// holds as many of a pixel's samples as fit the packed paths of the busiest rank (65,536 / 1,600 = 40 at
+// 3 ranks, 54 at 4), fewer than the other ranks alone would pick (54; 64), so 64 samples take two passes,
+// the second of fewer samples, on every rank. Every rank must run as many passes for the exchanges to pair
+// up: at 4 ranks, ranks choosing alone would run two passes on some and one on the others, and hang.
+TEST_CASE("data parallel: ranks owning unequal pixel counts agree on every pass's samples") {
+    checkEquivalence(test::boxesPart, test::boxesCamera(), core::ExchangeKind::Bounds, {100, 40}, 64);
 }
 
 TEST_CASE("data parallel: mixed meshes, spheres, cylinders, metal and transparency split over the ranks") {
