@@ -1,12 +1,14 @@
 // Data-parallel ANARI through the public API under mpirun: ranks whose frame, renderer or camera differ
 // (ANARI.md section 5) are told so on every rank, naming what differs, and none renders; ranks that agree
-// again render together afterwards (nobody was left waiting in a collective).
+// again render together afterwards (nobody was left waiting in a collective); and the device parameter
+// rayExchange picks the exchange the ranks render with.
 #include "mpi/Communicator.h"
 #include "tests/anari/RenderSession.h"
 
 #include <doctest/doctest.h>
 
 #include <string>
+#include <vector>
 
 using ripple::test::RenderSession;
 
@@ -119,4 +121,51 @@ TEST_CASE("ranks that set an unknown ray exchange are told its name and the allo
     s.set(s.device, "rayExchange", "broadcast");
     s.commit(s.device);
     CHECK_MESSAGE(s.log.count({"rayExchange", "'broadcast'", "bounds", "ring"}) == 1, s.log.dump());
+}
+
+// The device parameter rayExchange picks the exchange a data-parallel frame renders with: rank 0 holds a
+// floor and the light, the other ranks a sphere each beside it. Both exchanges bring every ray its closest
+// hit, so the images are the same; the ring passes every ray to every other rank, bounds only the rays that
+// enter another rank's boxes (most of the floor's rays enter none), so the ring sends more.
+TEST_CASE("data-parallel frames render with the ray exchange the device parameter names") {
+    const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();
+    struct Run {
+        ripple::test::Image image;
+        uint64_t raysSent = 0;  // over all ranks
+    };
+    const auto run = [&](const char* exchange) {
+        RenderSession s;
+        s.set(s.device, "rayExchange", exchange);
+        s.commit(s.device);
+        std::vector<ANARISurface> surfaces;
+        std::vector<ANARILight> lights;
+        if (ranks.rank() == 0) {
+            surfaces.push_back(s.surface(s.floor(), s.matte({0.8f, 0.8f, 0.8f})));
+            lights.push_back(s.directional(glm::normalize(glm::vec3(-0.5f, -1.0f, -0.3f)), 2.0f));
+        } else {
+            ANARIGeometry sphere = s.keep(anariNewGeometry(s.device, "sphere"));
+            const glm::vec3 center(-1.5f + float(ranks.rank()), 0.4f, 0.0f);
+            s.setObject(sphere, "vertex.position", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{center}));
+            s.set(sphere, "radius", 0.4f);
+            s.commit(sphere);
+            surfaces.push_back(s.surface(sphere, s.matte({0.2f, 0.5f, 0.8f})));
+        }
+        ANARIFrame frame = s.frame(s.world(surfaces, lights), s.perspective({0, 3, 6}, {0, 0, 0}), s.renderer(4, 3),
+                                   {32, 32}, ANARI_FLOAT32_VEC4);
+        Run r;
+        r.image = s.render(frame);
+        uint64_t sent = 0;
+        CHECK(anariGetProperty(s.device, frame, "ripple.raysSent", ANARI_UINT64, &sent, sizeof sent, ANARI_WAIT) == 1);
+        r.raysSent = ranks.sum(sent);
+        CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
+        return r;
+    };
+    const Run ring = run("ring");
+    const Run bounds = run("bounds");
+    MESSAGE("rays sent over all ranks: ring " << ring.raysSent << ", bounds " << bounds.raysSent);
+    if (ranks.size() > 1) {
+        CHECK(bounds.raysSent > 0);
+        CHECK(ring.raysSent > 2 * bounds.raysSent);
+    }
+    if (ranks.rank() == 0) CHECK(ripple::test::rmseRgb(ring.image, bounds.image) < 1e-6);
 }
