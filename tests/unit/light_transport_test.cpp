@@ -185,6 +185,50 @@ TEST_CASE("light transport: spot light cone edges where the spec puts them") {
     CHECK(wrong == 0);
 }
 
+// The same spot light between its edges: Ripple's profile (the spec leaves its shape open) is the smoothstep
+// from the outer edge's cosine to the inner edge's (shaders/lights.glsl, spotProfile). At 256x256 each pixel
+// wholly inside the falloff band (0.4 to 0.6 rad from the axis) must lie between the values at the near and
+// far ends of its footprint (1e-4 relative); a linear ramp in the cosine, or edges in other places, leave
+// the band's pixels outside those bounds.
+TEST_CASE("light transport: spot light falloff between the edges is the smoothstep of the cosines") {
+    test::ValidationGuard guard;
+    core::SceneDescription d = meshScene(test::squareMesh(100.0f));
+    d.materials.push_back(matte(0.6f));
+    const float h = 1.0f, intensity = 4.0f, view = 3.0f;
+    core::Light spot;
+    spot.kind = core::Light::Kind::Spot;
+    spot.position = {0.0f, 0.0f, h};
+    spot.direction = {0.0f, 0.0f, -1.0f};
+    spot.openingAngle = 1.2f;
+    spot.falloffAngle = 0.2f;
+    spot.intensity = intensity;
+    d.lights.push_back(spot);
+    core::RenderSettings settings;
+    settings.maxPathLength = 1;
+    const uint32_t size = 256;
+    const test::Rendered r = test::render(d, test::lookingDown(2.0f, view), settings, {size, size});
+    const double cosOuter = std::cos(0.6), cosInner = std::cos(0.4);
+    // The value at distance rho from the spot's foot: a / pi * I * cos^3 / h^2 times the profile.
+    const auto expected = [&](double rho) {
+        const double cosAxis = h / std::hypot(rho, double(h));
+        const double t = std::clamp((cosAxis - cosOuter) / (cosInner - cosOuter), 0.0, 1.0);
+        return 0.6 / kPi * intensity * std::pow(cosAxis, 3.0) / (h * h) * t * t * (3.0 - 2.0 * t);
+    };
+    const float pixel = view / float(size);
+    uint64_t band = 0, wrong = 0;
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 0; x < size; ++x) {
+            const glm::vec2 p = test::groundPoint(view, size, x + 0.5f, y + 0.5f);
+            const double rho = glm::length(p), slack = 0.75 * pixel;
+            if (std::atan((rho - slack) / h) <= 0.4 || std::atan((rho + slack) / h) >= 0.6) continue;
+            ++band;
+            const double value = r.at(x, y).r;
+            wrong += value < expected(rho + slack) * (1 - 1e-4) || value > expected(rho - slack) * (1 + 1e-4);
+        }
+    CHECK(band > 1000);
+    CHECK(wrong == 0);
+}
+
 // The same scene rendered with light sampling only, BSDF sampling only and MIS: a glossy floor seen at a
 // tiny patch (every pixel an independent estimate of one value) under a quad light, a ring light and an
 // emissive rectangle (LIGHT_TRIANGLE lights). The three means must agree within 5 combined standard errors.
