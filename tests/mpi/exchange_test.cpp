@@ -130,7 +130,11 @@ TEST_CASE("bounds exchange: a ray goes only to ranks whose boxes it enters, near
         CHECK(r.rays[i].record.baseColor.x == o.rays[i].record.baseColor.x);
         CHECK(r.rays[i].record.position.w == o.rays[i].record.position.w);
     }
-    for (size_t i = 0; i < 2; ++i) CHECK(r.shadows[i].occlusion == o.shadows[i].occlusion);
+    for (size_t i = 0; i < 2; ++i) {
+        CHECK(r.shadows[i].occlusion == o.shadows[i].occlusion);
+        // An unoccluded shadow ray carries home the other ranks' transmittance (0.5 each for rank 0's).
+        if (o.shadows[i].occlusion == gpu::HIT_MISS) CHECK(r.shadows[i].transmittance == o.shadows[i].transmittance);
+    }
     if (n > 1) CHECK(r.raysSentEverywhere == uint64_t(n) * n * (3 + 2));  // n hops of 3 + 2 rays on every rank
 }
 
