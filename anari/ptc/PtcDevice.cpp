@@ -311,6 +311,15 @@ int PtcDevice::getProperty(ANARIObject object, const char* name, ANARIDataType t
         }
         return device->getProperty(wrappedHandle(), name, type, mem, size, mask);
     }
+    // A frame's "ripple.compositing" (STRING): the method its compositor was made with, answered here.
+    if (name && std::strcmp(name, "ripple.compositing") == 0 && type == ANARI_STRING && mem &&
+        size >= sizeof(const char*)) {
+        const auto it = frames_.find(reinterpret_cast<ANARIFrame>(object));
+        if (it == frames_.end() || !it->second.compositor) return 0;
+        const char* method = mpi::compositeMethodName(it->second.compositeMethod);
+        std::memcpy(mem, &method, sizeof(method));
+        return 1;
+    }
     RIPPLE_PTC_FORWARD(0, getProperty(object, name, type, mem, size, mask));
 }
 const char** PtcDevice::getObjectSubtypes(ANARIDataType objectType) {

@@ -120,6 +120,56 @@ TEST_CASE("ripple_ptc composites the test double's fragments exactly") {
     anariUnloadLibrary(library);
 }
 
+// The device parameter "compositing": every method the rank count allows composites the same fragments
+// exactly, and the frame names the method it composited with.
+TEST_CASE("ripple_ptc composites with the method the device parameter names") {
+    const ripple::mpi::Communicator ranks = ripple::mpi::Communicator::world();
+    const bool powerOfTwo = (ranks.size() & (ranks.size() - 1)) == 0;
+    std::vector<const char*> methods = {"directSend", "radixK", "auto"};
+    if (powerOfTwo) methods.push_back("binarySwap");
+    for (const char* method : methods) {
+        CAPTURE(method);
+        Messages messages;
+        ANARILibrary library = anariLoadLibrary("ripple_ptc", record, &messages);
+        REQUIRE(library != nullptr);
+        ANARIDevice device = anariNewDevice(library, "default");
+        REQUIRE(device != nullptr);
+        anariSetParameter(device, device, "library", ANARI_STRING, "ptcfake");
+        const int32_t rank = ranks.rank();
+        anariSetParameter(device, device, "fakeRank", ANARI_INT32, &rank);
+        anariSetParameter(device, device, "compositing", ANARI_STRING, method);
+        anariCommitParameters(device, device);
+        const uint32_t size[2] = {7, 5};
+        ANARIFrame frame = anariNewFrame(device);
+        const ANARIDataType colorType = ANARI_FLOAT32_VEC4;
+        anariSetParameter(device, frame, "size", ANARI_UINT32_VEC2, size);
+        anariSetParameter(device, frame, "channel.color", ANARI_DATA_TYPE, &colorType);
+        anariCommitParameters(device, frame);
+        anariRenderFrame(device, frame);
+        anariFrameReady(device, frame, ANARI_WAIT);
+        const char* used = nullptr;
+        CHECK(anariGetProperty(device, frame, "ripple.compositing", ANARI_STRING, &used, sizeof(used), ANARI_WAIT) == 1);
+        CHECK(std::string(used ? used : "") == method);
+        uint32_t width = 0, height = 0;
+        ANARIDataType type = ANARI_UNKNOWN;
+        const auto* color = static_cast<const float*>(anariMapFrame(device, frame, "channel.color", &width, &height, &type));
+        if (ranks.rank() == 0) {
+            REQUIRE(color != nullptr);
+            int wrong = 0;
+            for (uint32_t y = 0; y < size[1]; ++y)
+                for (uint32_t x = 0; x < size[0]; ++x)
+                    for (int c = 0; c < 4; ++c)
+                        wrong += color[(y * size[0] + x) * 4 + uint32_t(c)] != expected(x, y, ranks.size()).rgba[c];
+            CHECK(wrong == 0);
+            anariUnmapFrame(device, frame, "channel.color");
+        }
+        CHECK_FALSE(messages.contains("compositing"));  // no error about the method
+        anariRelease(device, frame);
+        anariRelease(device, device);
+        anariUnloadLibrary(library);
+    }
+}
+
 TEST_CASE("ripple_ptc reports a wrapped library that does not exist") {
     Messages messages;
     ANARILibrary library = anariLoadLibrary("ripple_ptc", record, &messages);
