@@ -4,6 +4,7 @@
 // writing what they promise.
 #include "apps/common/HeatMap.h"
 #include "apps/common/ImageIO.h"
+#include "apps/common/ImageMetrics.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 
@@ -457,15 +458,20 @@ TEST_CASE("ripple-render --target-error stops when the estimate reaches it") {
 TEST_CASE("ripple-render --report writes the series as CSV and a plot") {
     TempFolder dir;
     const auto report = dir / "series.csv";
+    const auto output = dir / "t.pfm";
     std::string arguments = "--demo cornell --size 16x16 --spp 12 --quiet --report '" + report.string() + "' -o '" +
-                            (dir / "t.png").string() + "'";
+                            output.string() + "'";
     std::vector<std::string> header{"time_s", "spp", "estimated_relmse", "band_low", "band_high"};
+    bool withReference = false;
     SUBCASE("without a reference") {}
     SUBCASE("with a reference: the true error too") {
-        const std::vector<float> grey(16 * 16 * 4, 0.25f);
-        ripple::apps::writePfmBottomUp(dir / "grey.pfm", 16, 16, grey.data());
-        arguments += " --reference '" + (dir / "grey.pfm").string() + "'";
+        std::vector<float> gradient(16 * 16 * 4, 1.0f);  // a ramp across, brighter than the walls on the right
+        for (size_t i = 0; i < 16 * 16; ++i)
+            for (size_t c = 0; c < 3; ++c) gradient[i * 4 + c] = 0.05f + 0.1f * float(i % 16) + 0.05f * float(c);
+        ripple::apps::writePfmBottomUp(dir / "ramp.pfm", 16, 16, gradient.data());
+        arguments += " --reference '" + (dir / "ramp.pfm").string() + "'";
         header.insert(header.end(), {"relmse", "psnr_db", "ssim", "flip_ldr", "flip_hdr"});
+        withReference = true;
     }
     const ProgramRun run = runRender(arguments);
     REQUIRE_MESSAGE(run.exitCode == 0, run.output);
@@ -478,6 +484,23 @@ TEST_CASE("ripple-render --report writes the series as CSV and a plot") {
         CHECK(std::stoul(rows[i][1]) == spp[i - 1]);
         CHECK(std::stod(rows[i][2]) > 0.0);
         if (i > 1) CHECK(std::stod(rows[i][0]) >= std::stod(rows[i - 1][0]));
+    }
+    // The last point is the image written: its columns are that image's metrics against the reference, as
+    // ripple-imgdiff's functions compute them (to the CSV's printed digits).
+    if (withReference) {
+        const ripple::apps::LinearImage image = ripple::apps::readLinearImage(output);
+        const ripple::apps::LinearImage reference = ripple::apps::readLinearImage(dir / "ramp.pfm");
+        const std::vector<std::string>& last = rows.back();
+        const double expected[] = {ripple::apps::relMse(image, reference), ripple::apps::psnr(image, reference),
+                                   ripple::apps::ssim(image, reference), ripple::apps::flipLdr(image, reference),
+                                   ripple::apps::flipHdr(image, reference)};
+        for (size_t k = 0; k < 5; ++k) {
+            CAPTURE(header[5 + k]);
+            CHECK(std::stod(last[5 + k]) == doctest::Approx(expected[k]).epsilon(1e-4));
+        }
+        CHECK(expected[2] > 0.0);  // a real SSIM and FLIP, neither 0 nor 1, so a swap shows
+        CHECK(expected[2] < 0.9);
+        CHECK(expected[3] > 0.05);
     }
     int w = 0, h = 0, comp = 0;
     unsigned char* plot = stbi_load((dir / "series.png").string().c_str(), &w, &h, &comp, 4);
