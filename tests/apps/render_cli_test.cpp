@@ -269,6 +269,20 @@ TEST_CASE("ripple-render --channels: depth, normal and albedo as EXR layers; --e
         }
     }
     CHECK(hits > b.at("Z").size() / 2);
+    // At mid height the side walls are seen at columns 4-6 and 16-18 (past them the open box's outside):
+    // the left one red, the right one green, both facing along x into the box; a permuted channel order
+    // shows here.
+    const auto at = [&](const char* name, uint32_t x, uint32_t y) { return b.at(name)[size_t(y) * 24 + x]; };
+    for (uint32_t y = 6; y < 10; ++y) {
+        CAPTURE(y);
+        CHECK(at("albedo.R", 5, y) > 2.0f * at("albedo.G", 5, y));
+        CHECK(at("albedo.R", 5, y) > 2.0f * at("albedo.B", 5, y));
+        CHECK(at("albedo.G", 17, y) > 2.0f * at("albedo.R", 17, y));
+        CHECK(at("albedo.G", 17, y) > 2.0f * at("albedo.B", 17, y));
+        CHECK(std::abs(at("normal.X", 5, y)) > 0.99f);
+        CHECK(std::abs(at("normal.X", 17, y)) > 0.99f);
+        CHECK(at("normal.X", 5, y) * at("normal.X", 17, y) < 0.0f);  // facing each other
+    }
 
     // The same render written as PFM: the EXR's colour read back equals it to the bit (both hold 32-bit
     // floats; the EXR's alpha aside), the half EXR's within half precision.
