@@ -304,6 +304,30 @@ TEST_CASE("ripple-render --channels: depth, normal and albedo as EXR layers; --e
     CHECK(outsideHalf == 0);
 }
 
+// --seed: the same seed gives the same image to the bit, another seed other samples (a reference must not
+// share samples with the image it judges).
+TEST_CASE("ripple-render --seed: the same seed repeats the image, another changes it") {
+    TempFolder dir;
+    const auto renderWithSeed = [&](const std::string& seed, const std::string& name) {
+        const auto file = dir / name;
+        const ProgramRun run =
+            runRender("--demo cornell --size 16x16 --spp 2 --quiet" + seed + " -o '" + file.string() + "'");
+        REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+        return ripple::apps::readLinearImage(file).rgb;
+    };
+    const auto first = renderWithSeed(" --seed 7", "a.pfm"), again = renderWithSeed(" --seed 7", "b.pfm");
+    const auto other = renderWithSeed(" --seed 8", "c.pfm"), byDefault = renderWithSeed("", "d.pfm");
+    REQUIRE(first.size() == 16 * 16 * 3);
+    CHECK(first == again);
+    size_t differ = 0, differFromDefault = 0;
+    for (size_t i = 0; i < first.size(); ++i) {
+        differ += first[i] != other[i];
+        differFromDefault += first[i] != byDefault[i];
+    }
+    CHECK(differ > first.size() / 2);  // noisy at 2 spp: most values change with the samples
+    CHECK(differFromDefault > first.size() / 2);
+}
+
 TEST_CASE("ripple-render writes JPEG for .jpg and .jpeg") {
     TempFolder dir;
     for (const char* name : {"out.jpg", "out.JPEG"}) {
