@@ -84,3 +84,39 @@ TEST_CASE("scene partition: each triangle on exactly one rank, none holding ever
     CHECK(partitionScene(whole, 0, 2, PartitionKind::Spatial).geometries.size() >= 2);
     CHECK_THROWS_AS(parsePartitionKind("diagonal"), std::invalid_argument);
 }
+
+// The spatial partition is a k-d split balanced by count: each rank holds an equal share of the triangles
+// (to one), and any two ranks' triangles lie on either side of some axis-aligned plane (the split where
+// their regions part). Round robin over these instances is not separable so, which this tells apart.
+TEST_CASE("scene partition: spatial regions are balanced and separated by planes") {
+    const GltfScene whole = gridScene();
+    const size_t total = centroids(whole).size();
+    const auto separated = [](const std::vector<Centroid>& a, const std::vector<Centroid>& b) {
+        for (int axis = 0; axis < 3; ++axis) {
+            const auto byAxis = [axis](const Centroid& p, const Centroid& q) { return p[size_t(axis)] < q[size_t(axis)]; };
+            const float aLo = (*std::min_element(a.begin(), a.end(), byAxis))[size_t(axis)];
+            const float aHi = (*std::max_element(a.begin(), a.end(), byAxis))[size_t(axis)];
+            const float bLo = (*std::min_element(b.begin(), b.end(), byAxis))[size_t(axis)];
+            const float bHi = (*std::max_element(b.begin(), b.end(), byAxis))[size_t(axis)];
+            if (aHi <= bLo || bHi <= aLo) return true;
+        }
+        return false;
+    };
+    for (uint32_t ranks : {2u, 3u, 4u}) {
+        CAPTURE(ranks);
+        std::vector<std::vector<Centroid>> parts;
+        for (uint32_t rank = 0; rank < ranks; ++rank) {
+            parts.push_back(centroids(partitionScene(whole, rank, ranks, PartitionKind::Spatial)));
+            CHECK(parts.back().size() >= total / ranks);
+            CHECK(parts.back().size() <= total / ranks + 1);
+        }
+        for (uint32_t a = 0; a < ranks; ++a)
+            for (uint32_t b = a + 1; b < ranks; ++b) {
+                CAPTURE(a);
+                CAPTURE(b);
+                CHECK(separated(parts[a], parts[b]));
+            }
+    }
+    CHECK_FALSE(separated(centroids(partitionScene(whole, 0, 2, PartitionKind::RoundRobin)),
+                          centroids(partitionScene(whole, 1, 2, PartitionKind::RoundRobin))));
+}
