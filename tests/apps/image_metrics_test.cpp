@@ -75,6 +75,47 @@ TEST_CASE("SSIM: 1 for equal images, (2ab + C1) / (a^2 + b^2 + C1) for constant 
     CHECK(ripple::apps::ssim(withNoise(image, 0.2f, 1), image) < 0.9);
 }
 
+// SSIM against a direct evaluation of Wang et al.'s definition in double precision: at every pixel the
+// 11x11 Gaussian window (sigma 1.5, normalised, edges clamped) gives the means, variances and covariance
+// of the sRGB-encoded luminance, and the map is averaged. A window of another size or sigma, or constants
+// other than (0.01)^2 and (0.03)^2, give other values on this textured, noisy pair.
+TEST_CASE("SSIM equals a direct evaluation of its definition on a textured pair") {
+    const LinearImage reference = pattern(23), test = withNoise(reference, 0.15f, 7);
+    const int width = 23, height = 23, radius = 5;
+    std::vector<double> weight(2 * radius + 1);
+    double total = 0;
+    for (int i = -radius; i <= radius; ++i) total += weight[size_t(i + radius)] = std::exp(-0.5 * i * i / (1.5 * 1.5));
+    for (double& w : weight) w /= total;
+    const auto luma = [](const LinearImage& image, int x, int y) {
+        const float* p = &image.rgb[(size_t(y) * size_t(23) + size_t(x)) * 3];
+        const auto e = [](float v) { return double(srgbEncode(std::clamp(v, 0.0f, 1.0f))); };
+        return 0.2126 * e(p[0]) + 0.7152 * e(p[1]) + 0.0722 * e(p[2]);
+    };
+    double sum = 0;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
+            for (int j = -radius; j <= radius; ++j)
+                for (int i = -radius; i <= radius; ++i) {
+                    const double w = weight[size_t(i + radius)] * weight[size_t(j + radius)];
+                    const int sx = std::clamp(x + i, 0, width - 1), sy = std::clamp(y + j, 0, height - 1);
+                    const double a = luma(test, sx, sy), b = luma(reference, sx, sy);
+                    mx += w * a;
+                    my += w * b;
+                    xx += w * a * a;
+                    yy += w * b * b;
+                    xy += w * a * b;
+                }
+            const double c1 = 1e-4, c2 = 9e-4;
+            sum += (2 * mx * my + c1) * (2 * (xy - mx * my) + c2) /
+                   ((mx * mx + my * my + c1) * (xx - mx * mx + yy - my * my + c2));
+        }
+    const double expected = sum / (width * height);
+    MESSAGE("SSIM " << ripple::apps::ssim(test, reference) << ", direct " << expected);
+    CHECK(expected < 0.9);
+    CHECK(ripple::apps::ssim(test, reference) == doctest::Approx(expected).epsilon(1e-4));
+}
+
 TEST_CASE("metrics refuse images of different sizes, naming both") {
     const LinearImage a = constant(4, 4, 0), b = constant(4, 5, 0);
     CHECK_THROWS_WITH(ripple::apps::relMse(a, b), doctest::Contains("4x4"));
