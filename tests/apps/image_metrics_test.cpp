@@ -116,6 +116,35 @@ TEST_CASE("SSIM equals a direct evaluation of its definition on a textured pair"
     CHECK(ripple::apps::ssim(test, reference) == doctest::Approx(expected).epsilon(1e-4));
 }
 
+// HDR-FLIP keeps each pixel's worst exposure: a reference at 0.01 but for a quarter at 100, and a test whose
+// bright quarter is twice as bright. The exposures run from the one that shows 100 below white to the one
+// that shows the median, 0.01, there; in the later ones both bright quarters are white and look alike, so
+// only the maximum over the exposures sees the error, and the dark part, equal in both, stays unseen.
+TEST_CASE("HDR-FLIP: each pixel's error is its worst over the exposures") {
+    const uint32_t size = 32;
+    LinearImage reference = constant(size, size, 0.01f), test = constant(size, size, 0.01f);
+    for (uint32_t y = 0; y < size; ++y)
+        for (uint32_t x = 3 * size / 4; x < size; ++x)
+            for (uint32_t c = 0; c < 3; ++c) {
+                reference.rgb[(size_t(y) * size + x) * 3 + c] = 100.0f;
+                test.rgb[(size_t(y) * size + x) * 3 + c] = 200.0f;
+            }
+    REQUIRE(ripple::apps::detail::flipExposures(reference).count > 10);
+    std::vector<float> map;
+    ripple::apps::flipHdr(test, reference, &map);
+    REQUIRE(map.size() == size_t(size) * size);
+    double bright = 0, dark = 0;  // means away from the edge between them
+    for (uint32_t y = 0; y < size; ++y) {
+        for (uint32_t x = 0; x < size / 2; ++x) dark += map[size_t(y) * size + x];
+        for (uint32_t x = 3 * size / 4 + 2; x < size; ++x) bright += map[size_t(y) * size + x];
+    }
+    bright /= double(size * (size / 4 - 2));
+    dark /= double(size * size / 2);
+    MESSAGE("HDR-FLIP over the bright quarter " << bright << ", the dark half " << dark);
+    CHECK(bright > 0.1);
+    CHECK(dark < 1e-3);
+}
+
 TEST_CASE("metrics refuse images of different sizes, naming both") {
     const LinearImage a = constant(4, 4, 0), b = constant(4, 5, 0);
     CHECK_THROWS_WITH(ripple::apps::relMse(a, b), doctest::Contains("4x4"));
