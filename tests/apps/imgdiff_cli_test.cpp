@@ -1,6 +1,7 @@
 // ripple-imgdiff as a user runs it: equal images give zero error and infinite PSNR, black against white gives
 // a white-hot heat map, and missing files, size mismatches and malformed headers end with exit code 1 and a
 // message naming the fault.
+#include "apps/common/HeatMap.h"
 #include "apps/common/ImageIO.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
@@ -9,6 +10,7 @@
 #include <stb_image.h>
 
 
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -77,6 +79,36 @@ TEST_CASE("ripple-imgdiff: black against white, heat map at the top of the colou
         stbi_image_free(pixels);
         CHECK(outside == 0);
     }
+}
+
+// --heatmap-source difference: each pixel's mean absolute difference over the channels, divided by the
+// largest. Against black, a test at 0.4 on the left half and 0.1 on the right gives 1 and 0.25: magma's
+// colours of those, pixel for pixel (FLIP's map of the same pair is another picture).
+TEST_CASE("ripple-imgdiff: the difference heat map is the normalised absolute difference") {
+    TempFolder dir;
+    const uint32_t width = 8, height = 4;
+    std::vector<float> rgba(size_t(width) * height * 4, 1.0f);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x)
+            for (uint32_t c = 0; c < 3; ++c) rgba[(size_t(y) * width + x) * 4 + c] = x < width / 2 ? 0.4f : 0.1f;
+    const auto test = dir / "test.pfm";
+    ripple::apps::writePfmBottomUp(test, width, height, rgba.data());
+    const auto black = writeConstantPfm(dir / "black.pfm", width, height, 0.0f);
+    const auto heat = dir / "heat.png";
+    const ProgramRun run =
+        runImgdiff(quoted(test) + " " + quoted(black) + " --heatmap " + quoted(heat) + " --heatmap-source difference");
+    REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+    int w = 0, h = 0, channels = 0;
+    unsigned char* pixels = stbi_load(heat.string().c_str(), &w, &h, &channels, 3);
+    REQUIRE(pixels != nullptr);
+    REQUIRE(w == int(width));
+    int wrong = 0;
+    for (int i = 0; i < w * h; ++i) {
+        const std::array<uint8_t, 3> want = ripple::apps::magma(i % w < int(width / 2) ? 1.0f : 0.25f);
+        for (int c = 0; c < 3; ++c) wrong += pixels[i * 3 + c] != want[size_t(c)];
+    }
+    stbi_image_free(pixels);
+    CHECK(wrong == 0);
 }
 
 TEST_CASE("ripple-imgdiff: non-finite values are counted and located in a warning, and the metrics still print") {
