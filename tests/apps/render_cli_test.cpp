@@ -9,6 +9,7 @@
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>
+#include <glm/glm.hpp>
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <tinyexr.h>
@@ -326,6 +327,50 @@ TEST_CASE("ripple-render --seed: the same seed repeats the image, another change
     }
     CHECK(differ > first.size() / 2);  // noisy at 2 spp: most values change with the samples
     CHECK(differFromDefault > first.size() / 2);
+}
+
+// glTF alpha modes reach the device: a triangle of base colour alpha 0.25 drawn as MASK with cutoff 0.5 is cut
+// away (where it lies the background shows, as beside it), as BLEND it covers a quarter of what is behind
+// it, and as OPAQUE it ignores the alpha. Pixels are read at (0.25, 0.25) on the triangle (x = 1/4 of the
+// width, 3/4 of the height down) and at (0.75, 0.75) beside it.
+TEST_CASE("ripple-render: glTF alpha modes MASK, BLEND and OPAQUE as the device draws them") {
+    TempFolder dir;
+    const auto renderWithAlpha = [&](const std::string& mode) {
+        GltfSource source = triangleSource();
+        source.replace(R"({"POSITION":0},"indices":1})", R"({"POSITION":0},"indices":1,"material":0})");
+        std::string material = R"("materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.2,0.2,0.25]},"alphaMode":")";
+        material.append(mode).append(R"(","alphaCutoff":0.5,"doubleSided":true}],"buffers":)");
+        source.replace(R"("buffers":)", material);
+        const auto scene = writeGlb(dir / (mode + ".glb"), source);
+        const auto image = dir / (mode + ".pfm");
+        std::string arguments = "'";
+        arguments.append(scene.string()).append("' --size 32x32 --spp 64 --quiet -o '").append(image.string()).append("'");
+        const ProgramRun run = runRender(arguments);
+        REQUIRE_MESSAGE(run.exitCode == 0, run.output);
+        return ripple::apps::readLinearImage(image);
+    };
+    // readLinearImage gives row 0 at the top.
+    const auto pixel = [](const ripple::apps::LinearImage& image, uint32_t x, uint32_t y) {
+        const float* p = &image.rgb[(size_t(y) * image.width + x) * 3];
+        return glm::vec3(p[0], p[1], p[2]);
+    };
+    const auto mask = renderWithAlpha("MASK"), blend = renderWithAlpha("BLEND"), opaque = renderWithAlpha("OPAQUE");
+    const glm::uvec2 on{8, 24}, beside{24, 8};
+    CHECK(pixel(mask, on.x, on.y) == pixel(mask, beside.x, beside.y));
+    CHECK(pixel(blend, on.x, on.y) != pixel(blend, beside.x, beside.y));
+    CHECK(pixel(opaque, on.x, on.y) != pixel(opaque, beside.x, beside.y));
+    // Over a 4x4 block on the triangle (1,024 samples) its red shows about a quarter as much blended as
+    // opaque, against the background's red (the binomial spread of that share is 0.014).
+    const auto blockRed = [&](const ripple::apps::LinearImage& image) {
+        float sum = 0;
+        for (uint32_t y = 22; y < 26; ++y)
+            for (uint32_t x = 6; x < 10; ++x) sum += pixel(image, x, y).r;
+        return sum / 16 - pixel(image, beside.x, beside.y).r;
+    };
+    const float opaqueRed = blockRed(opaque), blendRed = blockRed(blend);
+    CHECK(opaqueRed > 0.05f);
+    CHECK(blendRed > 0.15f * opaqueRed);
+    CHECK(blendRed < 0.35f * opaqueRed);
 }
 
 TEST_CASE("ripple-render writes JPEG for .jpg and .jpeg") {
