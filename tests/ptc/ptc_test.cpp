@@ -46,6 +46,15 @@ fakerender::Fragment expected(uint32_t x, uint32_t y, int ranks) {
     return out;
 }
 
+// ripple_ptc's device wrapping the test double, told this process's rank; not yet committed.
+ANARIDevice ptcOverFake(ANARILibrary library, int32_t rank) {
+    ANARIDevice device = anariNewDevice(library, "default");
+    REQUIRE(device != nullptr);
+    anariSetParameter(device, device, "library", ANARI_STRING, "ptcfake");
+    anariSetParameter(device, device, "fakeRank", ANARI_INT32, &rank);
+    return device;
+}
+
 }  // namespace
 
 TEST_CASE("ripple_ptc composites the test double's fragments exactly") {
@@ -53,11 +62,7 @@ TEST_CASE("ripple_ptc composites the test double's fragments exactly") {
     Messages messages;
     ANARILibrary library = anariLoadLibrary("ripple_ptc", record, &messages);
     REQUIRE(library != nullptr);
-    ANARIDevice device = anariNewDevice(library, "default");
-    REQUIRE(device != nullptr);
-    anariSetParameter(device, device, "library", ANARI_STRING, "ptcfake");
-    const int32_t rank = ranks.rank();
-    anariSetParameter(device, device, "fakeRank", ANARI_INT32, &rank);
+    ANARIDevice device = ptcOverFake(library, ranks.rank());
     anariCommitParameters(device, device);
 
     const uint32_t size[2] = {7, 5};  // 5 rows over up to 3 ranks: bands of unequal height
@@ -132,11 +137,7 @@ TEST_CASE("ripple_ptc composites with the method the device parameter names") {
         Messages messages;
         ANARILibrary library = anariLoadLibrary("ripple_ptc", record, &messages);
         REQUIRE(library != nullptr);
-        ANARIDevice device = anariNewDevice(library, "default");
-        REQUIRE(device != nullptr);
-        anariSetParameter(device, device, "library", ANARI_STRING, "ptcfake");
-        const int32_t rank = ranks.rank();
-        anariSetParameter(device, device, "fakeRank", ANARI_INT32, &rank);
+        ANARIDevice device = ptcOverFake(library, ranks.rank());
         anariSetParameter(device, device, "compositing", ANARI_STRING, method);
         anariCommitParameters(device, device);
         const uint32_t size[2] = {7, 5};

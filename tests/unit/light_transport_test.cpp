@@ -141,27 +141,38 @@ TEST_CASE("light transport: white furnace per material and roughness") {
     }
 }
 
+namespace {
+
+// The scene of the two spot light tests below, rendered looking down from above at size x size pixels over
+// a square of side kSpotView.
+constexpr float kSpotHeight = 1.0f, kSpotIntensity = 4.0f, kSpotView = 3.0f;
+test::Rendered renderSpotOverPlane(uint32_t size) {
+    core::SceneDescription d = meshScene(test::squareMesh(100.0f));
+    d.materials.push_back(matte(0.6f));
+    core::Light spot;
+    spot.kind = core::Light::Kind::Spot;
+    spot.position = {0.0f, 0.0f, kSpotHeight};
+    spot.direction = {0.0f, 0.0f, -1.0f};
+    spot.openingAngle = 1.2f;
+    spot.falloffAngle = 0.2f;
+    spot.intensity = kSpotIntensity;
+    d.lights.push_back(spot);
+    core::RenderSettings settings;
+    settings.maxPathLength = 1;
+    return test::render(d, test::lookingDown(2.0f, kSpotView), settings, {size, size});
+}
+
+}  // namespace
+
 // A spot light of intensity I at height h pointing straight down, openingAngle 2 * 0.6, falloffAngle
 // 0.2 over a matte plane (albedo a), direct light only: where the angle from the axis is below 0.4 the
 // plane shows a / pi * I * cos / d^2 exactly, beyond 0.6 it is black (0 exactly). The test checks every
 // pixel whose footprint lies wholly on one side of those edges (1e-4 relative).
 TEST_CASE("light transport: spot light cone edges where the spec puts them") {
     test::ValidationGuard guard;
-    core::SceneDescription d = meshScene(test::squareMesh(100.0f));
-    d.materials.push_back(matte(0.6f));
-    const float h = 1.0f, intensity = 4.0f, view = 3.0f;
-    core::Light spot;
-    spot.kind = core::Light::Kind::Spot;
-    spot.position = {0.0f, 0.0f, h};
-    spot.direction = {0.0f, 0.0f, -1.0f};
-    spot.openingAngle = 1.2f;
-    spot.falloffAngle = 0.2f;
-    spot.intensity = intensity;
-    d.lights.push_back(spot);
-    core::RenderSettings settings;
-    settings.maxPathLength = 1;
+    const float h = kSpotHeight, intensity = kSpotIntensity, view = kSpotView;
     const uint32_t size = 32;
-    const test::Rendered r = test::render(d, test::lookingDown(2.0f, view), settings, {size, size});
+    const test::Rendered r = renderSpotOverPlane(size);
     const float pixel = view / float(size);
     uint64_t inside = 0, outside = 0, wrong = 0;
     for (uint32_t y = 0; y < size; ++y)
@@ -192,21 +203,9 @@ TEST_CASE("light transport: spot light cone edges where the spec puts them") {
 // the band's pixels outside those bounds.
 TEST_CASE("light transport: spot light falloff between the edges is the smoothstep of the cosines") {
     test::ValidationGuard guard;
-    core::SceneDescription d = meshScene(test::squareMesh(100.0f));
-    d.materials.push_back(matte(0.6f));
-    const float h = 1.0f, intensity = 4.0f, view = 3.0f;
-    core::Light spot;
-    spot.kind = core::Light::Kind::Spot;
-    spot.position = {0.0f, 0.0f, h};
-    spot.direction = {0.0f, 0.0f, -1.0f};
-    spot.openingAngle = 1.2f;
-    spot.falloffAngle = 0.2f;
-    spot.intensity = intensity;
-    d.lights.push_back(spot);
-    core::RenderSettings settings;
-    settings.maxPathLength = 1;
+    const float h = kSpotHeight, intensity = kSpotIntensity, view = kSpotView;
     const uint32_t size = 256;
-    const test::Rendered r = test::render(d, test::lookingDown(2.0f, view), settings, {size, size});
+    const test::Rendered r = renderSpotOverPlane(size);
     const double cosOuter = std::cos(0.6), cosInner = std::cos(0.4);
     // The value at distance rho from the spot's foot: a / pi * I * cos^3 / h^2 times the profile.
     const auto expected = [&](double rho) {
