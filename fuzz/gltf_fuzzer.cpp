@@ -3,7 +3,7 @@
 //
 // The importer's contract is "GltfError on anything malformed": any other exception escapes and is a finding.
 // RIPPLE_FUZZ_VERBOSE=1 prints what each input gave (counts, warnings, the error) while reproducing a case.
-#include "apps/common/GltfScene.h"
+#include "io/gltf/GltfScene.h"
 
 #include <unistd.h>
 

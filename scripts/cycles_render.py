@@ -144,7 +144,7 @@ def main():
     if not has_lights and not emits:
         sun_data = bpy.data.lights.new("key", type="SUN")
         sun_data.energy = 2.0  # irradiance, W/m^2, as the ANARI directional light's
-        sun_data.angle = 0.00925  # the sun's 0.53 degrees, as ripple-render's (apps/common/AnariScene.h)
+        sun_data.angle = 0.00925  # the sun's 0.53 degrees, as ripple-render's (apps/scene/AnariScene.h)
         sun = bpy.data.objects.new("key", sun_data)
         scene.collection.objects.link(sun)
         d = Vector((0.4, -1.0, -0.6)).normalized()

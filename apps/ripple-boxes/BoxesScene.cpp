@@ -2,7 +2,7 @@
 // matte or metal surface per box, all in one group and one instance.
 #include "apps/ripple-boxes/BoxesScene.h"
 
-#include "apps/common/AnariParams.h"
+#include "apps/scene/AnariParams.h"
 
 #include <array>
 #include <numeric>

@@ -2,8 +2,8 @@
 // of its own to the world; anariRenderFrame is collective, and rank 0 receives the whole picture.
 //   mpirun -np 3 ripple-dp-tutorial -o tutorial.png
 // Plain MPI and the ANARI C API only: this is what any data-parallel application does.
-#include "apps/common/AnariParams.h"
-#include "apps/common/ImageIO.h"
+#include "apps/scene/AnariParams.h"
+#include "io/image/ImageIO.h"
 
 #include <CLI/CLI.hpp>
 #include <mpi.h>

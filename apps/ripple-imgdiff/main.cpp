@@ -1,8 +1,8 @@
 // ripple-imgdiff: compares a test image with a reference (PNG, EXR or PFM, any mix) and prints PSNR, SSIM,
 // relMSE, LDR-FLIP and HDR-FLIP; optionally writes them as JSON and a heat map of where they differ.
-#include "apps/common/ImageIO.h"
-#include "apps/common/ImageMetrics.h"
-#include "apps/common/HeatMap.h"
+#include "io/image/ImageIO.h"
+#include "metrics/ImageMetrics.h"
+#include "metrics/HeatMap.h"
 
 #include <CLI/CLI.hpp>
 

@@ -1,9 +1,9 @@
-// The series ripple-render reports (time, spp, the error estimate of apps/common/ErrorEstimate.h and, given
+// The series ripple-render reports (time, spp, the error estimate of metrics/ErrorEstimate.h and, given
 // a reference, the true error), its CSV, and a render clock that leaves the reporting out.
 #pragma once
 
-#include "apps/common/ErrorEstimate.h"
-#include "apps/common/ImageMetrics.h"
+#include "metrics/ErrorEstimate.h"
+#include "metrics/ImageMetrics.h"
 
 #include <chrono>
 #include <cstdint>

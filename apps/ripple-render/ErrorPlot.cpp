@@ -2,7 +2,7 @@
 // and text from stb_easy_font's quads scaled up for legibility.
 #include "apps/ripple-render/ErrorPlot.h"
 
-#include "apps/common/ImageIO.h"
+#include "io/image/ImageIO.h"
 
 #include <stb_easy_font.h>
 

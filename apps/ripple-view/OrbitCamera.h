@@ -2,7 +2,7 @@
 // towards the pivot) and flying, with no window or ANARI code, so that its moves are plain geometry.
 #pragma once
 
-#include "apps/common/AnariScene.h"
+#include "apps/scene/AnariScene.h"
 
 #include <glm/glm.hpp>
 

@@ -1,7 +1,7 @@
 // Progressive passes of the viewer through ANARI (see ProgressiveFrames.h).
 #include "apps/ripple-view/ProgressiveFrames.h"
 
-#include "apps/common/AnariParams.h"
+#include "apps/scene/AnariParams.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Dear ImGui panels of the scene's lights and volumes (see ScenePanels.h).
 #include "apps/ripple-view/ScenePanels.h"
 
-#include "apps/common/DemoScene.h"
+#include "apps/scene/DemoScene.h"
 
 #include <imgui.h>
 

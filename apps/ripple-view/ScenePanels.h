@@ -4,7 +4,7 @@
 // commits those between passes (ProgressiveFrames::editScene).
 #pragma once
 
-#include "apps/common/SceneEdits.h"
+#include "apps/scene/SceneEdits.h"
 
 namespace ripple::apps {
 

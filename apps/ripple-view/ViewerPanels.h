@@ -2,7 +2,7 @@
 // values; the caller turns changes into ANARI commits.
 #pragma once
 
-#include "apps/common/AnariScene.h"
+#include "apps/scene/AnariScene.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
 
 #include <string>

@@ -1,7 +1,7 @@
 // GLFW window, OpenGL 3.3 context and Dear ImGui set-up of the viewer (see ViewerWindow.h).
 #include "apps/ripple-view/ViewerWindow.h"
 
-#include "apps/common/ImageIO.h"
+#include "io/image/ImageIO.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
 
 #define GLFW_INCLUDE_NONE

@@ -2,7 +2,7 @@
 // every drawn triangle in one mesh, so each instance's copy is transformed and appended here.
 #include "bench/ripple-bench/GltfMeshes.h"
 
-#include "apps/common/GltfScene.h"
+#include "io/gltf/GltfScene.h"
 
 #include <limits>
 #include <stdexcept>

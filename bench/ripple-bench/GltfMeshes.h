@@ -9,7 +9,7 @@ namespace ripple::bench {
 
 // Flattens every instance of every TRIANGLES primitive of the default scene (or of every root node where the
 // file names no scene) into one indexed mesh, positions in world space. Reads through the project's glTF
-// importer (apps/common/GltfScene.h) without decoding images; throws std::runtime_error (a GltfError) naming
+// importer (io/gltf/GltfScene.h) without decoding images; throws std::runtime_error (a GltfError) naming
 // the file and the element on malformed data.
 core::TriangleMesh loadGltfTriangles(const std::filesystem::path& file);
 

@@ -1,6 +1,6 @@
 // ripple-bench: builds Ripple's and Embree's BVHs over the same meshes, traces the same primary, shadow and
 // diffuse-bounce rays with both, and reports speed (per wall second and per CPU second) and agreement.
-#include "apps/common/ImageSize.h"
+#include "apps/scene/ImageSize.h"
 #include "bench/ripple-bench/Report.h"
 #include "bench/ripple-bench/RunScene.h"
 

@@ -1,7 +1,7 @@
 // Device session, scene helpers, frame readback and reference comparison for the render tests.
 #include "tests/anari/RenderSession.h"
 
-#include "apps/common/ImageIO.h"
+#include "io/image/ImageIO.h"
 
 #include <doctest/doctest.h>
 #include <stb_image.h>

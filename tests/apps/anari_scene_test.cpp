@@ -2,8 +2,8 @@
 // parameter names, types, element types and string values that the KHR specification defines (table below,
 // transcribed from the ANARI 1.0 object definitions), every object committed, every handle but the world
 // released, and exact object counts for the sample files and the demo scenes.
-#include "apps/common/AnariScene.h"
-#include "apps/common/DemoScene.h"
+#include "apps/scene/AnariScene.h"
+#include "apps/scene/DemoScene.h"
 #include "tests/apps/FakeAnari.h"
 #include "tests/apps/TestFiles.h"
 

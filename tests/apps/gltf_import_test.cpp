@@ -1,6 +1,6 @@
 // The glTF importer on the shared sample files (exact counts from their README and JSON) and on small files
 // the test writes to pin one feature each: instancing, hierarchy, cameras, lights, textures, sparse data.
-#include "apps/common/GltfScene.h"
+#include "io/gltf/GltfScene.h"
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>

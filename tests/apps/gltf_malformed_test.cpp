@@ -1,6 +1,6 @@
 // Malformed and hostile glTF files, made by the test from a valid one-triangle file with one element
 // broken each: every one must end in a GltfError whose message names the file and the broken element.
-#include "apps/common/GltfScene.h"
+#include "io/gltf/GltfScene.h"
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>

@@ -2,7 +2,7 @@
 // (ANARI's row 0 is the bottom row, a PNG's the top); PFM keeps rows bottom-up and drops alpha, bit-exact.
 // The reader: PNG (sRGB-decoded), PFM (both byte orders, colour and grey) and EXR back to linear RGB, top row
 // first, and malformed files refused with the file and the fault named.
-#include "apps/common/ImageIO.h"
+#include "io/image/ImageIO.h"
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>

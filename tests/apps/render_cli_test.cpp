@@ -2,9 +2,9 @@
 // the problem, never a crash (a crash shows as a signal); small renders through the Ripple device (the
 // Cornell demo, a volume file); and the convergence options (--time, --target-error, --report) stopping and
 // writing what they promise.
-#include "apps/common/HeatMap.h"
-#include "apps/common/ImageIO.h"
-#include "apps/common/ImageMetrics.h"
+#include "metrics/HeatMap.h"
+#include "io/image/ImageIO.h"
+#include "metrics/ImageMetrics.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 

@@ -1,6 +1,6 @@
-// View-state files (apps/common/ViewState): what is written reads back the same, every malformed file is
+// View-state files (apps/scene/ViewState): what is written reads back the same, every malformed file is
 // refused with its name and the member at fault, and the panels' values land on the scene's objects.
-#include "apps/common/ViewState.h"
+#include "apps/scene/ViewState.h"
 #include "tests/apps/FakeAnari.h"
 #include "tests/apps/TestFiles.h"
 

@@ -1,6 +1,6 @@
-// The volume file reader (apps/common/VolumeFile): raw and NRRD files written here, read back value for value,
+// The volume file reader (io/volume/VolumeFile): raw and NRRD files written here, read back value for value,
 // and every malformed case refused with a message naming the file and the problem.
-#include "apps/common/VolumeFile.h"
+#include "io/volume/VolumeFile.h"
 #include "tests/apps/TestFiles.h"
 
 #include <doctest/doctest.h>

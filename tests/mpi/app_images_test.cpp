@@ -32,7 +32,7 @@ struct FloatImage {
     std::vector<glm::vec3> pixels;
 };
 
-// Little-endian colour PFM, as apps/common/ImageIO writes it.
+// Little-endian colour PFM, as io/image/ImageIO writes it.
 FloatImage readPfm(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw std::runtime_error("cannot read " + file.string() + " (did its mpirun test fail?)");

@@ -1,6 +1,6 @@
-// ripple-render's scene partition (apps/common/ScenePartition.h): every drawn triangle lands on exactly one
+// ripple-render's scene partition (apps/scene/ScenePartition.h): every drawn triangle lands on exactly one
 // rank, in the same world-space place, and no rank holds the whole scene.
-#include "apps/common/ScenePartition.h"
+#include "apps/scene/ScenePartition.h"
 
 #include <doctest/doctest.h>
 

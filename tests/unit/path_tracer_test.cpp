@@ -502,7 +502,7 @@ TEST_CASE("path tracer: several samples of a pixel in one pass give the image of
 // independent sampling's (under 0.6 of it; measured 0.34), each half alone too (0.35),
 // and the halves must stay independent: (A - B)^2 / 4 summed over the edge's pixels must match the full
 // image's squared error (ratio 0.6 to 1.6; measured 1.05), which is what the error estimate from frames dealt
-// into two halves assumes (apps/common/ErrorEstimate.h). One Sobol sequence over all frames would fail it:
+// into two halves assumes (metrics/ErrorEstimate.h). One Sobol sequence over all frames would fail it:
 // its even and odd points fall in opposite halves of the pixel.
 TEST_CASE("path tracer: pixel jitter stratifies over frames, in two independent halves") {
     test::ValidationGuard guard;

@@ -2,7 +2,7 @@
 // virtual X server (xvfb-run) --screenshot renders the Cornell demo and writes the image ripple-render
 // writes for the same scene, size and samples, also from a view-state file both read (with and without
 // panel edits), and on Ripple's compositing device.
-#include "apps/common/ImageIO.h"
+#include "io/image/ImageIO.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 

@@ -1,0 +1,113 @@
+// Volume-file options (see VolumeOptions.h).
+#include "apps/scene/VolumeOptions.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <span>
+#include <stdexcept>
+
+namespace ripple::apps {
+
+void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
+    app.add_option("--volume", options.volume,
+                   "scalar field file: NRRD (.nrrd, or .nhdr with a raw data file; encoding raw) or raw (needs --dims "
+                   "and --type); drawn as a volume, or as isosurfaces with --isovalue, on a floor");
+    app.add_option("--dims", options.dims, "raw --volume: samples along x, y, z as X,Y,Z or XxYxZ (x fastest)");
+    app.add_option("--type", options.type, "raw --volume: uint8, int8, uint16, int16, float32 or float64 (little-endian)");
+    app.add_option("--spacing", options.spacing, "raw --volume: distance between samples along x, y, z as SX,SY,SZ "
+                                                 "(default 1,1,1)");
+    std::string names;
+    for (const std::string& n : transferFunctionNames()) names += (names.empty() ? "" : ", ") + n;
+    app.add_option("--tf", options.transferFunction,
+                   "--volume's colour map, over the voxels' min..max with opacity rising from 0 to --opacity: " +
+                       names + " (default viridis; with --isovalue the volume is drawn only when --tf is given)");
+    app.add_option("--opacity", options.opacity, "--volume: opacity at the largest value, per --unit-distance, 0 to 1 "
+                                                 "(default 0.5)");
+    app.add_option("--unit-distance", options.unitDistance,
+                   "--volume: the distance the opacity holds for, in scene units where the field's longest side is 2, "
+                   "positive (default 0.2)");
+    app.add_option("--isovalue", options.isovalues,
+                   "--volume: draw the field's surface at this value, coloured by the colour map; one value per "
+                   "flag, repeat the flag for more (--isovalue 0.3 --isovalue 0.5)")
+        ->allow_extra_args(false);
+}
+
+std::string describeVolumeOptions(const VolumeOptions& options) {
+    std::string text = options.dims + ";" + options.type + ";" + options.spacing + ";" + options.transferFunction + ";" +
+                       std::to_string(options.opacity.value_or(-1.0f)) + ";" +
+                       std::to_string(options.unitDistance.value_or(-1.0f));
+    for (float v : options.isovalues) {  // exact: the bits, not a rounded decimal
+        uint32_t bits = 0;
+        std::memcpy(&bits, &v, sizeof bits);
+        text += ";" + std::to_string(bits);
+    }
+    return text;
+}
+
+void checkVolumeOptions(const VolumeOptions& options) {
+    const bool rawOptions = !options.dims.empty() || !options.type.empty() || !options.spacing.empty();
+    if (options.volume.empty() && (rawOptions || !options.transferFunction.empty() || options.opacity ||
+                                   options.unitDistance || !options.isovalues.empty()))
+        throw std::runtime_error("--dims, --type, --spacing, --tf, --opacity, --unit-distance and --isovalue "
+                                 "need --volume FILE");
+    if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
+    if (options.opacity && !(*options.opacity >= 0.0f && *options.opacity <= 1.0f))
+        throw std::runtime_error("--opacity " + std::to_string(*options.opacity) + " is not a number from 0 to 1");
+    if (options.unitDistance && !(*options.unitDistance > 0.0f && std::isfinite(*options.unitDistance)))
+        throw std::runtime_error("--unit-distance " + std::to_string(*options.unitDistance) +
+                                 " is not a finite positive number");
+    for (float v : options.isovalues)
+        if (!std::isfinite(v)) throw std::runtime_error("--isovalue " + std::to_string(v) + " is not a finite number");
+}
+
+std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Communicator& ranks, bool root,
+                                   const char* program, bool quiet) {
+    checkVolumeOptions(options);
+    if (options.volume.empty()) return std::nullopt;
+    const bool rawOptions = !options.dims.empty() || !options.type.empty() || !options.spacing.empty();
+    FieldPlan plan;
+    FieldSceneOptions& field = plan.scene;
+    field.isovalues = options.isovalues;
+    // With isovalues the volume is drawn only when --tf asks for it; without, the default map draws it.
+    field.transferFunction = !options.transferFunction.empty() ? options.transferFunction
+                             : options.isovalues.empty()       ? "viridis"
+                                                               : "";
+    field.opacity = options.opacity.value_or(field.opacity);
+    field.unitDistance = options.unitDistance;
+    // Under mpirun each rank reads only its z-slab (data-parallel ANARI: every rank's world holds its own
+    // brick, sharing a sample plane with its neighbour); rank 0's world holds the floor and the sun.
+    const VolumeSlab slab{uint32_t(ranks.rank()), uint32_t(ranks.size())};
+    field.stage = root;
+    if (isNrrdFile(options.volume)) {
+        if (rawOptions)
+            throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
+                                     "the NRRD header gives them");
+        plan.data = readNrrdVolume(options.volume, slab);
+    } else {
+        if (options.dims.empty() || options.type.empty())
+            throw std::runtime_error("--volume " + options.volume + ": a raw file needs --dims X,Y,Z and --type "
+                                     "(or give an NRRD file, .nrrd or .nhdr)");
+        plan.data = readRawVolume(options.volume, {options.dims, options.type, options.spacing}, slab);
+    }
+    if (ranks.distributed()) {  // the colour map spans every rank's values
+        float lowest = plan.data.minValue, highest = plan.data.maxValue;
+        ranks.min(std::span<float>(&lowest, 1));
+        ranks.max(std::span<float>(&highest, 1));
+        plan.data.minValue = lowest;
+        plan.data.maxValue = highest;
+        field.valueRange = glm::vec2(lowest, highest);
+    }
+    if (!quiet && root) {
+        for (float v : options.isovalues)
+            if (v < plan.data.minValue || v > plan.data.maxValue)
+                std::fprintf(stderr, "[%s] WARNING: --isovalue %g is outside the field's values [%g, %g]: it draws nothing\n",
+                             program, double(v), double(plan.data.minValue), double(plan.data.maxValue));
+        if (!field.transferFunction.empty() && plan.data.minValue == plan.data.maxValue)
+            std::fprintf(stderr, "[%s] WARNING: every voxel is %g: the transfer function shows nothing\n", program,
+                         double(plan.data.minValue));
+    }
+    return plan;
+}
+
+}  // namespace ripple::apps
