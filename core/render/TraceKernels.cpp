@@ -28,7 +28,7 @@ TraceKernels::TraceKernels(const vk::Context& context, const TraceOptions& optio
     if (traversal_ == Traversal::RayQuery) rayQuery_ = std::make_unique<RayQueryTraversal>(context, options_.workgroupSize);
     // The pipelines are built when the first trace needs them, for the features chosen by then: building
     // a variant that is replaced before it runs cost about 80 ms of a start-up on lavapipe
-    // (and the surface stage's 300 ms, PathTracer.cpp).
+    // (and the surface stage's 300 ms, PathTracerKernels.cpp).
 }
 
 void TraceKernels::useFeatures(uint32_t features) {
