@@ -1,7 +1,7 @@
 #version 460
 // Between two bounces on one rank (one invocation): the queues the bounce appended become the ones the
 // next consumes. Their lengths and the dispatch sizes that launch the next bounce's stages stay on the
-// device, so a whole sample pass is one submission (core/render/PathTracer.cpp).
+// device, so a whole sample pass is one submission (core/render/PathTracerWaves.cpp).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require

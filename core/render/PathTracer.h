@@ -164,7 +164,7 @@ private:
     // The pixel jitter and the first BSDF direction come from two independent stratified sequences per
     // pixel, one for the accumulation's even frames and one for its odd frames (stratified2D in
     // shaders/rng.glsl): frames taken in turns into two halves, as the error estimate does
-    // (apps/common/ErrorEstimate.h), stay independent estimates of the image. Points used so far of each.
+    // (metrics/ErrorEstimate.h), stay independent estimates of the image. Points used so far of each.
     uint32_t accumulatedFrames_ = 0;
     uint32_t stratifiedSamples_[2] = {0, 0};
 };
