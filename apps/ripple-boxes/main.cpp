@@ -2,6 +2,7 @@
 // (run it under mpirun); rank 0 writes the image. --bench times frames and reports what crossed ranks;
 // --compare renders natively, through the compositing device and on one rank, and measures the difference.
 #include "apps/scene/AnariParams.h"
+#include "io/FileWrite.h"
 #include "io/image/ImageIO.h"
 #include "apps/scene/ImageSize.h"
 #include "apps/ripple-boxes/BoxesScene.h"
@@ -17,7 +18,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -123,8 +124,7 @@ uint64_t frameCounter(ANARIDevice device, ANARIFrame frame, const char* name) {
 }
 
 void writeJson(const std::string& path, const Options& options, glm::uvec2 size, const std::vector<RankReport>& ranks) {
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error("cannot write " + path);
+    std::ostringstream out;
     const BenchSummary sum = summarize(ranks);
     out << "{\n  \"ranks\": " << ranks.size() << ",\n  \"exchange\": \"" << options.exchange
         << "\",\n  \"partition\": \"" << options.partition << "\",\n  \"width\": " << size.x << ",\n  \"height\": " << size.y
@@ -144,7 +144,7 @@ void writeJson(const std::string& path, const Options& options, glm::uvec2 size,
             << ", \"secondsPerFrame\": " << x.secondsPerFrame << "}" << (r + 1 < ranks.size() ? "," : "") << "\n";
     }
     out << "  ]\n}\n";
-    if (!out) throw std::runtime_error("cannot write " + path);
+    writeFileAtomically(path, out.str(), "the benchmark results");
 }
 
 void printBench(glm::uvec2 size, const Options& options, const std::vector<RankReport>& ranks) {

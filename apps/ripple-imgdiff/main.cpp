@@ -1,5 +1,6 @@
 // ripple-imgdiff: compares a test image with a reference (PNG, EXR or PFM, any mix) and prints PSNR, SSIM,
 // relMSE, LDR-FLIP and HDR-FLIP; optionally writes them as JSON and a heat map of where they differ.
+#include "io/FileWrite.h"
 #include "io/image/ImageIO.h"
 #include "metrics/ImageMetrics.h"
 #include "metrics/HeatMap.h"
@@ -9,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -49,15 +50,14 @@ std::string jsonNumber(double value) {
 }
 
 void writeJson(const Options& options, const ripple::apps::LinearImage& image, const Results& results) {
-    std::ofstream out(options.json);
-    if (!out) throw std::runtime_error(options.json + ": cannot open for writing");
+    std::ostringstream out;
     out << "{\n  \"test\": " << jsonString(options.test) << ",\n  \"reference\": " << jsonString(options.reference)
         << ",\n  \"width\": " << image.width << ",\n  \"height\": " << image.height
         << ",\n  \"psnr\": " << jsonNumber(results.psnr) << ",\n  \"ssim\": " << jsonNumber(results.ssim)
         << ",\n  \"relMse\": " << jsonNumber(results.relMse) << ",\n  \"relMseEpsilon\": " << jsonNumber(options.epsilon)
         << ",\n  \"flipLdr\": " << jsonNumber(results.flipLdr) << ",\n  \"flipHdr\": " << jsonNumber(results.flipHdr)
         << ",\n  \"pixelsPerDegree\": " << jsonNumber(options.pixelsPerDegree) << "\n}\n";
-    if (!out) throw std::runtime_error(options.json + ": write failed");
+    ripple::apps::writeFileAtomically(options.json, out.str(), "the JSON results");
 }
 
 // |test - reference| averaged over the channels, divided by its largest value so the map spans [0, 1].

@@ -1,10 +1,12 @@
 // The report series, its CSV and the render clock.
 #include "apps/ripple-render/Convergence.h"
 
+#include "io/FileWrite.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace ripple::apps {
@@ -39,8 +41,7 @@ std::string formatConvergencePoint(const ConvergencePoint& point) {
 }
 
 void writeConvergenceCsv(const std::filesystem::path& file, const std::vector<ConvergencePoint>& points) {
-    std::ofstream out(file);
-    if (!out) throw std::runtime_error(file.string() + ": cannot write the report");
+    std::ostringstream out;
     const bool withReference = !points.empty() && points.front().reference.has_value();
     out << "time_s,spp,estimated_relmse,band_low,band_high" << (withReference ? ",relmse,psnr_db,ssim,flip_ldr,flip_hdr" : "") << "\n";
     char line[256];
@@ -55,7 +56,7 @@ void writeConvergenceCsv(const std::filesystem::path& file, const std::vector<Co
         }
         out << "\n";
     }
-    if (!out) throw std::runtime_error(file.string() + ": cannot write the report");
+    writeFileAtomically(file, out.str(), "the report");
 }
 
 double RenderClock::seconds() const {

@@ -13,6 +13,7 @@
 #include "metrics/HeatMap.h"
 #include "io/image/ImageIO.h"
 #include "apps/scene/ImageSize.h"
+#include "io/FileWrite.h"
 #include "io/image/OutputImage.h"
 #include "apps/scene/SceneEdits.h"
 #include "apps/scene/ScenePartition.h"
@@ -175,6 +176,10 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
     // Only rank 0 writes: it finds out now, not after the render, that it cannot.
     if (plan.root) checkOutputWritable(options.output);
     if (plan.root && !options.errorMap.empty()) checkOutputWritable(options.errorMap, "--error-map");
+    if (plan.root && !options.report.empty()) {
+        checkWritable(plan.reportFile, "the report");
+        checkWritable(plan.plotFile, "the report's plot");
+    }
     if (const uint64_t needed = appBytes(plan.size, !options.reference.empty()), available = availableHostBytes();
         plan.root && needed > available)
         throw std::runtime_error("--size " + std::to_string(plan.size.x) + "x" + std::to_string(plan.size.y) +

@@ -1,13 +1,14 @@
 // ripple-robustness: runs the robustness matrix (stiff and extreme inputs) through the Ripple ANARI device
 // and prints one Markdown table row per case; docs/robustness.md keeps the last table.
 #include "apps/ripple-robustness/Robustness.h"
+#include "io/FileWrite.h"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <functional>
 #include <iostream>
 #include <stdexcept>
@@ -97,9 +98,9 @@ int main(int argc, char** argv) {
         }
         writeTable(std::cout, rows);
         if (!output.empty()) {
-            std::ofstream file(output);
-            writeTable(file, rows);
-            if (!file) throw std::runtime_error("cannot write " + output);
+            std::ostringstream table;
+            writeTable(table, rows);
+            ripple::apps::writeFileAtomically(output, table.str(), "the table");
         }
         size_t failures = 0, precisionEnds = 0;
         for (const Row& r : rows) {

@@ -1,10 +1,12 @@
 // Reading and writing view-state files (see ViewState.h).
 #include "apps/scene/ViewState.h"
 
+#include "io/FileRead.h"
+#include "io/FileWrite.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -157,13 +159,11 @@ void checkRecords(const Reader& r, const std::vector<Record>& inFile, const std:
 
 ViewState readViewState(const std::filesystem::path& file) {
     const Reader r(file.string());
-    std::ifstream in(file, std::ios::binary);
-    if (!in) r.fail("cannot open the view file");
-    std::stringstream text;
-    text << in.rdbuf();
+    std::string text, error;
+    if (!readRegularFile(file, kMaxViewFileBytes, false, text, error)) r.fail("cannot open the view file (" + error + ")");
     Json root;
     try {
-        root = Json::parse(text.str());
+        root = Json::parse(text);
     } catch (const Json::exception& e) {  // malformed, or a number past a double (1e999)
         r.fail(std::string("not JSON: ") + e.what());
     }
@@ -284,9 +284,7 @@ void writeViewState(const std::filesystem::path& file, const ViewState& state) {
         for (const EditableIsosurface& i : *state.isosurfaces)
             isosurfaces.push_back({{"label", i.label}, {"isovalue", i.isovalue}});
     }
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    out << root.dump(2) << "\n";
-    if (!out) throw std::runtime_error(file.string() + ": cannot write the view file");
+    writeFileAtomically(file, root.dump(2) + "\n", "the view file");
 }
 
 SceneEditRequests applyViewEdits(const ViewState& state, SceneEdits& edits, bool withLights,

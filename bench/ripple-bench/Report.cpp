@@ -1,11 +1,13 @@
 // Formats ripple-bench results: fixed-width tables for people, JSON for scripts and the README's numbers.
 #include "bench/ripple-bench/Report.h"
 
+#include "io/FileWrite.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 namespace ripple::bench {
@@ -180,8 +182,7 @@ void printTables(std::ostream& out, const RunInfo& info, const std::vector<Scene
 }
 
 void writeJson(const std::filesystem::path& path, const RunInfo& info, const std::vector<SceneResult>& scenes) {
-    std::ofstream file(path);
-    if (!file) throw std::runtime_error("cannot write " + path.string());
+    std::ostringstream file;
     Json j(file);
     j.open(nullptr, '{');
     j.open("machine", '{');
@@ -281,7 +282,7 @@ void writeJson(const std::filesystem::path& path, const RunInfo& info, const std
     j.close(']');
     j.close('}');
     file << '\n';
-    if (!file) throw std::runtime_error("error while writing " + path.string());
+    apps::writeFileAtomically(path, file.str(), "the benchmark results");
 }
 
 }  // namespace ripple::bench

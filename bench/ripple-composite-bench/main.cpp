@@ -1,5 +1,6 @@
 // ripple-composite-bench: how long mpi/Compositor takes to depth-composite one RGBA-z frame from every
 // rank, and how many bytes the ranks move for it (run under mpirun); prints a line and writes JSON.
+#include "io/FileWrite.h"
 #include "mpi/Communicator.h"
 #include "mpi/Compositor.h"
 #include "mpi/Runtime.h"
@@ -10,7 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -76,13 +77,13 @@ int run(const Options& o, const ripple::mpi::Communicator& ranks) {
                 ranks.size(), o.method.c_str(), rounds.empty() ? "none" : rounds.c_str(), o.width, o.height,
                 100.0 * o.coverage, o.pattern.c_str(), 1e3 * median, o.repeat, 1e3 * seconds.front(),
                 1e3 * seconds.back(), double(bytes) / 1048576.0);
-    std::ofstream out(o.json);
+    std::ostringstream out;
     out << "{\n  \"ranks\": " << ranks.size() << ",\n  \"width\": " << o.width << ",\n  \"height\": " << o.height
         << ",\n  \"coverage\": " << o.coverage << ",\n  \"pattern\": \"" << o.pattern << "\",\n  \"method\": \""
         << o.method << "\",\n  \"rounds\": \"" << rounds << "\",\n  \"repeat\": " << o.repeat
         << ",\n  \"medianSeconds\": " << median << ",\n  \"minSeconds\": " << seconds.front()
         << ",\n  \"maxSeconds\": " << seconds.back() << ",\n  \"bytesPerFrame\": " << bytes << "\n}\n";
-    if (!out) throw std::runtime_error("cannot write " + o.json);
+    ripple::apps::writeFileAtomically(o.json, out.str(), "the benchmark results");
     std::printf("wrote %s\n", o.json.c_str());
     return 0;
 }

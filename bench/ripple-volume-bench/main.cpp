@@ -13,6 +13,7 @@
 #include "core/render/PathTracer.h"
 #include "core/scene/Scene.h"
 #include "core/vk/Context.h"
+#include "io/FileWrite.h"
 
 #include <nlohmann/json.hpp>
 
@@ -20,7 +21,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -242,10 +242,8 @@ int main(int argc, char** argv) {
                                {"transferFunctionEditSeconds", editSeconds}});
         }
         if (!jsonFile.empty()) {
-            std::ofstream out(jsonFile);
-            out << nlohmann::json{{"benchmark", "ripple-volume-bench"}, {"device", context.deviceName()}, {"results", results}}.dump(2)
-                << "\n";
-            if (!out) throw std::runtime_error("cannot write " + jsonFile);
+            const nlohmann::json report{{"benchmark", "ripple-volume-bench"}, {"device", context.deviceName()}, {"results", results}};
+            apps::writeFileAtomically(jsonFile, report.dump(2) + "\n", "the benchmark results");
         }
     } catch (const std::exception& error) {
         std::fprintf(stderr, "ripple-volume-bench: %s\n", error.what());

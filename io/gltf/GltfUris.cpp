@@ -15,33 +15,6 @@ namespace ripple::apps::gltf {
 
 namespace {
 
-const char* fileKind(mode_t mode) {
-    if (S_ISDIR(mode)) return "a directory";
-    if (S_ISFIFO(mode)) return "a FIFO";
-    if (S_ISCHR(mode)) return "a character device";
-    if (S_ISBLK(mode)) return "a block device";
-    if (S_ISSOCK(mode)) return "a socket";
-    return "not a plain file";
-}
-
-std::string tooLarge(uint64_t size, uint64_t maxBytes) {
-    return std::to_string(size) + " bytes is larger than the limit of " + std::to_string(maxBytes);
-}
-
-class Descriptor {
-public:
-    explicit Descriptor(int fd) : fd_(fd) {}
-    ~Descriptor() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    Descriptor(const Descriptor&) = delete;
-    Descriptor& operator=(const Descriptor&) = delete;
-    int get() const { return fd_; }
-
-private:
-    int fd_;
-};
-
 int hexValue(char c) {
     if (c >= '0' && c <= '9') return c - '0';
     if (c >= 'a' && c <= 'f') return c - 'a' + 10;
@@ -86,53 +59,6 @@ bool inside(const std::filesystem::path& root, const std::filesystem::path& p) {
 }
 
 }  // namespace
-
-template <typename Bytes>
-bool readRegularFile(const std::filesystem::path& file, uint64_t maxBytes, bool noFollow, Bytes& out,
-                     std::string& error) {
-    // O_NONBLOCK: opening a FIFO with no writer would otherwise wait forever; it changes nothing for regular files.
-    const Descriptor fd(::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | (noFollow ? O_NOFOLLOW : 0)));
-    if (fd.get() < 0) {
-        const int e = errno;
-        if (e == ENOENT) error = "no such file";
-        else if (e == ELOOP && noFollow) error = "is a symbolic link (it changed after it was checked)";
-        else error = std::string("cannot open it: ") + std::strerror(e);
-        return false;
-    }
-    struct stat st {};
-    if (::fstat(fd.get(), &st) != 0) {
-        error = std::string("cannot stat it: ") + std::strerror(errno);
-        return false;
-    }
-    if (!S_ISREG(st.st_mode)) {
-        error = std::string("is not a regular file (") + fileKind(st.st_mode) + ")";
-        return false;
-    }
-    const uint64_t size = uint64_t(st.st_size);
-    if (size > maxBytes) {
-        error = tooLarge(size, maxBytes);
-        return false;
-    }
-    out.resize(size_t(size));
-    size_t got = 0;
-    while (got < size) {
-        const ssize_t n = ::read(fd.get(), out.data() + got, size_t(size) - got);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0) {
-            error = std::string("read failed: ") + std::strerror(errno);
-            return false;
-        }
-        if (n == 0) {
-            error = "read failed: the file shrank while it was read";
-            return false;
-        }
-        got += size_t(n);
-    }
-    return true;
-}
-
-template bool readRegularFile(const std::filesystem::path&, uint64_t, bool, std::string&, std::string&);
-template bool readRegularFile(const std::filesystem::path&, uint64_t, bool, std::vector<unsigned char>&, std::string&);
 
 ConfinedUris::ConfinedUris(const std::filesystem::path& sceneFile, const GltfLoadOptions& options, std::string name)
     : name_(std::move(name)), maxBytes_(options.maxFileBytes), baseDir_(sceneFile.parent_path().string()) {
@@ -191,8 +117,8 @@ void ConfinedUris::approve(const std::string& uri, const std::string& where) {
              " that URIs are confined to");
     struct stat st {};
     if (::stat(resolved.c_str(), &st) == 0) {  // a missing file is tinygltf's to report
-        if (!S_ISREG(st.st_mode)) fail(std::string("is not a regular file (") + fileKind(st.st_mode) + ")");
-        if (uint64_t(st.st_size) > maxBytes_) fail(tooLarge(uint64_t(st.st_size), maxBytes_));
+        if (!S_ISREG(st.st_mode)) fail(std::string("is not a regular file (") + fileKindName(st.st_mode) + ")");
+        if (uint64_t(st.st_size) > maxBytes_) fail(tooLargeReason(uint64_t(st.st_size), maxBytes_));
     }
 
     const std::string key = joinPath(baseDir_, tinygltfDecoded(uri));

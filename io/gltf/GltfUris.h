@@ -2,6 +2,7 @@
 // confined to one folder (docs/gltf-security.md). Internal to the importer (GltfFile.cpp).
 #pragma once
 
+#include "io/FileRead.h"
 #include "io/gltf/GltfScene.h"
 
 #include <tiny_gltf.h>
@@ -11,14 +12,6 @@
 #include <string>
 
 namespace ripple::apps::gltf {
-
-// Reads `file` whole into `out` when it is a regular file of at most maxBytes. FIFOs, devices, directories
-// and sockets are refused from fstat of the opened file, without blocking on them and without reading a
-// byte. noFollow: a symbolic link as the last component is refused too. On failure returns false and sets
-// `error` ("is not a regular file (a FIFO)").
-template <typename Bytes>
-bool readRegularFile(const std::filesystem::path& file, uint64_t maxBytes, bool noFollow, Bytes& out,
-                     std::string& error);
 
 // The buffer and image URIs of one scene. approve() checks each URI from the JSON before tinygltf sees it;
 // callbacks() are the only file access tinygltf gets, and they open only approved files.

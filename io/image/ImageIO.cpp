@@ -2,6 +2,8 @@
 // three-line header and raw floats. Readers tell the format from the file's first bytes, not its name.
 #include "io/image/ImageIO.h"
 
+#include "io/FileRead.h"
+#include "io/FileWrite.h"
 #include "io/image/LinearImage.h"
 
 #include <stb_image.h>
@@ -14,9 +16,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -39,6 +40,11 @@ void checkSize(const std::filesystem::path& file, uint32_t width, uint32_t heigh
 using detail::srgbDecode;
 using detail::srgbEncode;
 
+// stb's writers hand their output to a callback: it is collected here, then written in one piece.
+void appendBytes(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+}
+
 std::runtime_error malformed(const std::filesystem::path& file, const std::string& what) {
     return std::runtime_error(file.string() + ": malformed image: " + what);
 }
@@ -59,9 +65,55 @@ LinearImage readPng(const std::filesystem::path& file, const std::string& bytes)
     return image;
 }
 
+// Walks a Radiance file's pixel data as stb's decoder will, without decoding it: stb reads zeros past the end
+// of a truncated file (an image with black rows, or a run of length 0 that never ends in Debian's stb), so a
+// file is checked complete first. Returns what is wrong, or nothing; a header stb cannot read is left to it.
+std::optional<std::string> hdrDataProblem(const std::string& bytes) {
+    const size_t headerEnd = bytes.find("\n\n");
+    if (headerEnd == std::string::npos) return std::nullopt;
+    size_t pos = bytes.find('\n', headerEnd + 2);
+    int height = 0, width = 0;
+    if (pos == std::string::npos || std::sscanf(bytes.c_str() + headerEnd + 2, "-Y %d +X %d", &height, &width) != 2 ||
+        height <= 0 || width <= 0)
+        return std::nullopt;
+    ++pos;
+    const uint64_t pixels = uint64_t(width) * uint64_t(height), size = bytes.size();
+    const auto truncated = [&](uint64_t row) {
+        return "truncated: the pixel data of " + std::to_string(width) + "x" + std::to_string(height) + " ends in row " +
+               std::to_string(row) + ", after " + std::to_string(size) + " bytes";
+    };
+    const auto flat = [&](uint64_t row) -> std::optional<std::string> {  // 4 bytes a pixel from `pos` on
+        if (pos + (pixels - row * uint64_t(width)) * 4 > size) return truncated(row + (size - pos) / 4 / uint64_t(width));
+        return std::nullopt;
+    };
+    if (width < 8 || width >= 32768) return flat(0);
+    const auto byteAt = [&](size_t i) { return uint8_t(bytes[i]); };
+    for (uint64_t row = 0; row < uint64_t(height); ++row) {
+        if (pos + 4 > size) return truncated(row);
+        if (byteAt(pos) != 2 || byteAt(pos + 1) != 2 || (byteAt(pos + 2) & 0x80)) return flat(row);  // stb reads the rest flat
+        if (((byteAt(pos + 2) << 8) | byteAt(pos + 3)) != width) return std::nullopt;  // stb refuses it by name
+        pos += 4;
+        for (int channel = 0; channel < 4; ++channel)
+            for (int filled = 0; filled < width;) {
+                if (pos >= size) return truncated(row);
+                int count = byteAt(pos++);
+                const bool run = count > 128;
+                if (run) count -= 128;
+                if (count == 0 || count > width - filled)
+                    return "malformed run-length data in row " + std::to_string(row);
+                const size_t dataBytes = run ? 1 : size_t(count);
+                if (pos + dataBytes > size) return truncated(row);
+                pos += dataBytes;
+                filled += count;
+            }
+    }
+    return std::nullopt;
+}
+
 // Radiance RGBE (.hdr), linear floats as stored.
 LinearImage readHdr(const std::filesystem::path& file, const std::string& bytes) {
     if (bytes.size() > size_t(std::numeric_limits<int>::max())) throw malformed(file, "HDR too large");
+    if (const std::optional<std::string> problem = hdrDataProblem(bytes)) throw malformed(file, "Radiance HDR: " + *problem);
     int width = 0, height = 0, channels = 0;
     float* pixels = stbi_loadf_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &width,
                                            &height, &channels, 3);
@@ -159,24 +211,24 @@ void writePngBottomUp(const std::filesystem::path& file, uint32_t width, uint32_
     std::vector<uint8_t> topDown(rowBytes * height);
     for (uint32_t y = 0; y < height; ++y)
         std::memcpy(topDown.data() + size_t(height - 1 - y) * rowBytes, rgba + size_t(y) * rowBytes, rowBytes);
-    if (!stbi_write_png(file.string().c_str(), int(width), int(height), 4, topDown.data(), int(rowBytes)))
-        throw std::runtime_error(file.string() + ": cannot write the PNG");
+    std::string png;
+    if (!stbi_write_png_to_func(appendBytes, &png, int(width), int(height), 4, topDown.data(), int(rowBytes)))
+        throw std::runtime_error(file.string() + ": cannot encode the PNG");
+    writeFileAtomically(file, png, "the image");
 }
 
 void writePfmBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba) {
     checkSize(file, width, height, rgba);
-    std::ofstream out(file, std::ios::binary);
-    if (!out) throw std::runtime_error(file.string() + ": cannot open for writing");
     // "PF": colour; a negative scale says little-endian.
-    out << "PF\n" << width << " " << height << "\n-1.0\n";
+    std::string pfm = "PF\n" + std::to_string(width) + " " + std::to_string(height) + "\n-1.0\n";
     std::vector<float> row(size_t(width) * 3);
     for (uint32_t y = 0; y < height; ++y) {
         const float* src = rgba + size_t(y) * width * 4;
         for (uint32_t x = 0; x < width; ++x)
             for (int c = 0; c < 3; ++c) row[size_t(x) * 3 + size_t(c)] = src[size_t(x) * 4 + size_t(c)];
-        out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+        pfm.append(reinterpret_cast<const char*>(row.data()), row.size() * sizeof(float));
     }
-    if (!out) throw std::runtime_error(file.string() + ": write failed");
+    writeFileAtomically(file, pfm, "the image");
 }
 
 void writeExrBottomUp(const std::filesystem::path& file, uint32_t width, uint32_t height, const float* rgba) {
@@ -218,11 +270,17 @@ void writeExrChannelsBottomUp(const std::filesystem::path& file, uint32_t width,
     image.width = int(width);
     image.height = int(height);
     const char* error = nullptr;
-    if (SaveEXRImageToFile(&image, &header, file.c_str(), &error) != TINYEXR_SUCCESS) {
-        const std::string message = error ? error : "tinyexr could not write it";
+    unsigned char* exr = nullptr;
+    const size_t exrBytes = SaveEXRImageToMemory(&image, &header, &exr, &error);
+    if (exrBytes == 0) {
+        const std::string message = error ? error : "tinyexr could not encode it";
         if (error) FreeEXRErrorMessage(error);
-        throw std::runtime_error(file.string() + ": cannot write the EXR image: " + message);
+        std::free(exr);
+        throw std::runtime_error(file.string() + ": cannot encode the EXR image: " + message);
     }
+    const std::string bytes(reinterpret_cast<const char*>(exr), exrBytes);
+    std::free(exr);
+    writeFileAtomically(file, bytes, "the image");
 }
 
 std::vector<uint8_t> encodeSrgb8(uint32_t width, uint32_t height, const float* rgba) {
@@ -250,15 +308,16 @@ void writeJpegFromLinearBottomUp(const std::filesystem::path& file, uint32_t wid
         for (uint32_t x = 0; x < width; ++x)
             for (int c = 0; c < 3; ++c)
                 rgb[(size_t(y) * width + x) * 3 + size_t(c)] = bytes[(size_t(height - 1 - y) * width + x) * 4 + size_t(c)];
-    if (!stbi_write_jpg(file.string().c_str(), int(width), int(height), 3, rgb.data(), 95))
-        throw std::runtime_error(file.string() + ": cannot write the JPEG");
+    std::string jpeg;
+    if (!stbi_write_jpg_to_func(appendBytes, &jpeg, int(width), int(height), 3, rgb.data(), 95))
+        throw std::runtime_error(file.string() + ": cannot encode the JPEG");
+    writeFileAtomically(file, jpeg, "the image");
 }
 
 LinearImage readLinearImage(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw std::runtime_error(file.string() + ": cannot open the image (" +
-                                      (std::filesystem::exists(file) ? "not readable" : "no such file") + ")");
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string bytes, error;
+    if (!readRegularFile(file, kMaxImageFileBytes, false, bytes, error))
+        throw std::runtime_error(file.string() + ": cannot open the image (" + error + ")");
     static const std::string pngMagic = "\x89PNG\r\n\x1a\n", exrMagic = "\x76\x2f\x31\x01";
     if (bytes.compare(0, pngMagic.size(), pngMagic) == 0) return readPng(file, bytes);
     if (bytes.compare(0, exrMagic.size(), exrMagic) == 0) return readExr(file, bytes);

@@ -2,16 +2,12 @@
 // the project's one image writer (io/image/ImageIO).
 #include "io/image/OutputImage.h"
 
+#include "io/FileWrite.h"
 #include "io/image/ImageIO.h"
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -30,16 +26,11 @@ OutputFormat outputFormatOf(const std::filesystem::path& file, const std::string
 }
 
 void checkOutputWritable(const std::filesystem::path& file, const std::string& option) {
-    // Opening is the only test that sees what writing will see (permissions, read-only mounts, a folder
-    // in the way); access() answers for the real user and ignores read-only file systems' subtleties.
-    const bool existed = std::filesystem::exists(file);
-    const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        const int error = errno;
-        throw std::runtime_error(option + " " + file.string() + ": cannot write the image there: " + std::strerror(error));
+    try {
+        checkWritable(file, "the image");
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(option + " " + e.what());
     }
-    ::close(fd);
-    if (!existed) ::unlink(file.c_str());
 }
 
 void writeOutputImage(const std::filesystem::path& file, OutputFormat format, uint32_t width, uint32_t height,

@@ -15,8 +15,7 @@ enum class OutputFormat { Png, Jpeg, Pfm, Exr };
 OutputFormat outputFormatOf(const std::filesystem::path& file, const std::string& option = "-o");
 
 // Throws std::runtime_error with the operating system's reason when `file` cannot be created or
-// overwritten (missing or read-only folder, a folder of that name...). Leaves no file behind that was
-// not there before.
+// replaced (missing or read-only folder, a folder of that name...). Touches no file of that name.
 void checkOutputWritable(const std::filesystem::path& file, const std::string& option = "-o");
 
 // Linear RGBA pixels, bottom row first: PNG and JPEG as 8-bit sRGB (JPEG without alpha), PFM (RGB) and EXR

@@ -4,6 +4,8 @@
 // (a gzip stream only ever yields as many bytes as the field needs, so no stream can make it read more).
 #include "io/volume/VolumeFile.h"
 
+#include "io/FileRead.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -225,13 +227,12 @@ private:
 VolumeData readSamples(const std::filesystem::path& label, const std::filesystem::path& dataFile, uint64_t offset,
                        glm::uvec3 dims, VoxelType type, bool bigEndian, VolumeSlab slab, bool gzip = false,
                        uint64_t gzipSkip = 0) {
-    std::error_code ec;
-    if (!std::filesystem::exists(dataFile, ec))
-        fail(label, (dataFile == label ? std::string("no such file") : "its data file " + quoted(dataFile) + " does not exist"));
-    if (!std::filesystem::is_regular_file(dataFile, ec))
-        fail(label, (dataFile == label ? std::string("is not a regular file") : "its data file " + quoted(dataFile) + " is not a regular file"));
-    const uint64_t fileSize = std::filesystem::file_size(dataFile, ec);
-    if (ec) fail(label, "cannot read the size of " + quoted(dataFile) + ": " + ec.message());
+    uint64_t fileSize = 0;
+    std::string error;
+    if (openRegularFile(dataFile, false, fileSize, error).get() < 0) {
+        if (dataFile == label) fail(label, error);
+        fail(label, "its data file " + quoted(dataFile) + (error == "no such file" ? " does not exist" : " " + error));
+    }
     const uint64_t voxels = uint64_t(dims.x) * dims.y * dims.z;  // checked: at most 2^31
     const size_t size = typeSize(type);
     const uint64_t needed = voxels * size;
@@ -370,9 +371,10 @@ VolumeData readRawVolume(const std::filesystem::path& file, const RawLayout& lay
 }
 
 VolumeData readNrrdVolume(const std::filesystem::path& file, VolumeSlab slab) {
+    uint64_t headerFileSize = 0;
+    std::string error;
+    if (openRegularFile(file, false, headerFileSize, error).get() < 0) fail(file, error);
     std::error_code ec;
-    if (!std::filesystem::exists(file, ec)) fail(file, "no such file");
-    if (!std::filesystem::is_regular_file(file, ec)) fail(file, "is not a regular file");
     std::ifstream in(file, std::ios::binary);
     if (!in) fail(file, "cannot open it");
 
