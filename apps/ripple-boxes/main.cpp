@@ -1,11 +1,11 @@
 // ripple-boxes: the 4x4x4 boxes of the data-parallel ANARI paper, each rank holding its own share of them
 // (run it under mpirun); rank 0 writes the image. --bench times frames and reports what crossed ranks;
 // --compare renders natively, through the compositing device and on one rank, and measures the difference.
+#include "apps/ripple-boxes/BoxesScene.h"
 #include "apps/scene/AnariParams.h"
+#include "apps/scene/ImageSize.h"
 #include "io/FileWrite.h"
 #include "io/image/ImageIO.h"
-#include "apps/scene/ImageSize.h"
-#include "apps/ripple-boxes/BoxesScene.h"
 #include "mpi/Communicator.h"
 #include "mpi/Runtime.h"
 

@@ -2,8 +2,8 @@
 // relMSE, LDR-FLIP and HDR-FLIP; optionally writes them as JSON and a heat map of where they differ.
 #include "io/FileWrite.h"
 #include "io/image/ImageIO.h"
-#include "metrics/ImageMetrics.h"
 #include "metrics/HeatMap.h"
+#include "metrics/ImageMetrics.h"
 
 #include <CLI/CLI.hpp>
 

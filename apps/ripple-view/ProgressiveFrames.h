@@ -6,10 +6,10 @@
 // Changes wait until no pass is in flight and restart the accumulation (the device sees a new commit).
 #pragma once
 
+#include "apps/ripple-view/ChannelView.h"
 #include "apps/scene/AnariScene.h"
 #include "apps/scene/AnariSession.h"
 #include "metrics/ErrorEstimate.h"
-#include "apps/ripple-view/ChannelView.h"
 
 #include <anari/anari.h>
 

@@ -2,8 +2,8 @@
 // values; the caller turns changes into ANARI commits.
 #pragma once
 
-#include "apps/scene/AnariScene.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
+#include "apps/scene/AnariScene.h"
 
 #include <string>
 #include <vector>

@@ -1,15 +1,15 @@
 // GLFW window, OpenGL 3.3 context and Dear ImGui set-up of the viewer (see ViewerWindow.h).
 #include "apps/ripple-view/ViewerWindow.h"
 
-#include "io/image/ImageIO.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
+#include "io/image/ImageIO.h"
 
 #define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
 #include <GL/gl.h>  // OpenGL 1.1's texture calls, which libGL exports; ImGui loads the rest itself
-#include <imgui.h>
+#include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <cstdlib>

@@ -3,22 +3,22 @@
 // renderer, where it has one); panels set the renderer and camera. --screenshot renders a fixed number of passes, writes the image and exits.
 // Under mpirun (data-parallel ANARI) every rank imports its share of the glTF file; rank 0 owns the window
 // and sends the others each pass's changes (PassOrders.h); the composite shows on rank 0.
-#include "apps/scene/AnariSession.h"
-#include "apps/scene/DemoScene.h"
-#include "apps/scene/EnvironmentOptions.h"
-#include "io/gltf/GltfScene.h"
-#include "apps/scene/ImageSize.h"
-#include "io/image/OutputImage.h"
-#include "apps/scene/SceneEdits.h"
-#include "apps/scene/ScenePartition.h"
-#include "apps/scene/ViewState.h"
-#include "apps/scene/VolumeOptions.h"
 #include "apps/ripple-view/OrbitCamera.h"
 #include "apps/ripple-view/PassOrders.h"
 #include "apps/ripple-view/ProgressiveFrames.h"
 #include "apps/ripple-view/ScenePanels.h"
 #include "apps/ripple-view/ViewerPanels.h"
 #include "apps/ripple-view/ViewerWindow.h"
+#include "apps/scene/AnariSession.h"
+#include "apps/scene/DemoScene.h"
+#include "apps/scene/EnvironmentOptions.h"
+#include "apps/scene/ImageSize.h"
+#include "apps/scene/SceneEdits.h"
+#include "apps/scene/ScenePartition.h"
+#include "apps/scene/ViewState.h"
+#include "apps/scene/VolumeOptions.h"
+#include "io/gltf/GltfScene.h"
+#include "io/image/OutputImage.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

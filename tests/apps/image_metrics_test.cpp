@@ -1,9 +1,9 @@
 // Image metrics against values known in closed form: relMSE of a constant offset, PSNR of a known sRGB error,
 // SSIM of equal and of constant images, FLIP's range and ordering, and FLIP's stages against values worked out
 // by hand (in double precision) from the published formulas and constants; the magma heat-map colours.
+#include "metrics/HeatMap.h"
 #include "metrics/ImageMetrics.h"
 #include "metrics/ImageMetricsDetail.h"
-#include "metrics/HeatMap.h"
 
 #include <doctest/doctest.h>
 

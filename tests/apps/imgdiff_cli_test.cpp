@@ -1,8 +1,8 @@
 // ripple-imgdiff as a user runs it: equal images give zero error and infinite PSNR, black against white gives
 // a white-hot heat map, and missing files, size mismatches and malformed headers end with exit code 1 and a
 // message naming the fault.
-#include "metrics/HeatMap.h"
 #include "io/image/ImageIO.h"
+#include "metrics/HeatMap.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
 

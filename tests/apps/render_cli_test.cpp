@@ -2,8 +2,8 @@
 // the problem, never a crash (a crash shows as a signal); small renders through the Ripple device (the
 // Cornell demo, a volume file); and the convergence options (--time, --target-error, --report) stopping and
 // writing what they promise.
-#include "metrics/HeatMap.h"
 #include "io/image/ImageIO.h"
+#include "metrics/HeatMap.h"
 #include "metrics/ImageMetrics.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"

@@ -1,9 +1,9 @@
 // The ray-query back-end (VK_KHR_ray_query over Vulkan acceleration structures) against Ripple's own BVH4
 // traversal: the same rays at scenes of every geometry kind through both, hits compared ray by ray.
 // Runs only where the device has ray queries (ray_query_main.cpp skips the suite elsewhere).
-#include "metrics/ImageMetrics.h"
 #include "core/render/PathTracer.h"
 #include "core/render/TraceKernels.h"
+#include "metrics/ImageMetrics.h"
 #include "tests/support/RenderHelpers.h"
 #include "tests/support/SceneGenerators.h"
 #include "tests/support/TestContext.h"

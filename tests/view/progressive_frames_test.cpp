@@ -4,13 +4,13 @@
 // Each is compared with a frame rendered directly through ANARI with that renderer, the same camera and
 // size: the random numbers are keyed by pixel and sample (the stratified ones by the sample's place in its
 // pass's sequence, the same in both here), so equal means bit-identical.
+#include "apps/ripple-view/PassOrders.h"
+#include "apps/ripple-view/ProgressiveFrames.h"
 #include "apps/scene/AnariParams.h"
 #include "apps/scene/AnariScene.h"
 #include "apps/scene/AnariSession.h"
 #include "apps/scene/DemoScene.h"
 #include "apps/scene/SceneEdits.h"
-#include "apps/ripple-view/PassOrders.h"
-#include "apps/ripple-view/ProgressiveFrames.h"
 
 #include <doctest/doctest.h>
 
