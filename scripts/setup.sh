@@ -10,6 +10,7 @@ packages=(
   libembree-dev                                                                # ripple-bench comparison only
   nlohmann-json3-dev                                                           # glTF importer: JSON checks
   zlib1g-dev                                                                   # gzip-encoded NRRD volumes
+  libpugixml-dev                                                               # VTK XML files
   libopenmpi-dev openmpi-bin                                                   # data-parallel rendering
   clang-14 libclang-rt-14-dev                                                  # libFuzzer (scripts/fuzz.sh)
   libglfw3-dev libimgui-dev libgl1-mesa-dri                                    # ripple-view: window, panels, GL (llvmpipe)

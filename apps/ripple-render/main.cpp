@@ -50,6 +50,10 @@ int main(int argc, char** argv) {
     ripple::apps::Session session;
     try {
         ripple::apps::TimeBudget budget(options.seconds, processStart);
+        if (options.field.listFields) {
+            if (ranks.rank() == 0) ripple::apps::printVolumeFields(options.field);
+            return 0;
+        }
         ripple::apps::applyViewState(options, app);
         return ripple::apps::render(options, ranks, session, budget);
     } catch (const std::exception& e) {

@@ -1,9 +1,13 @@
 // Volume-file options (see VolumeOptions.h).
 #include "apps/scene/VolumeOptions.h"
 
+#include "io/vtk/VtkImageFile.h"
+
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <span>
 #include <stdexcept>
 
@@ -11,8 +15,14 @@ namespace ripple::apps {
 
 void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
     app.add_option("--volume", options.volume,
-                   "scalar field file: NRRD (.nrrd, or .nhdr with a raw data file; encoding raw) or raw (needs --dims "
-                   "and --type); drawn as a volume, or as isosurfaces with --isovalue, on a floor");
+                   "scalar field file: NRRD (.nrrd, or .nhdr with a raw data file; encoding raw), VTK image data (.vti, "
+                   "or legacy .vtk STRUCTURED_POINTS) or raw (needs --dims and --type); drawn as a volume, or as "
+                   "isosurfaces with --isovalue, on a floor");
+    app.add_option("--field", options.field, "VTK --volume: the point array to draw (default: the file's active scalars)");
+    app.add_option("--field-component", options.fieldComponent,
+                   "VTK --volume: of a vector array, this component (from 0) instead of the magnitude")
+        ->check(CLI::Range(0, 8));
+    app.add_flag("--list-fields", options.listFields, "VTK --volume: list the file's arrays and exit");
     app.add_option("--dims", options.dims, "raw --volume: samples along x, y, z as X,Y,Z or XxYxZ (x fastest)");
     app.add_option("--type", options.type, "raw --volume: uint8, int8, uint16, int16, float32 or float64 (little-endian)");
     app.add_option("--spacing", options.spacing, "raw --volume: distance between samples along x, y, z as SX,SY,SZ "
@@ -33,8 +43,16 @@ void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
         ->allow_extra_args(false);
 }
 
+void printVolumeFields(const VolumeOptions& options) {
+    if (!isVtkImageFile(options.volume))
+        throw VolumeError("--list-fields reads VTK image data (--volume FILE.vti or .vtk); " + options.volume + " is not");
+    for (const VtkArrayInfo& a : listVtkArrays(options.volume))
+        std::printf("%s array '%s': %u component%s of %s, %llu tuples\n", a.association.c_str(), a.name.c_str(),
+                    a.components, a.components == 1 ? "" : "s", a.type.c_str(), (unsigned long long)a.tuples);
+}
+
 std::string describeVolumeOptions(const VolumeOptions& options) {
-    std::string text = options.dims + ";" + options.type + ";" + options.spacing + ";" + options.transferFunction + ";" +
+    std::string text = options.field + ";" + std::to_string(options.fieldComponent.value_or(-1)) + ";" + options.dims + ";" + options.type + ";" + options.spacing + ";" + options.transferFunction + ";" +
                        std::to_string(options.opacity.value_or(-1.0f)) + ";" +
                        std::to_string(options.unitDistance.value_or(-1.0f));
     for (float v : options.isovalues) {  // exact: the bits, not a rounded decimal
@@ -79,7 +97,21 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
     // brick, sharing a sample plane with its neighbour); rank 0's world holds the floor and the sun.
     const VolumeSlab slab{uint32_t(ranks.rank()), uint32_t(ranks.size())};
     field.stage = root;
-    if (isNrrdFile(options.volume)) {
+    std::string extension = std::filesystem::path(options.volume).extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (extension == ".vtu" || extension == ".vtm" || extension == ".vthb")
+        throw std::runtime_error("--volume " + options.volume + ": VTK " + extension +
+                                 " files (unstructured grids, multiblock and AMR sets) are not read yet; image data "
+                                 "(.vti, legacy .vtk STRUCTURED_POINTS) is");
+    const bool vtkOptions = !options.field.empty() || options.fieldComponent;
+    if (vtkOptions && !isVtkImageFile(options.volume))
+        throw std::runtime_error("--volume " + options.volume + ": --field and --field-component are for VTK files");
+    if (isVtkImageFile(options.volume)) {
+        if (rawOptions)
+            throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
+                                     "the VTK file gives them");
+        plan.data = readVtkImageVolume(options.volume, {options.field, options.fieldComponent.value_or(-1)}, slab);
+    } else if (isNrrdFile(options.volume)) {
         if (rawOptions)
             throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
                                      "the NRRD header gives them");

@@ -18,6 +18,9 @@ namespace ripple::apps {
 struct VolumeOptions {
     std::string volume;                 // --volume: a raw or NRRD file; empty: none
     std::string dims, type, spacing;    // raw files only
+    std::string field;                  // --field: a VTK file's point array; empty: its active scalars
+    std::optional<int> fieldComponent;  // --field-component: one of a vector's components (else its magnitude)
+    bool listFields = false;            // --list-fields: print the file's arrays and stop
     std::string transferFunction;       // --tf; empty: viridis, unless --isovalue is given (then no volume)
     std::optional<float> opacity, unitDistance;
     std::vector<float> isovalues;
@@ -25,6 +28,9 @@ struct VolumeOptions {
 
 // Adds --volume, --dims, --type, --spacing, --tf, --opacity, --unit-distance and --isovalue to `app`.
 void addVolumeOptions(CLI::App& app, VolumeOptions& options);
+
+// --list-fields: the arrays of options.volume, one a line, on stdout. Throws VolumeError.
+void printVolumeFields(const VolumeOptions& options);
 
 // The volume options as one string: equal on ranks given the same options (ripple-render checks that).
 std::string describeVolumeOptions(const VolumeOptions& options);
