@@ -5,6 +5,7 @@
 #pragma once
 
 #include "io/volume/VolumeFile.h"
+#include "io/vtk/VtkArrays.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -15,15 +16,6 @@ namespace ripple::apps {
 
 // Whether `file` is read as VTK image data (its extension is .vti or .vtk, any case).
 bool isVtkImageFile(const std::filesystem::path& file);
-
-// One array of a VTK file, as --list-fields shows it.
-struct VtkArrayInfo {
-    std::string name;
-    std::string association;  // "point" or "cell"
-    uint32_t components = 1;
-    std::string type;         // as the file names it: Float32, unsigned_char, ...
-    uint64_t tuples = 0;
-};
 
 // Which array to read: by name (empty: the file's active scalars, else its first point array), and for a
 // vector, which component (-1: the magnitude).
