@@ -269,4 +269,75 @@ std::string unescape(const std::string& name) {
     return out;
 }
 
+LegacyHeader readLegacyHeader(LegacyReader& in, const std::filesystem::path& file) {
+    const std::string versionLine = in.line();
+    const std::string prefix = "# vtk DataFile Version";
+    if (versionLine.rfind(prefix, 0) != 0) fail(file, "not a VTK file (no '# vtk DataFile Version' line)");
+    LegacyHeader header;
+    header.version = std::atof(versionLine.c_str() + prefix.size());
+    in.line();  // the title
+    std::string format;
+    while (format.find_first_not_of(" \t") == std::string::npos) format = in.line();  // version 1.0 leaves blank lines
+    format.erase(std::remove_if(format.begin(), format.end(), [](unsigned char c) { return std::isspace(c); }), format.end());
+    if (format != "ASCII" && format != "BINARY") fail(file, "the third line is '" + format + "', not ASCII or BINARY");
+    header.binary = format == "BINARY";
+    if (in.word() != "DATASET") fail(file, "no DATASET line");
+    header.dataset = in.word();
+    return header;
+}
+
+bool LegacyAttributes::take(const std::string& key) {
+    if (key == "POINT_DATA" || key == "CELL_DATA") {
+        association_ = key == "POINT_DATA" ? "point" : "cell";
+        tuples_ = in_.count(key);
+    } else if (key == "SCALARS" || key == "VECTORS" || key == "NORMALS" || key == "TENSORS") {
+        if (association_.empty()) fail(file_, key + " before POINT_DATA or CELL_DATA");
+        StoredArray a;
+        a.info.name = unescape(in_.word());
+        a.info.type = in_.word();
+        a.info.association = association_;
+        a.info.tuples = tuples_;
+        a.info.components = key == "VECTORS" || key == "NORMALS" ? 3 : key == "TENSORS" ? 9 : 1;
+        if (typeInfo(a.info.type).size == 0) fail(file_, "array '" + a.info.name + "' has unknown type '" + a.info.type + "'");
+        if (key == "SCALARS") {
+            const std::string rest = in_.line();  // an optional component count
+            if (const std::vector<double> n = numbersIn(rest); !n.empty()) {
+                if (!(n[0] >= 1 && n[0] <= 4)) fail(file_, "SCALARS '" + a.info.name + "' of " + rest + " components (1 to 4)");
+                a.info.components = uint32_t(n[0]);
+            }
+            if (in_.word() != "LOOKUP_TABLE") fail(file_, "SCALARS '" + a.info.name + "' without its LOOKUP_TABLE line");
+            in_.word();
+        }
+        if (activeScalars.empty() && key == "SCALARS" && association_ == "point") activeScalars = a.info.name;
+        in_.data(a, binary_, a.info.tuples * a.info.components);
+        arrays.push_back(std::move(a));
+    } else if (key == "FIELD") {
+        in_.word();  // the field's name
+        const uint64_t count = in_.count("FIELD array count");
+        if (association_.empty()) association_ = "point";  // a FIELD at the data set's level: kept as point data
+        for (uint64_t i = 0; i < count; ++i) {
+            StoredArray a;
+            a.info.name = unescape(in_.word());
+            a.info.components = uint32_t(std::min<uint64_t>(in_.count("FIELD components"), 1u << 20));
+            a.info.tuples = in_.count("FIELD tuples");
+            a.info.type = in_.word();
+            a.info.association = association_;
+            if (typeInfo(a.info.type).size == 0) fail(file_, "FIELD array '" + a.info.name + "' has unknown type '" + a.info.type + "'");
+            if (a.info.components * a.info.tuples > kMaxVoxels * 9) fail(file_, "FIELD array '" + a.info.name + "' is too large");
+            in_.data(a, binary_, a.info.components * a.info.tuples);
+            arrays.push_back(std::move(a));
+        }
+    } else if (key == "LOOKUP_TABLE") {  // a colour table: read past it
+        StoredArray table;
+        table.info.name = in_.word();
+        table.info.type = binary_ ? "unsigned_char" : "float";
+        in_.data(table, binary_, in_.count("LOOKUP_TABLE size") * 4);
+    } else if (key == "METADATA") {
+        in_.skipMetadata();
+    } else {
+        return false;
+    }
+    return true;
+}
+
 }  // namespace ripple::apps::vtk

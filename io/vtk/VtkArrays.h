@@ -154,4 +154,31 @@ private:
     size_t pos_ = 0;
 };
 
+// A legacy file's first lines: the version, the title, ASCII or BINARY, and the DATASET keyword.
+struct LegacyHeader {
+    double version = 0;
+    bool binary = false;
+    std::string dataset;
+};
+LegacyHeader readLegacyHeader(LegacyReader& in, const std::filesystem::path& file);
+
+// The POINT_DATA and CELL_DATA sections of a legacy file (SCALARS, VECTORS, NORMALS, TENSORS, FIELD,
+// colour tables, 5.1's METADATA), whatever the data set.
+class LegacyAttributes {
+public:
+    LegacyAttributes(LegacyReader& in, const std::filesystem::path& file, bool binary) : in_(in), file_(file), binary_(binary) {}
+    // Reads the section `key` opens; false when `key` is not one of these.
+    bool take(const std::string& key);
+
+    std::vector<StoredArray> arrays;
+    std::string activeScalars;  // the first point SCALARS
+
+private:
+    LegacyReader& in_;
+    const std::filesystem::path& file_;
+    bool binary_;
+    std::string association_;
+    uint64_t tuples_ = 0;
+};
+
 }  // namespace ripple::apps::vtk

@@ -68,22 +68,12 @@ ImageGrid readXmlImage(const std::filesystem::path& file, const std::string& tex
 
 ImageGrid readLegacyImage(const std::filesystem::path& file, const std::string& bytes) {
     LegacyReader in(file, bytes);
-    const std::string version = in.line();
-    if (version.rfind("# vtk DataFile Version", 0) != 0) fail(file, "not a VTK file (no '# vtk DataFile Version' line)");
-    in.line();  // the title
-    std::string format;
-    while (format.find_first_not_of(" \t") == std::string::npos) format = in.line();  // version 1.0 leaves blank lines
-    format.erase(std::remove_if(format.begin(), format.end(), [](unsigned char c) { return std::isspace(c); }), format.end());
-    if (format != "ASCII" && format != "BINARY") fail(file, "the third line is '" + format + "', not ASCII or BINARY");
-    const bool binary = format == "BINARY";
-    if (in.word() != "DATASET") fail(file, "no DATASET line");
-    const std::string dataset = in.word();
-    if (dataset != "STRUCTURED_POINTS")
-        fail(file, "a legacy " + dataset + " data set; Ripple reads STRUCTURED_POINTS here");
+    const LegacyHeader header = readLegacyHeader(in, file);
+    if (header.dataset != "STRUCTURED_POINTS")
+        fail(file, "a legacy " + header.dataset + " data set; Ripple reads STRUCTURED_POINTS here");
+    LegacyAttributes attributes(in, file, header.binary);
     ImageGrid grid;
     bool haveDims = false;
-    uint64_t tuples = 0;
-    std::string association;
     for (std::string key = in.word(); !key.empty(); key = in.done() ? "" : in.word()) {
         if (key == "DIMENSIONS") {
             for (int a = 0; a < 3; ++a) {
@@ -96,57 +86,12 @@ ImageGrid readLegacyImage(const std::filesystem::path& file, const std::string& 
             for (int a = 0; a < 3; ++a) grid.spacing[a] = float(in.number(key));
         } else if (key == "ORIGIN") {
             for (int a = 0; a < 3; ++a) grid.origin[a] = float(in.number(key));
-        } else if (key == "POINT_DATA" || key == "CELL_DATA") {
-            association = key == "POINT_DATA" ? "point" : "cell";
-            tuples = in.count(key);
-        } else if (key == "SCALARS" || key == "VECTORS" || key == "NORMALS" || key == "TENSORS") {
-            if (association.empty()) fail(file, key + " before POINT_DATA or CELL_DATA");
-            StoredArray a;
-            a.info.name = unescape(in.word());
-            a.info.type = in.word();
-            a.info.association = association;
-            a.info.tuples = tuples;
-            a.info.components = key == "VECTORS" || key == "NORMALS" ? 3 : key == "TENSORS" ? 9 : 1;
-            if (typeInfo(a.info.type).size == 0) fail(file, "array '" + a.info.name + "' has unknown type '" + a.info.type + "'");
-            if (key == "SCALARS") {
-                const std::string rest = in.line();  // an optional component count
-                if (const std::vector<double> n = numbersIn(rest); !n.empty()) {
-                    if (!(n[0] >= 1 && n[0] <= 4)) fail(file, "SCALARS '" + a.info.name + "' of " + rest + " components (1 to 4)");
-                    a.info.components = uint32_t(n[0]);
-                }
-                if (in.word() != "LOOKUP_TABLE") fail(file, "SCALARS '" + a.info.name + "' without its LOOKUP_TABLE line");
-                in.word();
-            }
-            if (grid.activeScalars.empty() && key == "SCALARS" && association == "point") grid.activeScalars = a.info.name;
-            in.data(a, binary, a.info.tuples * a.info.components);
-            grid.arrays.push_back(std::move(a));
-        } else if (key == "FIELD") {
-            in.word();  // the field's name
-            const uint64_t arrays = in.count("FIELD array count");
-            if (association.empty()) association = "point";  // a FIELD at the data set's level: kept as point data
-            for (uint64_t i = 0; i < arrays; ++i) {
-                StoredArray a;
-                a.info.name = unescape(in.word());
-                a.info.components = uint32_t(std::min<uint64_t>(in.count("FIELD components"), 1u << 20));
-                a.info.tuples = in.count("FIELD tuples");
-                a.info.type = in.word();
-                a.info.association = association;
-                if (typeInfo(a.info.type).size == 0) fail(file, "FIELD array '" + a.info.name + "' has unknown type '" + a.info.type + "'");
-                if (a.info.components * a.info.tuples > kMaxVoxels * 9) fail(file, "FIELD array '" + a.info.name + "' is too large");
-                in.data(a, binary, a.info.components * a.info.tuples);
-                grid.arrays.push_back(std::move(a));
-            }
-        } else if (key == "LOOKUP_TABLE") {  // a colour table: read past it
-            StoredArray table;
-            table.info.name = in.word();
-            table.info.type = binary ? "unsigned_char" : "float";
-            in.data(table, binary, in.count("LOOKUP_TABLE size") * 4);
-        } else if (key == "METADATA") {
-            in.skipMetadata();
-        } else {
+        } else if (!attributes.take(key)) {
             fail(file, "unknown keyword '" + key + "'");
         }
     }
+    grid.arrays = std::move(attributes.arrays);
+    grid.activeScalars = attributes.activeScalars;
     if (!haveDims) fail(file, "no DIMENSIONS");
     return grid;
 }
