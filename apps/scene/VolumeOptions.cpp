@@ -2,6 +2,7 @@
 #include "apps/scene/VolumeOptions.h"
 
 #include "io/vtk/VtkImageFile.h"
+#include "io/vtk/VtkUnstructuredFile.h"
 
 #include <cctype>
 #include <cmath>
@@ -44,9 +45,19 @@ void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
 }
 
 void printVolumeFields(const VolumeOptions& options) {
-    if (!isVtkImageFile(options.volume))
-        throw VolumeError("--list-fields reads VTK image data (--volume FILE.vti or .vtk); " + options.volume + " is not");
-    for (const VtkArrayInfo& a : listVtkArrays(options.volume))
+    if (!isVtkImageFile(options.volume) && !isVtkUnstructuredFile(options.volume))
+        throw VolumeError("--list-fields reads VTK files (--volume FILE.vti, .vtu or .vtk); " + options.volume + " is not one");
+    const bool unstructured = isVtkUnstructuredFile(options.volume);
+    if (unstructured) {
+        const UnstructuredMesh mesh = readVtkUnstructured(options.volume);
+        uint64_t counts[256] = {};
+        for (uint8_t t : mesh.cellType) ++counts[t];
+        std::printf("%zu points, %zu cells: %llu tetrahedra, %llu hexahedra, %llu wedges, %llu pyramids\n",
+                    mesh.positions.size(), mesh.cellType.size(), (unsigned long long)counts[10], (unsigned long long)counts[12],
+                    (unsigned long long)counts[13], (unsigned long long)counts[14]);
+        for (const std::string& warning : mesh.warnings) std::printf("note: %s\n", warning.c_str());
+    }
+    for (const VtkArrayInfo& a : unstructured ? listVtkUnstructuredArrays(options.volume) : listVtkArrays(options.volume))
         std::printf("%s array '%s': %u component%s of %s, %llu tuples\n", a.association.c_str(), a.name.c_str(),
                     a.components, a.components == 1 ? "" : "s", a.type.c_str(), (unsigned long long)a.tuples);
 }
@@ -99,10 +110,10 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
     field.stage = root;
     std::string extension = std::filesystem::path(options.volume).extension().string();
     for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (extension == ".vtu" || extension == ".vtm" || extension == ".vthb")
-        throw std::runtime_error("--volume " + options.volume + ": VTK " + extension +
-                                 " files (unstructured grids, multiblock and AMR sets) are not read yet; image data "
-                                 "(.vti, legacy .vtk STRUCTURED_POINTS) is");
+    if (extension == ".vtm" || extension == ".vthb" || isVtkUnstructuredFile(options.volume))
+        throw std::runtime_error("--volume " + options.volume + ": VTK unstructured grids, multiblock and AMR sets "
+                                 "are not rendered yet (--list-fields reads an unstructured grid); image data (.vti, "
+                                 "legacy .vtk STRUCTURED_POINTS) is");
     const bool vtkOptions = !options.field.empty() || options.fieldComponent;
     if (vtkOptions && !isVtkImageFile(options.volume))
         throw std::runtime_error("--volume " + options.volume + ": --field and --field-component are for VTK files");

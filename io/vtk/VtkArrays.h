@@ -142,6 +142,7 @@ public:
     }
     // 5.1's METADATA block after an array: lines up to a blank one.
     void skipMetadata() {
+        line();  // the rest of the METADATA line
         while (pos_ < bytes_.size()) {
             const std::string l = line();
             if (l.find_first_not_of(" \t") == std::string::npos) return;
