@@ -122,7 +122,8 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         for (size_t e = 0; e < entries; ++e) {
             const float x = float(e) / float(entries - 1);
             const glm::vec3 albedo = v.colors.empty() ? glm::vec3(1.0f) : glm::clamp(resampled(v.colors, x), 0.0f, 1.0f);
-            const float opacity = v.opacities.empty() ? 1.0f : std::clamp(resampled(v.opacities, x), 0.0f, gpu::VOLUME_OPACITY_CAP);
+            // No opacities: opaque, capped like any other (an uncapped 1 would be an infinite extinction).
+            const float opacity = std::clamp(v.opacities.empty() ? 1.0f : resampled(v.opacities, x), 0.0f, gpu::VOLUME_OPACITY_CAP);
             const float extinction = -std::log1p(-std::min(opacity, gpu::VOLUME_OPACITY_CAP)) / v.unitDistance;
             largestExtinction = std::max(largestExtinction, -std::log1p(-double(opacity)) / double(v.unitDistance));
             entryData.insert(entryData.end(), {albedo.r, albedo.g, albedo.b, extinction});

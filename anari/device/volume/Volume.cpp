@@ -52,12 +52,20 @@ void Volume::commit() {
     if (valueRange_.x == valueRange_.y)
         reportWarning("parameter 'valueRange' is empty: every value maps to the first colour and opacity");
 
-    // color: uniform FLOAT32_VEC3/VEC4 or an ARRAY1D of colours (alpha ignored; sRGB types decoded).
+    // color: uniform FLOAT32_VEC3/VEC4 or an ARRAY1D of colours (sRGB types decoded). Their alpha is the
+    // opacity where no 'opacity' is given, as other ANARI devices and pynari's samples take it (1 for colours
+    // without alpha).
     colors_.clear();
+    std::vector<float> alphas;
     switch (parameterType("color")) {
         case ANARI_UNKNOWN: break;
         case ANARI_FLOAT32_VEC3: colors_ = {get<glm::vec3>("color", glm::vec3(1.0f))}; break;
-        case ANARI_FLOAT32_VEC4: colors_ = {glm::vec3(get<glm::vec4>("color", glm::vec4(1.0f)))}; break;
+        case ANARI_FLOAT32_VEC4: {
+            const glm::vec4 color = get<glm::vec4>("color", glm::vec4(1.0f));
+            colors_ = {glm::vec3(color)};
+            alphas = {color.a};
+            break;
+        }
         default:
             if (Array* array = getArray("color")) {
                 useArray(array);
@@ -66,7 +74,10 @@ void Volume::commit() {
                     invalidate(elementTypeProblem("color", array->elementType(), "colours (e.g. FLOAT32_VEC3)"));
                     return;
                 }
-                for (const glm::vec4& c : *values) colors_.emplace_back(c);
+                for (const glm::vec4& c : *values) {
+                    colors_.emplace_back(c);
+                    alphas.push_back(c.a);
+                }
                 if (colors_.empty()) reportWarning("parameter 'color' is an empty array; using white");
             } else {
                 reportWarning("parameter 'color' must be FLOAT32_VEC3, FLOAT32_VEC4 or an ARRAY1D; using white");
@@ -77,8 +88,10 @@ void Volume::commit() {
 
     // opacity: uniform FLOAT32 or an ARRAY1D of FLOAT32.
     opacities_.clear();
-    if (parameterType("opacity") == ANARI_FLOAT32 || !has("opacity")) {
-        if (has("opacity")) opacities_ = {get<float>("opacity", 1.0f)};
+    if (!has("opacity")) {
+        opacities_ = alphas;
+    } else if (parameterType("opacity") == ANARI_FLOAT32) {
+        opacities_ = {get<float>("opacity", 1.0f)};
     } else if (Array* array = getArray("opacity")) {
         useArray(array);
         const std::optional<std::vector<glm::vec4>> values = readFloatVectors(*array);
