@@ -16,6 +16,8 @@ packages=(
   clang-14 libclang-rt-14-dev                                                  # libFuzzer (scripts/fuzz.sh)
   libglfw3-dev libimgui-dev libgl1-mesa-dri                                    # ripple-view: window, panels, GL (llvmpipe)
   xvfb xauth                                                                   # ripple-view's test: a virtual X server (xvfb-run)
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-mpi4py          # the pynari Python module and its tests
+  python3-pil                                                                  # pynari's samples save their images with it
 )
 
 sudo=""
