@@ -618,6 +618,21 @@ TEST_CASE("volume transferFunction1D over a structuredRegular field: transmittan
     }
 }
 
+// The slab's volume alone in a world, seen through at 8x8 and 256 samples against a white background with no
+// ambient light (the transmittance tests below).
+namespace {
+ANARIFrame slabFrame(RenderSession& s, ANARIVolume volume) {
+    ANARIWorld world = s.keep(anariNewWorld(s.device));
+    s.setObject(world, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));
+    s.commit(world);
+    ANARIRenderer renderer = s.renderer(256, 1, glm::vec4(1.0f));
+    const float noAmbient = 0.0f;
+    s.setRaw(renderer, "ambientRadiance", ANARI_FLOAT32, &noAmbient);
+    s.commit(renderer);
+    return s.frame(world, frontCamera(s, 1.5f), renderer, {8, 8}, ANARI_FLOAT32_VEC4);
+}
+}  // namespace
+
 // Where no 'opacity' is given, the colours' alpha is the opacity (pynari's samples give RGBA colour arrays
 // and nothing else), and colours without alpha are opaque: the slab above, as a uniform FLOAT32_VEC4 and as
 // an ARRAY1D of them, keeps exp(-1) of the background; black VEC3 colours with no opacity absorb all but
@@ -647,14 +662,7 @@ TEST_CASE("volume: the colours' alpha is the opacity where none is given; none a
         const float range[2] = {0.0f, 1.0f};
         s.setRaw(volume, "valueRange", ANARI_FLOAT32_BOX1, range);
         s.commit(volume);
-        ANARIWorld world = s.keep(anariNewWorld(s.device));
-        s.setObject(world, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));
-        s.commit(world);
-        ANARIRenderer renderer = s.renderer(256, 1, glm::vec4(1.0f));
-        const float noAmbient = 0.0f;
-        s.setRaw(renderer, "ambientRadiance", ANARI_FLOAT32, &noAmbient);
-        s.commit(renderer);
-        const Image image = s.render(s.frame(world, frontCamera(s, 1.5f), renderer, {8, 8}, ANARI_FLOAT32_VEC4));
+        const Image image = s.render(slabFrame(s, volume));
         CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
         double sum = 0.0;
         for (const glm::vec4& p : image.linear) sum += p.r;
@@ -676,14 +684,7 @@ TEST_CASE("volume: a transfer-function edit reuses the field's voxels on the dev
     s.set(volume, "color", glm::vec3(0.0f));
     s.set(volume, "opacity", 1.0f - std::exp(-1.0f));
     s.commit(volume);
-    ANARIWorld world = s.keep(anariNewWorld(s.device));
-    s.setObject(world, "volume", ANARI_ARRAY1D, s.objects(ANARI_VOLUME, {volume}));
-    s.commit(world);
-    ANARIRenderer renderer = s.renderer(256, 1, glm::vec4(1.0f));
-    const float noAmbient = 0.0f;
-    s.setRaw(renderer, "ambientRadiance", ANARI_FLOAT32, &noAmbient);
-    s.commit(renderer);
-    ANARIFrame frame = s.frame(world, frontCamera(s, 1.5f), renderer, {8, 8}, ANARI_FLOAT32_VEC4);
+    ANARIFrame frame = slabFrame(s, volume);
     const auto counter = [&](const char* name) {
         uint64_t value = 99;
         CHECK(anariGetProperty(s.device, frame, name, ANARI_UINT64, &value, sizeof(value), ANARI_WAIT) == 1);
