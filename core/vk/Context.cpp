@@ -95,6 +95,16 @@ std::string lowercase(std::string s) {
     return s;
 }
 
+// ContextOptions::discreteMemory, else RIPPLE_VK_DISCRETE_MEMORY: 1 on, 0 or unset off; anything else is
+// refused, so that a mistyped value does not silently test the mapped path.
+bool discreteMemoryWanted(const ContextOptions& options) {
+    if (options.discreteMemory) return *options.discreteMemory;
+    const char* env = std::getenv("RIPPLE_VK_DISCRETE_MEMORY");
+    if (!env || !*env || std::strcmp(env, "0") == 0) return false;
+    if (std::strcmp(env, "1") == 0) return true;
+    throw std::runtime_error(std::string("RIPPLE_VK_DISCRETE_MEMORY=") + env + " is neither 1 (on) nor 0 (off)");
+}
+
 std::mutex& submitMutex() {
     static std::mutex mutex;
     return mutex;
@@ -270,6 +280,10 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
     vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
     driverVersion_ = std::string(driver.driverName) + " " + driver.driverInfo;
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+    // CPU devices and integrated GPUs have host-visible device memory, which Buffer maps instead of staging.
+    discreteMemory_ = discreteMemoryWanted(options);
+    mapsDeviceMemory_ = !discreteMemory_ && (properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ||
+                                             properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU);
 
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -280,9 +294,10 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
                                  " lacks bufferDeviceAddress, shaderInt64 or hostQueryReset, which Ripple needs");
 
     if (options.printDeviceChoice)
-        std::fprintf(stderr, "ripple: Vulkan device %u of %u: %s (%s), driver %s%s\n", chosen, count, deviceName_.c_str(),
+        std::fprintf(stderr, "ripple: Vulkan device %u of %u: %s (%s), driver %s%s%s\n", chosen, count, deviceName_.c_str(),
                      typeName(properties_.deviceType), driverVersion_.c_str(),
-                     choice.empty() ? "" : ", chosen by RIPPLE_VK_DEVICE");
+                     choice.empty() ? "" : ", chosen by RIPPLE_VK_DEVICE",
+                     discreteMemory_ ? "; discrete-memory mode: device buffers are staged, never mapped" : "");
 }
 
 void Context::probeRayQuery(const ContextOptions& options, std::vector<const char*>& extensions) {

@@ -1,7 +1,8 @@
 // A headless Vulkan compute context: instance, the chosen physical device (discrete GPU, then integrated,
 // then CPU; RIPPLE_VK_DEVICE=<index or name substring> overrides), one compute queue, a pipeline cache, the
 // compute pipelines built on it, and one-shot command submission. Validation layers and a message counter
-// when asked (tests do).
+// when asked (tests do). Discrete-memory mode (RIPPLE_VK_DISCRETE_MEMORY=1) runs a CPU device's buffers
+// through the staging path a discrete GPU takes.
 #pragma once
 
 #include "core/vk/Check.h"
@@ -11,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,11 @@ struct ContextOptions {
     // Enable VK_KHR_acceleration_structure and VK_KHR_ray_query where the device has them (the ray-query
     // traversal back-end); false makes the context behave as a device without them (tests of that path).
     bool rayQuery = true;
+    // Treat device memory as memory the host cannot map, as on a discrete GPU: every upload and download of a
+    // device buffer goes through a staging buffer (Buffer.h), which a CPU device or an integrated GPU would
+    // otherwise never run. Buffers placed HostStaging stay mapped, as on a discrete GPU. Unset: the
+    // environment's RIPPLE_VK_DISCRETE_MEMORY (1 on, 0 or unset off).
+    std::optional<bool> discreteMemory;
 };
 
 // Entry points of VK_KHR_acceleration_structure, loaded with vkGetDeviceProcAddr (the loader does not
@@ -56,6 +63,15 @@ public:
     // The driver's name and version as it reports them, e.g. "llvmpipe Mesa 25.0.7 (LLVM 15.0.6)".
     const std::string& driverVersion() const { return driverVersion_; }
     bool isCpuDevice() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+
+    // Whether buffers placed on the device are host-mapped (CPU devices and integrated GPUs, whose device
+    // memory is host-visible) rather than reached through staging buffers. False in discrete-memory mode.
+    bool mapsDeviceMemory() const { return mapsDeviceMemory_; }
+    bool discreteMemoryMode() const { return discreteMemory_; }
+    // Uploads and downloads that went through a staging buffer so far (Buffer counts them): tests check
+    // which path ran.
+    uint64_t stagedTransferCount() const { return stagedTransfers_.load(); }
+    void countStagedTransfer() const { ++stagedTransfers_; }
 
     // Ray queries: VK_KHR_acceleration_structure, VK_KHR_ray_query and VK_KHR_deferred_host_operations
     // with the accelerationStructure and rayQuery features, all enabled on this device.
@@ -119,6 +135,9 @@ private:
     std::string rayQueryMissing_;
     AccelerationStructureFunctions asFunctions_;
     VkDeviceSize scratchAlignment_ = 256;
+    bool discreteMemory_ = false;
+    bool mapsDeviceMemory_ = false;
+    mutable std::atomic<uint64_t> stagedTransfers_{0};
     std::atomic<uint64_t> validationMessages_{0};
     mutable std::mutex validationMutex_;  // the callback runs on whichever thread made the call (pipelines
     std::string lastValidationMessage_;   // are built on several at once)

@@ -69,9 +69,22 @@ vk::Context& DeviceState::vulkan() {
         vk::ContextOptions options;
         const char* validation = std::getenv("RIPPLE_VK_VALIDATION");
         options.validation = validation && std::string(validation) == "1";
+        options.discreteMemory = discreteMemory_;
         vulkan_ = std::make_unique<vk::Context>(options);
     }
     return *vulkan_;
+}
+
+const vk::Context* DeviceState::vulkanIfCreated() {
+    std::lock_guard lock(vulkanMutex_);
+    return vulkan_.get();
+}
+
+bool DeviceState::setDiscreteMemory(bool on) {
+    std::lock_guard lock(vulkanMutex_);
+    if (vulkan_) return false;
+    discreteMemory_ = on;
+    return true;
 }
 
 }  // namespace ripple::device

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 namespace ripple::vk { class Context; }
@@ -40,6 +41,11 @@ public:
 
     // The Vulkan context all frames render with; created on first call (throws vk::VulkanError).
     vk::Context& vulkan();
+    // The device parameter "discreteMemory" (vk::ContextOptions::discreteMemory; unset defers to
+    // RIPPLE_VK_DISCRETE_MEMORY). Read when the context is created: false, and nothing changes, once it exists.
+    bool setDiscreteMemory(bool on);
+    // The context if a render created it already, else null (properties report on it without creating it).
+    const vk::Context* vulkanIfCreated();
 
     // Frames render on worker threads that use this state: the device waits for them before it goes,
     // even for frames the application never released.
@@ -81,6 +87,7 @@ private:
     int workInFlight_ = 0;
     std::mutex vulkanMutex_;
     std::unique_ptr<vk::Context> vulkan_;
+    std::optional<bool> discreteMemory_;  // guarded by vulkanMutex_
     std::shared_ptr<const void> communicatorHandle_;  // a copy of the application's MPI_Comm
     std::unique_ptr<mpi::Communicator> communicator_;
     std::atomic<uint64_t> frames_{0};
