@@ -1,6 +1,8 @@
 // Instance, physical-device choice, logical device and one-shot submission for Ripple's compute work.
 #include "core/vk/Context.h"
 
+#include "core/vk/LimitsOverride.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -293,11 +295,19 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
         throw std::runtime_error("Vulkan device " + deviceName_ +
                                  " lacks bufferDeviceAddress, shaderInt64 or hostQueryReset, which Ripple needs");
 
+    std::string limitsText;
+    if (options.limits) limitsText = *options.limits;
+    else if (const char* env = std::getenv("RIPPLE_VK_LIMITS")) limitsText = env;
+    const std::string lowered = applyLimitsOverride(properties_.limits, parseLimitsOverride(limitsText));
+
     if (options.printDeviceChoice)
         std::fprintf(stderr, "ripple: Vulkan device %u of %u: %s (%s), driver %s%s%s\n", chosen, count, deviceName_.c_str(),
                      typeName(properties_.deviceType), driverVersion_.c_str(),
                      choice.empty() ? "" : ", chosen by RIPPLE_VK_DEVICE",
                      discreteMemory_ ? "; discrete-memory mode: device buffers are staged, never mapped" : "");
+    if (options.printDeviceChoice && !lowered.empty())
+        std::fprintf(stderr, "ripple: Vulkan limits lowered by %s: %s\n",
+                     options.limits ? "ContextOptions::limits" : "RIPPLE_VK_LIMITS", lowered.c_str());
 }
 
 void Context::probeRayQuery(const ContextOptions& options, std::vector<const char*>& extensions) {

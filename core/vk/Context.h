@@ -30,6 +30,9 @@ struct ContextOptions {
     // otherwise never run. Buffers placed HostStaging stay mapped, as on a discrete GPU. Unset: the
     // environment's RIPPLE_VK_DISCRETE_MEMORY (1 on, 0 or unset off).
     std::optional<bool> discreteMemory;
+    // Lowers the limits properties() reports, "key=value,..." (LimitsOverride.h), so that the code that splits
+    // work to fit them runs on devices with generous ones. Unset: the environment's RIPPLE_VK_LIMITS.
+    std::optional<std::string> limits;
 };
 
 // Entry points of VK_KHR_acceleration_structure, loaded with vkGetDeviceProcAddr (the loader does not
@@ -57,6 +60,8 @@ public:
     VkQueue queue() const { return queue_; }
     uint32_t queueFamily() const { return queueFamily_; }
     VkPipelineCache pipelineCache() const { return pipelineCache_; }
+    // The device's properties, with its limits lowered by ContextOptions::limits / RIPPLE_VK_LIMITS: every
+    // dispatch, push constant block and split of work is sized by these.
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
     const std::string& deviceName() const { return deviceName_; }
