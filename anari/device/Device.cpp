@@ -239,6 +239,11 @@ void Device::setDeviceParameter(const char* name, ANARIDataType type, const void
             state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_OPERATION,
                           "device parameter 'discreteMemory' set after the first render created the device's Vulkan "
                           "context; ignored");
+    } else if (key == "vulkanDevice" && type == ANARI_STRING) {
+        if (!state_.setVulkanDevice(static_cast<const char*>(mem)))
+            state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_OPERATION,
+                          "device parameter 'vulkanDevice' set after the first render created the device's Vulkan "
+                          "context; ignored");
     } else if (key == "pointer_to_mpi_communicator" && type == ANARI_UINT64) {
         const void* communicator = nullptr;  // the same address, as a number
         std::memcpy(&communicator, mem, sizeof(communicator));
@@ -408,6 +413,13 @@ int Device::getProperty(ANARIObject object, const char* name, ANARIDataType type
                 if (!context) return 0;
                 const int32_t on = context->discreteMemoryMode() ? 1 : 0;
                 std::memcpy(mem, &on, sizeof(on));
+                return 1;
+            }
+            // The Vulkan devices this process sees and the one it renders with (ripple-render --list-devices);
+            // collective under MPI the first time (DeviceState::vulkanDevicesText).
+            if (key == "ripple.vulkanDevices" && type == ANARI_STRING && size >= sizeof(const char*)) {
+                const char* text = state_.vulkanDevicesText();
+                std::memcpy(mem, &text, sizeof(text));
                 return 1;
             }
             if (key == "extension" && type == ANARI_STRING_LIST && size >= sizeof(const char**)) {

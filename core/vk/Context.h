@@ -1,11 +1,13 @@
 // A headless Vulkan compute context: instance, the chosen physical device (discrete GPU, then integrated,
-// then CPU; RIPPLE_VK_DEVICE=<index or name substring> overrides), one compute queue, a pipeline cache, the
+// then CPU, one per node-local rank: DeviceChoice.h; RIPPLE_VK_DEVICE=<index or name substring> overrides),
+// one compute queue, a pipeline cache, the
 // compute pipelines built on it, and one-shot command submission. Validation layers and a message counter
 // when asked (tests do). Discrete-memory mode (RIPPLE_VK_DISCRETE_MEMORY=1) runs a CPU device's buffers
 // through the staging path a discrete GPU takes.
 #pragma once
 
 #include "core/vk/Check.h"
+#include "core/vk/DeviceChoice.h"
 
 #include <atomic>
 #include <cstdint>
@@ -13,6 +15,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -21,7 +24,12 @@ namespace ripple::vk {
 struct ContextOptions {
     bool validation = false;      // enable VK_LAYER_KHRONOS_validation; every message is counted
     bool printDeviceChoice = true;
-    std::string deviceOverride;   // empty: take RIPPLE_VK_DEVICE from the environment
+    std::string deviceOverride;   // index or name substring; empty: take RIPPLE_VK_DEVICE from the environment
+    std::string deviceOverrideSource = "ContextOptions::deviceOverride";  // names it in messages
+    // This process among the processes of its node (an MPI rank's node-local rank, which mpi/ finds): without
+    // an override it takes the (localRank mod n)-th of the node's n devices of the best kind.
+    uint32_t localRank = 0;
+    uint32_t localRankCount = 1;
     // Enable VK_KHR_acceleration_structure and VK_KHR_ray_query where the device has them (the ray-query
     // traversal back-end); false makes the context behave as a device without them (tests of that path).
     bool rayQuery = true;
@@ -34,6 +42,10 @@ struct ContextOptions {
     // work to fit them runs on devices with generous ones. Unset: the environment's RIPPLE_VK_LIMITS.
     std::optional<std::string> limits;
 };
+
+// The device a Context made with `options` takes among `devices` (in the instance's order): its override,
+// else RIPPLE_VK_DEVICE, else the node-local rank's device of the best kind (vk::chooseDevice).
+DeviceChoice chooseDevice(std::span<const DeviceDescription> devices, const ContextOptions& options);
 
 // Entry points of VK_KHR_acceleration_structure, loaded with vkGetDeviceProcAddr (the loader does not
 // export extension commands). All null unless Context::supportsRayQuery().
@@ -65,6 +77,8 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     const VkPhysicalDeviceMemoryProperties& memoryProperties() const { return memoryProperties_; }
     const std::string& deviceName() const { return deviceName_; }
+    // The chosen device's index among those the instance lists (vk::listDevices has the same order).
+    uint32_t deviceIndex() const { return deviceIndex_; }
     // The driver's name and version as it reports them, e.g. "llvmpipe Mesa 25.0.7 (LLVM 15.0.6)".
     const std::string& driverVersion() const { return driverVersion_; }
     bool isCpuDevice() const { return properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
@@ -128,6 +142,7 @@ private:
     VkPhysicalDeviceProperties properties_{};
     VkPhysicalDeviceMemoryProperties memoryProperties_{};
     std::string deviceName_;
+    uint32_t deviceIndex_ = 0;
     std::string driverVersion_;
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
