@@ -40,6 +40,15 @@ public:
     int size() const { return size_; }
     bool distributed() const { return size_ > 1; }
 
+    // This rank among the ranks of the communicator that share its node (MPI_Comm_split_type with
+    // MPI_COMM_TYPE_SHARED, ordered by rank): what picks its GPU (vk::ContextOptions::localRank).
+    // Collective. One process: rank 0 of 1.
+    struct NodeRanks {
+        int rank = 0;
+        int size = 1;
+    };
+    NodeRanks nodeRanks() const;
+
     uint64_t sum(uint64_t value) const;
     uint64_t max(uint64_t value) const;
     // Element-wise minimum / maximum over ranks, in place.

@@ -89,6 +89,19 @@ Communicator Communicator::fromHandle(const void* handle) {
     return Communicator(std::move(duplicate));
 }
 
+Communicator::NodeRanks Communicator::nodeRanks() const {
+    if (!handle_) return {};
+    MPI_Comm node = MPI_COMM_NULL;
+    RIPPLE_MPI_CHECK(MPI_Comm_split_type(handle_->comm, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node));
+    NodeRanks result;
+    const int rankResult = MPI_Comm_rank(node, &result.rank);
+    const int sizeResult = MPI_Comm_size(node, &result.size);
+    MPI_Comm_free(&node);
+    check(rankResult, "MPI_Comm_rank of the node communicator");
+    check(sizeResult, "MPI_Comm_size of the node communicator");
+    return result;
+}
+
 uint64_t Communicator::sum(uint64_t value) const {
     if (!distributed()) return value;
     uint64_t result = 0;

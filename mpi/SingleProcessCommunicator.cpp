@@ -13,6 +13,7 @@ Communicator::Communicator(std::shared_ptr<Handle> handle) : handle_(std::move(h
 Communicator Communicator::world() { return Communicator(); }
 Communicator Communicator::fromHandle(const void*) { return Communicator(); }
 
+Communicator::NodeRanks Communicator::nodeRanks() const { return {}; }
 uint64_t Communicator::sum(uint64_t value) const { return value; }
 uint64_t Communicator::max(uint64_t value) const { return value; }
 void Communicator::min(std::span<float>) const {}

@@ -9,6 +9,7 @@
 #include "anari/device/frame/Frame.h"
 #include "anari/device/object/Object.h"
 #include "core/render/Traversal.h"
+#include "core/vk/Context.h"
 
 #include <cstdio>
 #include <cstring>
@@ -231,6 +232,18 @@ void Device::setDeviceParameter(const char* name, ANARIDataType type, const void
             state_.report(nullptr, ANARI_SEVERITY_ERROR, ANARI_STATUS_INVALID_ARGUMENT,
                           std::string("device parameter 'rayExchange' is '") + value + "'; use one of " +
                               core::kExchangeNames + " (kept: " + core::exchangeKindName(state_.rayExchange()) + ")");
+    } else if (key == "discreteMemory" && type == ANARI_BOOL) {
+        int32_t on = 0;  // ANARI_BOOL is 32 bits
+        std::memcpy(&on, mem, sizeof(on));
+        if (!state_.setDiscreteMemory(on != 0))
+            state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_OPERATION,
+                          "device parameter 'discreteMemory' set after the first render created the device's Vulkan "
+                          "context; ignored");
+    } else if (key == "vulkanDevice" && type == ANARI_STRING) {
+        if (!state_.setVulkanDevice(static_cast<const char*>(mem)))
+            state_.report(nullptr, ANARI_SEVERITY_WARNING, ANARI_STATUS_INVALID_OPERATION,
+                          "device parameter 'vulkanDevice' set after the first render created the device's Vulkan "
+                          "context; ignored");
     } else if (key == "pointer_to_mpi_communicator" && type == ANARI_UINT64) {
         const void* communicator = nullptr;  // the same address, as a number
         std::memcpy(&communicator, mem, sizeof(communicator));
@@ -391,6 +404,22 @@ int Device::getProperty(ANARIObject object, const char* name, ANARIDataType type
                 if (mask == ANARI_WAIT) state_.waitForWork();
                 const int32_t idle = mask == ANARI_WAIT || state_.idle() ? 1 : 0;
                 std::memcpy(mem, &idle, sizeof(idle));
+                return 1;
+            }
+            // Whether the device's buffers are staged as on a discrete GPU (device parameter discreteMemory or
+            // RIPPLE_VK_DISCRETE_MEMORY); known once the first render has created the Vulkan context.
+            if (key == "ripple.discreteMemory" && type == ANARI_BOOL && size >= sizeof(int32_t)) {
+                const vk::Context* context = state_.vulkanIfCreated();
+                if (!context) return 0;
+                const int32_t on = context->discreteMemoryMode() ? 1 : 0;
+                std::memcpy(mem, &on, sizeof(on));
+                return 1;
+            }
+            // The Vulkan devices this process sees and the one it renders with (ripple-render --list-devices);
+            // collective under MPI the first time (DeviceState::vulkanDevicesText).
+            if (key == "ripple.vulkanDevices" && type == ANARI_STRING && size >= sizeof(const char*)) {
+                const char* text = state_.vulkanDevicesText();
+                std::memcpy(mem, &text, sizeof(text));
                 return 1;
             }
             if (key == "extension" && type == ANARI_STRING_LIST && size >= sizeof(const char**)) {

@@ -127,6 +127,15 @@ const std::vector<Entry>& table() {
               "how rays cross ranks: bounds (only to the ranks whose boxes a ray enters) or ring (every rank)",
               "bounds", kExchanges},
              {"mpiCommunicator", ANARI_VOID_POINTER, "address of the MPI_Comm the ranks render over (default: MPI_COMM_WORLD)"},
+             {"vulkanDevice", ANARI_STRING,
+              "the Vulkan device to render with: an index or a substring of its name (device property "
+              "ripple.vulkanDevices lists them); unset: RIPPLE_VK_DEVICE, else the best kind of device, one per "
+              "rank of a node in turn; set before the first render"},
+             {"discreteMemory", ANARI_BOOL,
+              "treat GPU memory as the host cannot map it: every upload and download goes through staging buffers, "
+              "as on a discrete GPU (a test of that path on CPU devices); set before the first render; "
+              "RIPPLE_VK_DISCRETE_MEMORY=1 sets the default",
+              &kFalse},
          }},
         {ANARI_GEOMETRY, "triangle", "triangle mesh, indexed (primitive.index UINT32_VEC3) or not",
          joined({kGeometryCommon, kMeshExtras, {{"primitive.index", ANARI_ARRAY1D, "vertex indices (UINT32_VEC3)"}}})},

@@ -73,6 +73,9 @@ void addRenderOptions(CLI::App& app, Options& options) {
                    "for trusted input only")
         ->check(CLI::ExistingDirectory);
     addVolumeOptions(app, options.field);
+    app.add_flag("--list-devices", options.listDevices,
+                 "list the Vulkan devices the ANARI device sees (index, name, kind, driver), mark the one it renders "
+                 "with, and exit");
     app.add_flag("--stats", options.stats, "print per-rank triangles, scene memory, rays and bytes sent per frame, and "
                                            "GPU time per frame by stage of the wavefront loop");
 }
@@ -114,7 +117,8 @@ std::vector<AgreedOption> agreedOptions(const Options& options, int parseOutcome
             {"--report", optionHash(options.report), false},
             {"--view", optionHash(options.view), false},
             {"--channels", optionHash(channelList), false},
-            {"--exr-half", uint64_t(options.exrHalf), false}};
+            {"--exr-half", uint64_t(options.exrHalf), false},
+            {"--list-devices", uint64_t(options.listDevices), false}};
 }
 
 // --view: the file's camera replaces the scene's, and its renderer settings and size apply where the command

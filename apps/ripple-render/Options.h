@@ -39,6 +39,7 @@ struct Options {
     std::string partition = "round-robin";  // under mpirun: which share of the file each rank imports
     std::filesystem::path resourceRoot;     // empty: the scene file's folder confines its URIs
     bool stats = false;
+    bool listDevices = false;           // list the Vulkan devices the ANARI device sees, then exit
     std::string reference;              // converged image of the same view: the true error is reported too
     std::string report;                 // CSV of the convergence series; its plot goes beside it as .png
     std::string errorMap;               // each pixel's estimated relMSE: PFM/EXR values or a PNG heat map

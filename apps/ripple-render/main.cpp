@@ -1,6 +1,7 @@
 // ripple-render: renders a glTF file, a volume file (raw or NRRD) or a built-in demo scene to a PNG (or JPEG,
 // PFM, EXR) through any ANARI library. This file parses the command line, makes every rank agree on it under
 // mpirun and reports what stops the run; Render.cpp renders.
+#include "apps/ripple-render/ListDevices.h"
 #include "apps/ripple-render/Options.h"
 #include "apps/ripple-render/Render.h"
 #include "mpi/Communicator.h"
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
     // device is released, since that release is collective and the other ranks would never join it.
     ripple::apps::Session session;
     try {
+        if (options.listDevices) return ripple::apps::listDevices(options, ranks, session);
         ripple::apps::TimeBudget budget(options.seconds, processStart);
         if (options.field.listFields) {
             if (ranks.rank() == 0) ripple::apps::printVolumeFields(options.field);

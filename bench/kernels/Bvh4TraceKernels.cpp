@@ -151,7 +151,7 @@ void Bvh4TraceKernels::dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& 
         params.nodeCount = mesh.nodeCount();
         params.stepBudget = stepBudget_;
         pipeline.pushConstants(cmd, &params, sizeof(params));
-        vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+        pipeline.dispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_);
     }
 }
 

@@ -87,8 +87,9 @@ struct PathTracer::Impl {
     gpu::StageParams params(const Scene* scene) const;
     uint64_t itemsPerDispatch() const;
     // The most paths in flight: the queue capacity, within one dispatch (queue stages index their queue by
-    // invocation, so one dispatch must cover a whole queue).
-    uint64_t pathLimit() const { return std::min<uint64_t>(options.queueCapacity, itemsPerDispatch()); }
+    // invocation, so one dispatch must cover a whole queue), also of the trace kernels, whose indirect
+    // dispatches over a queue count in their own workgroup size.
+    uint64_t pathLimit() const;
     void dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, gpu::StageParams p, uint64_t count);
     void dispatchQueue(VkCommandBuffer cmd, const vk::ComputePipeline& pipeline, gpu::StageParams p, uint32_t queue,
                        uint32_t hostCount);

@@ -175,6 +175,12 @@ uint64_t PathTracer::Impl::itemsPerDispatch() const {
     return uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * options.workgroupSize;
 }
 
+uint64_t PathTracer::Impl::pathLimit() const {
+    const uint32_t workgroup = std::min(options.workgroupSize, trace.options().workgroupSize);
+    return std::min<uint64_t>(options.queueCapacity,
+                              uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * workgroup);
+}
+
 // One stage over `count` items, in as many dispatches as the device's workgroup-count limit needs;
 // firstPixel advances with each one (only the per-pixel stages get more than one: queues are capped
 // to one dispatch in resize).
@@ -188,7 +194,7 @@ void PathTracer::Impl::dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& 
         chunk.count = static_cast<uint32_t>(std::min(perDispatch, count - done));
         chunk.firstPixel = p.firstPixel + static_cast<uint32_t>(done);
         pipeline.pushConstants(cmd, &chunk, sizeof(chunk));
-        vkCmdDispatch(cmd, (chunk.count + options.workgroupSize - 1) / options.workgroupSize, 1, 1);
+        pipeline.dispatch(cmd, (chunk.count + options.workgroupSize - 1) / options.workgroupSize);
     }
 }
 

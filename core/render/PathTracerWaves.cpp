@@ -44,7 +44,7 @@ void PathTracer::Impl::advanceQueueLengths(VkCommandBuffer cmd) {
     queueAdvance.bind(cmd);
     const gpu::QueueAdvanceParams p{counters.address(), capacity, options.workgroupSize, trace.options().workgroupSize, 0};
     queueAdvance.pushConstants(cmd, &p, sizeof(p));
-    vkCmdDispatch(cmd, 1, 1, 1);
+    queueAdvance.dispatch(cmd, 1);
     mark(cmd, Stage::QueueAdvance);
 }
 

@@ -52,7 +52,7 @@ void RayQueryTraversal::dispatch(VkCommandBuffer cmd, const Scene& scene, const 
         params.hits = launch.results + first * resultStride;
         params.rayCount = count;
         pipeline.pushConstants(cmd, &params, sizeof(params));
-        vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+        pipeline.dispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_);
     }
 }
 

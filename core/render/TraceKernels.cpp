@@ -24,6 +24,11 @@ TraceKernels::TraceKernels(const vk::Context& context, const TraceOptions& optio
     if (options_.stepBudget < kMinStepBudget || options_.stepBudget > kMaxStepBudget)
         throw std::invalid_argument("TraceOptions::stepBudget must be in [" + std::to_string(kMinStepBudget) + ", " +
                                     std::to_string(kMaxStepBudget) + "], not " + std::to_string(options_.stepBudget));
+    // A resume round's workgroups are counted by the kernel from the rays parked in its pool
+    // (traverse.glsl), so a pool of at most one dispatch's worth keeps those indirect dispatches within the
+    // device's maxComputeWorkGroupCount (the default 2^14 is far below it but for lowered limits).
+    const uint64_t perDispatch = uint64_t(context.properties().limits.maxComputeWorkGroupCount[0]) * options_.workgroupSize;
+    options_.resumeCapacity = static_cast<uint32_t>(std::min<uint64_t>(options_.resumeCapacity, perDispatch));
     traversal_ = resolveTraversal(context, options_.traversal);
     if (traversal_ == Traversal::RayQuery) rayQuery_ = std::make_unique<RayQueryTraversal>(context, options_.workgroupSize);
     // The pipelines are built when the first trace needs them, for the features chosen by then: building
@@ -92,7 +97,7 @@ void TraceKernels::dispatch(VkCommandBuffer cmd, vk::ComputePipeline& pipeline, 
         chunk.hits = results.address() + first * resultStride;
         chunk.rayCount = count;
         pipeline.pushConstants(cmd, &chunk, sizeof(chunk));
-        vkCmdDispatch(cmd, (count + options_.workgroupSize - 1) / options_.workgroupSize, 1, 1);
+        pipeline.dispatch(cmd, (count + options_.workgroupSize - 1) / options_.workgroupSize);
         // Parked states hold ray indices relative to this chunk's base addresses, so each chunk finishes
         // its rounds before the next chunk starts.
         resumeRounds(cmd, pipeline, chunk);

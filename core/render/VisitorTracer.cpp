@@ -11,7 +11,6 @@ namespace ripple::core {
 
 namespace {
 
-
 void hostReadBarrier(VkCommandBuffer cmd) {
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -48,7 +47,7 @@ void VisitorTracer::dispatch(VkCommandBuffer cmd, const vk::ComputePipeline& sta
     p.count = count;
     stage.bind(cmd);
     stage.pushConstants(cmd, &p, sizeof(p));
-    vkCmdDispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_, 1, 1);
+    stage.dispatch(cmd, (count + workgroupSize_ - 1) / workgroupSize_);
 }
 
 void VisitorTracer::dispatchVolumeStage(VkCommandBuffer cmd, const vk::ComputePipeline& stage, gpu::StageParams p,
@@ -67,7 +66,22 @@ void VisitorTracer::reserve(size_t count) {
     transmittance_ = vk::Buffer(context_, capacity_ * sizeof(float), "visiting transmittance");
 }
 
+size_t VisitorTracer::batchLimit() const {
+    return size_t(context_.properties().limits.maxComputeWorkGroupCount[0]) *
+           std::min(workgroupSize_, trace_.options().workgroupSize);
+}
+
 void VisitorTracer::traceClosest(std::span<WireRay> rays) {
+    for (size_t first = 0; first < rays.size(); first += batchLimit())
+        traceClosestBatch(rays.subspan(first, std::min(batchLimit(), rays.size() - first)));
+}
+
+void VisitorTracer::traceShadow(std::span<WireShadowRay> rays) {
+    for (size_t first = 0; first < rays.size(); first += batchLimit())
+        traceShadowBatch(rays.subspan(first, std::min(batchLimit(), rays.size() - first)));
+}
+
+void VisitorTracer::traceClosestBatch(std::span<WireRay> rays) {
     if (rays.empty() || !scene_ || !surface_) return;
     reserve(rays.size());
     hostRays_.resize(rays.size());
@@ -106,7 +120,7 @@ void VisitorTracer::traceClosest(std::span<WireRay> rays) {
     }
 }
 
-void VisitorTracer::traceShadow(std::span<WireShadowRay> rays) {
+void VisitorTracer::traceShadowBatch(std::span<WireShadowRay> rays) {
     if (rays.empty() || !scene_) return;
     pending_.clear();
     hostRays_.clear();

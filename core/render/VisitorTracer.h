@@ -2,7 +2,8 @@
 // part of the scene, and where it finds a closer hit runs pt_surface on it, so the ray carries home the
 // record of the closest hit so far. Where this rank has volumes it samples free flight through them up to
 // that hit (pt_volume: a nearer collision becomes the record) and multiplies shadow rays' transmittance by
-// theirs (pt_shadow_volume). Buffers grow with the largest batch seen and are kept between hops.
+// theirs (pt_shadow_volume). Buffers grow with the largest batch seen and are kept between hops; visits
+// beyond one dispatch's worth (maxComputeWorkGroupCount workgroups) are traced in batches of that many.
 #pragma once
 
 #include "core/render/RayExchange.h"
@@ -37,6 +38,11 @@ public:
     void traceShadow(std::span<WireShadowRay> rays) override;
 
 private:
+    // The most rays one batch takes: every stage of it is one dispatch, also the trace kernels' (in their
+    // own workgroup size) and the volume stages' resume rounds, sized by the kernels from the batch.
+    size_t batchLimit() const;
+    void traceClosestBatch(std::span<WireRay> rays);
+    void traceShadowBatch(std::span<WireShadowRay> rays);
     void reserve(size_t count);
     gpu::StageParams volumeParams() const;
     // Records one path stage over `count` items with these parameters (their count set to it).

@@ -47,7 +47,7 @@ void VolumeParking::run(VkCommandBuffer cmd, const vk::ComputePipeline& stage, g
     stage.bind(cmd);
     stage.pushConstants(cmd, &p, sizeof(p));
     if (launch.indirect) vkCmdDispatchIndirect(cmd, launch.indirect->handle(), launch.indirectOffset);
-    else vkCmdDispatch(cmd, (launch.count + launch.workgroupSize - 1) / launch.workgroupSize, 1, 1);
+    else stage.dispatch(cmd, (launch.count + launch.workgroupSize - 1) / launch.workgroupSize);
     for (uint32_t round = 1; parks && round <= options_.resumeRounds; ++round) {
         vk::computeBarrier(cmd);
         p.resumeRound = round;

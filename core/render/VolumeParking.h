@@ -34,7 +34,9 @@ public:
 
     // Records `stage` over its items with `p` (count, countSource and the rest already set; the first
     // dispatch is direct with `count` items when `indirect` is null, else indirect from that buffer and
-    // offset), then its resume rounds. `capacity`: the most items the stage can have.
+    // offset), then its resume rounds. `capacity`: the most items the stage can have; callers keep it within
+    // one dispatch (maxComputeWorkGroupCount workgroups), since the rounds' workgroups are counted by the
+    // kernels from the marches parked, at most the stage's items.
     struct Launch {
         uint32_t count = 0;
         const vk::Buffer* indirect = nullptr;

@@ -49,7 +49,7 @@ MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& vol
                 const gpu::MajorantParams params{volumes.address(), volumeData.address(), i, static_cast<uint32_t>(first)};
                 pipeline.pushConstants(cmd, &params, sizeof(params));
                 const uint64_t count = std::min(cellsPerDispatch, cells - first);
-                vkCmdDispatch(cmd, static_cast<uint32_t>((count + kWorkgroup - 1) / kWorkgroup), 1, 1);
+                pipeline.dispatch(cmd, (count + kWorkgroup - 1) / kWorkgroup);
             }
         }
     });

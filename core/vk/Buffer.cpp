@@ -12,6 +12,14 @@ namespace {
 constexpr VkBufferUsageFlags kUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
                                       VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                   VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = srcAccess;
+    barrier.dstAccessMask = dstAccess;
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
 std::string describe(const std::string& name, VkDeviceSize size) {
     std::ostringstream s;
     s << "allocating " << size << " bytes (" << static_cast<double>(size) / (1024.0 * 1024.0) << " MiB) for GPU buffer '"
@@ -35,9 +43,9 @@ Buffer::Buffer(const Context& context, VkDeviceSize size, const std::string& nam
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(device, buffer_, &requirements);
 
-    // Where device memory is host-visible (CPU devices, integrated GPUs) map it and skip staging.
-    const bool unified = context.isCpuDevice() ||
-                         context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU;
+    // Where device memory is host-visible (CPU devices, integrated GPUs) map it and skip staging, unless the
+    // context is in discrete-memory mode.
+    const bool unified = context.mapsDeviceMemory();
     const VkMemoryPropertyFlags hostAccess = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
     const bool staging = placement == Placement::HostStaging;
     const uint32_t type = context.memoryType(requirements.memoryTypeBits,
@@ -115,9 +123,16 @@ void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
     Buffer staging(*context_, bytes, name_ + " (staging)", 0, Placement::HostStaging);
     std::memcpy(staging.mapped_, data, bytes);
     context_->submitAndWait([&](VkCommandBuffer cmd) {
+        // Work submitted before may still read or write the range being overwritten.
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
         VkBufferCopy region{0, offset, bytes};
         vkCmdCopyBuffer(cmd, staging.buffer_, buffer_, 1, &region);
+        // Submissions after this one read what the copy wrote.
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
     });
+    context_->countStagedTransfer();
 }
 
 void Buffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const {
@@ -129,10 +144,17 @@ void Buffer::download(void* data, VkDeviceSize bytes, VkDeviceSize offset) const
     }
     Buffer staging(*context_, bytes, name_ + " (staging)", 0, Placement::HostStaging);
     context_->submitAndWait([&](VkCommandBuffer cmd) {
+        // What submissions before this one wrote (kernels, other copies) is what the copy reads.
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_READ_BIT);
         VkBufferCopy region{offset, 0, bytes};
         vkCmdCopyBuffer(cmd, buffer_, staging.buffer_, 1, &region);
+        // A fence wait alone does not make device writes visible to the host.
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                      VK_ACCESS_HOST_READ_BIT);
     });
     std::memcpy(data, staging.mapped_, bytes);
+    context_->countStagedTransfer();
 }
 
 }  // namespace ripple::vk

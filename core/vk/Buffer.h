@@ -1,5 +1,6 @@
 // GPU buffers reached by device address (no descriptor binding limit caps their size), with upload and
-// download through a staging buffer, or directly where device memory is host-visible (lavapipe, UMA GPUs).
+// download through a staging buffer, or directly where device memory is host-visible (lavapipe, UMA GPUs)
+// and the context is not in discrete-memory mode (Context::mapsDeviceMemory).
 #pragma once
 
 #include "core/vk/Context.h"
@@ -30,6 +31,9 @@ public:
     VkDeviceAddress address() const { return address_; }
     const std::string& name() const { return name_; }
     explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
+    // The host reads and writes it in place (HostStaging buffers, and device buffers where the context maps
+    // device memory); false: upload and download copy through a staging buffer.
+    bool isMapped() const { return mapped_ != nullptr; }
 
     void upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
     void download(void* data, VkDeviceSize bytes, VkDeviceSize offset = 0) const;

@@ -2,6 +2,7 @@
 // device (Context::storedPipeline).
 #include "core/vk/ComputePipeline.h"
 
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -31,7 +32,12 @@ std::string pipelineKey(std::span<const uint32_t> spirv, const std::string& name
 
 ComputePipeline::ComputePipeline(const Context& context, std::span<const uint32_t> spirv, const std::string& name,
                                  uint32_t pushConstantBytes, std::span<const SpecializationConstant> constants)
-    : name_(name) {
+    : name_(name), maxGroups_(context.properties().limits.maxComputeWorkGroupCount[0]) {
+    const uint32_t maxPushBytes = context.properties().limits.maxPushConstantsSize;
+    if (pushConstantBytes > maxPushBytes)
+        throw std::runtime_error("kernel '" + name + "' takes " + std::to_string(pushConstantBytes) +
+                                 " bytes of push constants, but Vulkan device " + context.deviceName() + " allows " +
+                                 std::to_string(maxPushBytes) + " (maxPushConstantsSize)");
     const Context::StoredPipeline stored =
         context.storedPipeline(pipelineKey(spirv, name, pushConstantBytes, constants), [&] {
             return build(context, spirv, name, pushConstantBytes, constants);
@@ -96,6 +102,7 @@ ComputePipeline& ComputePipeline::operator=(ComputePipeline&& other) noexcept {
         pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
         layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
         name_ = std::move(other.name_);
+        maxGroups_ = other.maxGroups_;
     }
     return *this;
 }
@@ -104,6 +111,14 @@ void ComputePipeline::bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, V
 
 void ComputePipeline::pushConstants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const {
     vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, data);
+}
+
+void ComputePipeline::dispatch(VkCommandBuffer cmd, uint64_t groups) const {
+    if (groups > maxGroups_)
+        throw std::logic_error("kernel '" + name_ + "': a dispatch of " + std::to_string(groups) +
+                               " workgroups exceeds the device's maxComputeWorkGroupCount of " +
+                               std::to_string(maxGroups_) + " (the caller must split it)");
+    vkCmdDispatch(cmd, static_cast<uint32_t>(groups), 1, 1);
 }
 
 void computeBarrier(VkCommandBuffer cmd) {

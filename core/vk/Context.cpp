@@ -1,8 +1,10 @@
 // Instance, physical-device choice, logical device and one-shot submission for Ripple's compute work.
 #include "core/vk/Context.h"
 
+#include "core/vk/DeviceChoice.h"
+#include "core/vk/LimitsOverride.h"
+
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -69,30 +71,14 @@ bool hasInstanceExtension(const char* name) {
                        [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
-// Lower is better: discrete GPU, then integrated, then virtual, then CPU (lavapipe).
-int typeRank(VkPhysicalDeviceType type) {
-    switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-    default: return 4;
-    }
-}
-
-const char* typeName(VkPhysicalDeviceType type) {
-    switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-    default: return "other";
-    }
-}
-
-std::string lowercase(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
+// ContextOptions::discreteMemory, else RIPPLE_VK_DISCRETE_MEMORY: 1 on, 0 or unset off; anything else is
+// refused, so that a mistyped value does not silently test the mapped path.
+bool discreteMemoryWanted(const ContextOptions& options) {
+    if (options.discreteMemory) return *options.discreteMemory;
+    const char* env = std::getenv("RIPPLE_VK_DISCRETE_MEMORY");
+    if (!env || !*env || std::strcmp(env, "0") == 0) return false;
+    if (std::strcmp(env, "1") == 0) return true;
+    throw std::runtime_error(std::string("RIPPLE_VK_DISCRETE_MEMORY=") + env + " is neither 1 (on) nor 0 (off)");
 }
 
 std::mutex& submitMutex() {
@@ -227,42 +213,24 @@ Context::Context(const ContextOptions& options) {
     }
 }
 
+DeviceChoice chooseDevice(std::span<const DeviceDescription> devices, const ContextOptions& options) {
+    if (!options.deviceOverride.empty())
+        return chooseDevice(devices, options.localRank, options.localRankCount, options.deviceOverride,
+                            options.deviceOverrideSource);
+    const char* env = std::getenv("RIPPLE_VK_DEVICE");
+    return chooseDevice(devices, options.localRank, options.localRankCount, env ? env : "", "RIPPLE_VK_DEVICE");
+}
+
 void Context::choosePhysicalDevice(const ContextOptions& options) {
     uint32_t count = 0;
     RIPPLE_VK_CHECK(vkEnumeratePhysicalDevices(instance_, &count, nullptr));
     std::vector<VkPhysicalDevice> devices(count);
     RIPPLE_VK_CHECK(vkEnumeratePhysicalDevices(instance_, &count, devices.data()));
-    if (devices.empty())
-        throw std::runtime_error("no Vulkan device found (for a CPU device install mesa-vulkan-drivers: lavapipe)");
+    const DeviceChoice chosen = chooseDevice(describeDevices(instance_), options);
 
-    std::vector<VkPhysicalDeviceProperties> props(count);
-    for (uint32_t i = 0; i < count; ++i) vkGetPhysicalDeviceProperties(devices[i], &props[i]);
-
-    std::string choice = options.deviceOverride;
-    if (choice.empty())
-        if (const char* env = std::getenv("RIPPLE_VK_DEVICE")) choice = env;
-
-    uint32_t chosen = count;
-    if (!choice.empty()) {
-        const bool numeric = std::all_of(choice.begin(), choice.end(), [](unsigned char c) { return std::isdigit(c); });
-        for (uint32_t i = 0; i < count && chosen == count; ++i) {
-            if (numeric ? std::to_string(i) == choice
-                        : lowercase(props[i].deviceName).find(lowercase(choice)) != std::string::npos)
-                chosen = i;
-        }
-        if (chosen == count) {
-            std::string names;
-            for (uint32_t i = 0; i < count; ++i) names += "\n  " + std::to_string(i) + ": " + props[i].deviceName;
-            throw std::runtime_error("RIPPLE_VK_DEVICE=" + choice + " matches no Vulkan device; devices are:" + names);
-        }
-    } else {
-        chosen = 0;
-        for (uint32_t i = 1; i < count; ++i)
-            if (typeRank(props[i].deviceType) < typeRank(props[chosen].deviceType)) chosen = i;
-    }
-
-    physicalDevice_ = devices[chosen];
-    properties_ = props[chosen];
+    deviceIndex_ = chosen.index;
+    physicalDevice_ = devices[chosen.index];
+    vkGetPhysicalDeviceProperties(physicalDevice_, &properties_);
     deviceName_ = properties_.deviceName;
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
@@ -270,6 +238,10 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
     vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
     driverVersion_ = std::string(driver.driverName) + " " + driver.driverInfo;
     vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+    // CPU devices and integrated GPUs have host-visible device memory, which Buffer maps instead of staging.
+    discreteMemory_ = discreteMemoryWanted(options);
+    mapsDeviceMemory_ = !discreteMemory_ && (properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ||
+                                             properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU);
 
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
@@ -279,10 +251,19 @@ void Context::choosePhysicalDevice(const ContextOptions& options) {
         throw std::runtime_error("Vulkan device " + deviceName_ +
                                  " lacks bufferDeviceAddress, shaderInt64 or hostQueryReset, which Ripple needs");
 
+    std::string limitsText;
+    if (options.limits) limitsText = *options.limits;
+    else if (const char* env = std::getenv("RIPPLE_VK_LIMITS")) limitsText = env;
+    const std::string lowered = applyLimitsOverride(properties_.limits, parseLimitsOverride(limitsText));
+
     if (options.printDeviceChoice)
-        std::fprintf(stderr, "ripple: Vulkan device %u of %u: %s (%s), driver %s%s\n", chosen, count, deviceName_.c_str(),
-                     typeName(properties_.deviceType), driverVersion_.c_str(),
-                     choice.empty() ? "" : ", chosen by RIPPLE_VK_DEVICE");
+        std::fprintf(stderr, "ripple: Vulkan device %u of %u: %s (%s), driver %s%s%s%s\n", chosen.index, count,
+                     deviceName_.c_str(), deviceTypeName(properties_.deviceType), driverVersion_.c_str(),
+                     chosen.reason.empty() ? "" : ", ", chosen.reason.c_str(),
+                     discreteMemory_ ? "; discrete-memory mode: device buffers are staged, never mapped" : "");
+    if (options.printDeviceChoice && !lowered.empty())
+        std::fprintf(stderr, "ripple: Vulkan limits lowered by %s: %s\n",
+                     options.limits ? "ContextOptions::limits" : "RIPPLE_VK_LIMITS", lowered.c_str());
 }
 
 void Context::probeRayQuery(const ContextOptions& options, std::vector<const char*>& extensions) {

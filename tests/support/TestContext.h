@@ -12,11 +12,15 @@
 
 namespace ripple::test {
 
+// The options of testContext(); tests that need a context of their own (another memory mode, lowered
+// limits) start from them.
+inline vk::ContextOptions testContextOptions() {
+    const char* validation = std::getenv("RIPPLE_VK_VALIDATION");
+    return vk::ContextOptions{.validation = !validation || std::string_view(validation) != "0"};
+}
+
 inline vk::Context& testContext() {
-    static vk::Context context([] {
-        const char* validation = std::getenv("RIPPLE_VK_VALIDATION");
-        return vk::ContextOptions{.validation = !validation || std::string_view(validation) != "0"};
-    }());
+    static vk::Context context(testContextOptions());
     return context;
 }
 

@@ -12,9 +12,13 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
-namespace ripple::vk { class Context; }
+namespace ripple::vk {
+class Context;
+struct ContextOptions;
+}  // namespace ripple::vk
 namespace ripple::core { enum class Traversal; }  // core/render/Traversal.h
 
 namespace ripple::device {
@@ -40,6 +44,20 @@ public:
 
     // The Vulkan context all frames render with; created on first call (throws vk::VulkanError).
     vk::Context& vulkan();
+    // The device parameter "discreteMemory" (vk::ContextOptions::discreteMemory; unset defers to
+    // RIPPLE_VK_DISCRETE_MEMORY). Read when the context is created: false, and nothing changes, once it exists.
+    bool setDiscreteMemory(bool on);
+    // The context if a render created it already, else null (properties report on it without creating it).
+    const vk::Context* vulkanIfCreated();
+    // The device parameter "vulkanDevice": a device index or name substring (vk::ContextOptions::deviceOverride),
+    // which beats RIPPLE_VK_DEVICE and the node-local rank's choice. Read when the context is created: false,
+    // and nothing changes, once it exists.
+    bool setVulkanDevice(const std::string& choice);
+    // The device property "ripple.vulkanDevices": one line per Vulkan device (index, name, kind, driver),
+    // the one this device renders with (or would, before its first render) marked "[chosen]". Under MPI its
+    // first use may make the communicator, which is collective: every rank asks. Valid until the next call
+    // or the device's release.
+    const char* vulkanDevicesText();
 
     // Frames render on worker threads that use this state: the device waits for them before it goes,
     // even for frames the application never released.
@@ -51,7 +69,9 @@ public:
     // Data-parallel rendering: the ranks this device renders with. The application may give its own
     // communicator (device parameter mpiCommunicator / pointer_to_mpi_communicator, or a frame's
     // mpiCommunicator) before the first collective call; otherwise MPI_COMM_WORLD when MPI is running.
-    // Created on first use, which is always inside a collective call.
+    // Created on first use, which is always inside a collective call; with it this rank's place among the
+    // ranks on its node (mpi::Communicator::nodeRanks, collective too), which picks its GPU when the Vulkan
+    // context is made: that comes after, at the first render.
     void setCommunicatorHandle(const void* mpiComm);
     const mpi::Communicator& communicator();
     // The device parameter "traversal" (core::Traversal; Auto when unset, which defers to
@@ -70,6 +90,8 @@ public:
     HandleTable handles;
 
 private:
+    vk::ContextOptions contextOptions() const;  // from the parameters and node ranks; vulkanMutex_ held
+
     ANARIDevice handle_;
     ANARIStatusCallback callback_;
     const void* callbackUserPtr_;
@@ -81,6 +103,10 @@ private:
     int workInFlight_ = 0;
     std::mutex vulkanMutex_;
     std::unique_ptr<vk::Context> vulkan_;
+    std::optional<bool> discreteMemory_;  // guarded by vulkanMutex_, as the three below
+    std::string vulkanDevice_;
+    std::optional<mpi::Communicator::NodeRanks> nodeRanks_;
+    std::string vulkanDevicesText_;
     std::shared_ptr<const void> communicatorHandle_;  // a copy of the application's MPI_Comm
     std::unique_ptr<mpi::Communicator> communicator_;
     std::atomic<uint64_t> frames_{0};
