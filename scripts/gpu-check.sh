@@ -65,6 +65,8 @@ probe=$("$render" --size 8x8 --spp 1 -o "$out/probe.png" 2>&1)
 device_line=$(echo "$probe" | grep -m1 'Vulkan device' | sed 's/^ripple: //' || true)
 say "${device_line:-no Vulkan device line: $probe}"
 [ -n "$device_line" ] || exit 1
+devices=$("$render" --list-devices 2>&1)
+say "devices: $devices"
 gpu=1
 case "$device_line" in *llvmpipe*|*"(CPU)"*) gpu=0; say "this is a CPU device: a dry run of the script, not a GPU check" ;; esac
 
@@ -127,6 +129,7 @@ total=$(( $(date +%s) - started ))
 cat >"$out/gpu-check.json" <<EOF
 {
   "device": $(echo "$device_line" | json_escape),
+  "devices": $(echo "$devices" | json_escape),
   "gpu": $([ $gpu = 1 ] && echo true || echo false),
   "driverFiles": $(echo "${VK_DRIVER_FILES:-}" | json_escape),
   "host": $(uname -a | json_escape),
