@@ -100,9 +100,19 @@ std::string decodeBase64(const std::filesystem::path& file, std::string_view tex
     return out;
 }
 
+// Header words are read as integers, not through element()'s double: a hostile 2^64 - 1 does not fit back.
 uint64_t headerWord(const std::string& bytes, size_t index, const XmlLayout& layout) {
-    const TypeInfo t{layout.headerBytes, false, false};
-    return uint64_t(element(bytes.data() + index * layout.headerBytes, t, layout.bigEndian != (std::endian::native == std::endian::big)));
+    unsigned char b[8] = {};
+    std::memcpy(b, bytes.data() + index * layout.headerBytes, layout.headerBytes);
+    if (layout.bigEndian != (std::endian::native == std::endian::big)) std::reverse(b, b + layout.headerBytes);
+    if (layout.headerBytes == 4) {
+        uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+    }
+    uint64_t v;
+    std::memcpy(&v, b, 8);
+    return v;
 }
 
 // A compressed array: [blocks, block size, last block size, compressed sizes...] then the zlib blocks.
@@ -114,6 +124,17 @@ std::string inflateBlocks(const std::filesystem::path& file, const std::string& 
     if (blocks > (uint64_t(1) << 32) || total > kMaxVoxels * 8)
         fail(file, what + ": a compression header of " + std::to_string(blocks) + " blocks of " +
                        std::to_string(blockSize) + " bytes is beyond any field Ripple reads");
+    // zlib inflates at most 1032:1: a header that claims more than the blocks can hold is refused before the
+    // allocation, not after it (a few bytes claiming gigabytes).
+    uint64_t compressedTotal = 0;
+    for (uint64_t b = 0; b < blocks; ++b) {
+        const uint64_t compressed = headerWord(header, 3 + b, layout);
+        if (compressed > data.size()) fail(file, what + ": compressed block " + std::to_string(b) + " runs past the data");
+        compressedTotal += compressed;  // at most 2^32 blocks of at most the data's size: no overflow
+    }
+    if (compressedTotal > data.size() || total > compressedTotal * 1032 + 64 * blocks)
+        fail(file, what + ": its compression header claims " + std::to_string(total) + " bytes from " +
+                       std::to_string(compressedTotal) + " compressed bytes (" + std::to_string(data.size()) + " present)");
     std::string out(total, '\0');
     uint64_t at = 0, written = 0;
     for (uint64_t b = 0; b < blocks; ++b) {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 
@@ -58,6 +59,7 @@ std::string cellTypeName(uint32_t type) {
     case 22: return "a quadratic triangle (VTK type 22)";
     case 23: return "a quadratic quad (VTK type 23)";
     case 42: return "a polyhedron (VTK type 42)";
+    case 255: return "a VTK cell type outside 0..254";
     default: return "VTK cell type " + std::to_string(type);
     }
 }
@@ -146,7 +148,7 @@ StoredGrid readLegacyGrid(const std::filesystem::path& file, const std::string& 
                 for (uint64_t at = 0, c = 0; c < first; ++c) {
                     if (at >= list.size()) fail(file, "the CELLS list ends at cell " + std::to_string(c) + " of " + std::to_string(first));
                     const double n = list[at++];
-                    if (!(n >= 0 && at + uint64_t(n) <= list.size())) fail(file, "cell " + std::to_string(c) + " runs past the CELLS list");
+                    if (!(n >= 0 && n <= double(list.size() - at))) fail(file, "cell " + std::to_string(c) + " runs past the CELLS list");
                     out.connectivity.insert(out.connectivity.end(), list.begin() + long(at), list.begin() + long(at + uint64_t(n)));
                     out.offsets.push_back(double(out.connectivity.size()));
                     at += uint64_t(n);
@@ -223,15 +225,17 @@ UnstructuredMesh readVtkUnstructured(const std::filesystem::path& file, const Vt
     mesh.cellIndex.reserve(cells);
     mesh.cellType.reserve(cells);
     for (uint64_t c = 0; c < cells; ++c) {
-        const double type = grid.types[c];
-        const std::optional<CellKind> kind = type >= 0 && type < 256 ? cellKind(uint32_t(type)) : std::nullopt;
-        if (!kind) fail(file, "cell " + std::to_string(c) + " is " + cellTypeName(uint32_t(type)) +
+        // A hostile type may be negative, huge or NaN: only a small whole number is converted.
+        const double storedType = grid.types[c];
+        const uint32_t type = storedType >= 0 && storedType < 256 ? uint32_t(storedType) : 255;
+        const std::optional<CellKind> kind = cellKind(type);
+        if (!kind) fail(file, "cell " + std::to_string(c) + " is " + cellTypeName(type) +
                                   "; Ripple reads tetrahedra, hexahedra, wedges, pyramids and voxels, linear or quadratic");
         const double begin = grid.offsets[c], end = grid.offsets[c + 1];
         if (!(begin >= 0 && end >= begin && end <= double(grid.connectivity.size())))
             fail(file, "cell " + std::to_string(c) + "'s vertices run past the connectivity");
         if (end - begin < double(kind->nodes))
-            fail(file, "cell " + std::to_string(c) + " (" + cellTypeName(uint32_t(type)) + ") lists " +
+            fail(file, "cell " + std::to_string(c) + " (" + cellTypeName(type) + ") lists " +
                            std::to_string(uint64_t(end - begin)) + " vertices, fewer than its " + std::to_string(kind->nodes));
         // Some writers list a quadratic cell's nodes under the linear type (notch_stress.vtk: type 12 with 20
         // vertices); its corners come first all the same.
@@ -241,8 +245,11 @@ UnstructuredMesh readVtkUnstructured(const std::filesystem::path& file, const Vt
         mesh.cellType.push_back(kind->linear);
         for (uint32_t k = 0; k < kind->corners; ++k) {
             const double vertex = grid.connectivity[uint64_t(begin) + (type == 11 ? voxelOrder[k] : k)];
-            if (!(vertex >= 0 && vertex < double(points)))
-                fail(file, "cell " + std::to_string(c) + " names vertex " + std::to_string(int64_t(vertex)) + " of " + std::to_string(points));
+            if (!(vertex >= 0 && vertex < double(points))) {
+                char text[32];
+                std::snprintf(text, sizeof text, "%.17g", vertex);
+                fail(file, "cell " + std::to_string(c) + " names vertex " + text + " of " + std::to_string(points));
+            }
             mesh.index.push_back(uint32_t(vertex));
         }
         quadratic += kind->quadratic ? 1 : 0;
