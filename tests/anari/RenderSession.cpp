@@ -77,6 +77,15 @@ ANARIGeometry RenderSession::floor() {
     return geometry;
 }
 
+ANARIWorld RenderSession::sphereOnFloor() {
+    ANARIGeometry sphere = keep(anariNewGeometry(device, "sphere"));
+    setObject(sphere, "vertex.position", ANARI_ARRAY1D, array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{0.0f, 0.6f, 0.0f}}));
+    set(sphere, "radius", 0.6f);
+    commit(sphere);
+    return world({surface(sphere, matte({0.2f, 0.5f, 0.8f})), surface(floor(), matte(glm::vec3(0.7f)))},
+                 {directional(glm::normalize(glm::vec3(-0.5f, -1.0f, -0.4f)), 3.0f)});
+}
+
 ANARILight RenderSession::directional(glm::vec3 direction, float irradiance) {
     ANARILight light = keep(anariNewLight(device, "directional"));
     set(light, "direction", direction);

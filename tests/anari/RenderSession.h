@@ -81,6 +81,8 @@ public:
     ANARISurface surface(ANARIGeometry geometry, ANARIMaterial material);
     // A square floor at y = 0, 6 units wide, as two indexed triangles.
     ANARIGeometry floor();
+    // A blue matte sphere (radius 0.6, centre (0, 0.6, 0)) on the grey floor under a directional light.
+    ANARIWorld sphereOnFloor();
     ANARILight directional(glm::vec3 direction, float irradiance);
     ANARICamera perspective(glm::vec3 position, glm::vec3 target);
     // Parallel rays along `direction` from a view `height` units tall around `position`; up the default (0, 1, 0).

@@ -18,15 +18,7 @@ namespace {
 
 // A sphere on a floor under a directional light, 32x32 at 4 samples per pixel, linear float colour.
 Image renderSphere(RenderSession& s) {
-    ANARIGeometry sphere = s.keep(anariNewGeometry(s.device, "sphere"));
-    s.setObject(sphere, "vertex.position", ANARI_ARRAY1D,
-                s.array(ANARI_FLOAT32_VEC3, std::vector<glm::vec3>{{0.0f, 0.6f, 0.0f}}));
-    s.set(sphere, "radius", 0.6f);
-    s.commit(sphere);
-    const std::vector<ANARISurface> surfaces = {s.surface(sphere, s.matte({0.2f, 0.5f, 0.8f})),
-                                                s.surface(s.floor(), s.matte(glm::vec3(0.7f)))};
-    const std::vector<ANARILight> lights = {s.directional(glm::normalize(glm::vec3(-0.5f, -1.0f, -0.4f)), 3.0f)};
-    ANARIFrame frame = s.frame(s.world(surfaces, lights), s.perspective({0.0f, 1.6f, 4.0f}, {0.0f, 0.5f, 0.0f}),
+    ANARIFrame frame = s.frame(s.sphereOnFloor(), s.perspective({0.0f, 1.6f, 4.0f}, {0.0f, 0.5f, 0.0f}),
                                s.renderer(4, 3), {32, 32}, ANARI_FLOAT32_VEC4, true);
     return s.render(frame);
 }

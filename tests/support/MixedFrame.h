@@ -60,21 +60,11 @@ struct MixedFrame {
     core::FrameStats stats;  // of the second render
 };
 
-// mixedScene from the side, two render() calls of 3 samples each (the second accumulates onto the first),
-// then colour (linear float), depth, albedo and primitive ids read back.
-inline MixedFrame renderMixedFrame(const vk::Context& context, core::Traversal traversal, glm::uvec2 size = {32, 24}) {
-    core::Scene scene(context, mixedScene(), {}, nullptr, traversal);
-    core::PathTracer tracer(context, {.traversal = traversal});
+// Two render() calls on a tracer resized with depth, albedo and primitive ids (the second accumulates onto
+// the first), then colour (linear float), depth, albedo and primitive ids read back.
+inline MixedFrame renderTwiceAndRead(core::PathTracer& tracer, const core::Scene& scene, const core::Camera& camera,
+                                     const core::RenderSettings& settings, glm::uvec2 size) {
     const size_t pixels = size_t(size.x) * size.y;
-    tracer.resize(size, core::FrameChannels{.depth = true, .albedo = true, .primitiveId = true});
-    core::Camera camera;
-    camera.position = {0.0f, -4.0f, 3.0f};
-    camera.direction = {0.0f, 1.0f, -0.7f};
-    camera.aspect = float(size.x) / float(size.y);
-    core::RenderSettings settings;
-    settings.ambientRadiance = 0.2f;
-    settings.maxPathLength = 5;
-    settings.pixelSamples = 3;
     MixedFrame f;
     tracer.render(scene, camera, settings);
     f.stats = tracer.render(scene, camera, settings);
@@ -87,6 +77,22 @@ inline MixedFrame renderMixedFrame(const vk::Context& context, core::Traversal t
     tracer.readChannel(core::SurfaceChannel::Albedo, f.albedo.data());
     tracer.readChannel(core::SurfaceChannel::PrimitiveId, f.primitiveIds.data());
     return f;
+}
+
+// mixedScene from the side, rendered twice at 3 samples each and read back (renderTwiceAndRead).
+inline MixedFrame renderMixedFrame(const vk::Context& context, core::Traversal traversal, glm::uvec2 size = {32, 24}) {
+    core::Scene scene(context, mixedScene(), {}, nullptr, traversal);
+    core::PathTracer tracer(context, {.traversal = traversal});
+    tracer.resize(size, core::FrameChannels{.depth = true, .albedo = true, .primitiveId = true});
+    core::Camera camera;
+    camera.position = {0.0f, -4.0f, 3.0f};
+    camera.direction = {0.0f, 1.0f, -0.7f};
+    camera.aspect = float(size.x) / float(size.y);
+    core::RenderSettings settings;
+    settings.ambientRadiance = 0.2f;
+    settings.maxPathLength = 5;
+    settings.pixelSamples = 3;
+    return renderTwiceAndRead(tracer, scene, camera, settings, size);
 }
 
 }  // namespace ripple::test

@@ -4,6 +4,7 @@
 // and bitwise determinism.
 #include "core/render/PathTracer.h"
 #include "core/scene/LightTable.h"
+#include "tests/support/MixedFrame.h"
 #include "tests/support/RenderHelpers.h"
 #include "tests/support/SceneGenerators.h"
 #include "tests/support/TestContext.h"
@@ -457,28 +458,12 @@ TEST_CASE("path tracer: several samples of a pixel in one pass give the image of
     camera.focusDistance = 4.0f;
     const glm::uvec2 size{16, 16};
     const size_t pixels = size_t(size.x) * size.y;
-    struct Frame {
-        std::vector<glm::vec4> color;
-        std::vector<float> depth, albedo;
-        std::vector<uint32_t> primitiveIds;
-        core::FrameStats stats;
-    };
+    using Frame = test::MixedFrame;
     const auto renderTwice = [&](uint32_t packedWavePaths) {
         core::Scene scene(test::testContext(), d);
         core::PathTracer tracer(test::testContext(), {}, {.packedWavePaths = packedWavePaths});
         tracer.resize(size, core::FrameChannels{.depth = true, .albedo = true, .primitiveId = true});
-        Frame f;
-        tracer.render(scene, camera, settings);
-        f.stats = tracer.render(scene, camera, settings);
-        f.color.resize(pixels);
-        f.depth.resize(pixels);
-        f.albedo.resize(3 * pixels);
-        f.primitiveIds.resize(pixels);
-        tracer.readColor(core::ColorFormat::Rgba32Float, f.color.data());
-        tracer.readDepth(f.depth.data());
-        tracer.readChannel(core::SurfaceChannel::Albedo, f.albedo.data());
-        tracer.readChannel(core::SurfaceChannel::PrimitiveId, f.primitiveIds.data());
-        return f;
+        return test::renderTwiceAndRead(tracer, scene, camera, settings, size);
     };
     const Frame one = renderTwice(1);
     CHECK(one.stats.raysTraced > 5 * pixels);
