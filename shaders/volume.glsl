@@ -1,4 +1,5 @@
-// Volumes (shared/volume.h): the field and its transfer function at a point, and the two estimators that
+// Volumes (shared/volume.h): the field (a grid's, or an unstructured mesh's: unstructured.glsl) and its
+// transfer function at a point, and the two estimators that
 // march a ray through a volume's macrocell grid by a 3D DDA: delta tracking (where the ray first collides,
 // for free-flight sampling) and ratio tracking (its transmittance, for shadow rays). Both are unbiased for
 // any majorant that bounds the extinction, which the macrocells do, and, in macrocells crossed cell by
@@ -10,6 +11,7 @@
 #define RIPPLE_VOLUME_GLSL
 
 #include "shared/volume.h"
+#include "unstructured.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer VolumesRef { VolumeRecord volumes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VolumeDataRef { float values[]; };
@@ -95,6 +97,16 @@ vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
     vec4 a = vec4(data.values[at], data.values[at + 1u], data.values[at + 2u], data.values[at + 3u]);
     vec4 b = vec4(data.values[at + 4u], data.values[at + 5u], data.values[at + 6u], data.values[at + 7u]);
     return mix(a, b, w);
+}
+
+// (albedo rgb, extinction per world unit) at grid-space point g: the transfer function of the field there;
+// none outside an unstructured mesh's cells.
+vec4 mediumAt(VolumeRecord v, VolumeDataRef data, vec3 g) {
+    if (v.kind == VOLUME_KIND_UNSTRUCTURED) {
+        float value;
+        return unstructuredValue(v.voxels, g, value) ? transferFunction(v, data, value) : vec4(0.0);
+    }
+    return transferFunction(v, data, fieldValue(v, data, g));
 }
 
 // The largest extinction the table gives over voxel values [lowest, highest], from the range-maximum table
@@ -285,9 +297,9 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
                 ++result.collisions;
                 // Refined: the cubic's value, kept in the range its majorant was taken over (float rounding
                 // may put it a few ulps outside the Bernstein hull).
-                float value = refined ? clamp(cubicAt(cubic, (t - voxelEntry) / (voxelExit - voxelEntry)), range.x, range.y)
-                                      : fieldValue(v, data, o + t * d);
-                vec4 medium = transferFunction(v, data, value);
+                vec4 medium = refined ? transferFunction(v, data, clamp(cubicAt(cubic, (t - voxelEntry) / (voxelExit - voxelEntry)),
+                                                                        range.x, range.y))
+                                      : mediumAt(v, data, o + t * d);
                 float ratio = clamp(medium.w * speed / mu, 0.0, 1.0);
                 if (mode == TRACK_RATIO) {
                     result.transmittance *= 1.0 - ratio;

@@ -375,6 +375,16 @@ const std::vector<Entry>& table() {
              {"spacing", ANARI_FLOAT32_VEC3, "distance between samples along each axis"},
              {"filter", ANARI_STRING, "sample interpolation", "linear", kFilters},
          }})},
+        {ANARI_SPATIAL_FIELD, "unstructured", "tetrahedra, hexahedra, wedges and pyramids with values per vertex or per cell",
+         joined({kName, {
+             {"vertex.position", ANARI_ARRAY1D, "vertex positions (FLOAT32_VEC3)", nullptr, nullptr, true},
+             {"vertex.data", ANARI_ARRAY1D, "values per vertex (UFIXED8, FIXED16, UFIXED16, FLOAT32, FLOAT64)"},
+             {"cell.data", ANARI_ARRAY1D, "values per cell, constant over it (when no vertex.data)"},
+             {"index", ANARI_ARRAY1D, "the cells' vertex indices (UINT32)", nullptr, nullptr, true},
+             {"cell.index", ANARI_ARRAY1D, "each cell's first entry in index (UINT32)", nullptr, nullptr, true},
+             {"cell.type", ANARI_ARRAY1D, "each cell's VTK type: 10 tetrahedron, 12 hexahedron, 13 wedge, 14 pyramid (UINT8)",
+              nullptr, nullptr, true},
+         }})},
         {ANARI_VOLUME, "transferFunction1D", "a scalar field as a scattering medium: albedo and opacity from the value",
          joined({kName, {
              {"value", ANARI_SPATIAL_FIELD, "the field", nullptr, nullptr, true},
@@ -446,7 +456,7 @@ const char** deviceExtensions() {
         "ANARI_KHR_CAMERA_DEPTH_OF_FIELD", "ANARI_KHR_FRAME_CHANNEL_ALBEDO",  "ANARI_KHR_FRAME_CHANNEL_NORMAL",
         "ANARI_KHR_FRAME_CHANNEL_PRIMITIVE_ID", "ANARI_KHR_FRAME_CHANNEL_OBJECT_ID", "ANARI_KHR_FRAME_CHANNEL_INSTANCE_ID",
         "ANARI_KHR_DATA_PARALLEL_MPI",    "ANARI_KHR_FRAME_ACCUMULATION",     "ANARI_KHR_DEVICE_SYNCHRONIZATION",
-        "ANARI_KHR_FRAME_COMPLETION_CALLBACK", "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR",
+        "ANARI_KHR_FRAME_COMPLETION_CALLBACK", "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR", "ANARI_KHR_SPATIAL_FIELD_UNSTRUCTURED",
         "ANARI_KHR_VOLUME_TRANSFER_FUNCTION1D", "ANARI_KHR_GEOMETRY_ISOSURFACE",
         nullptr};
     return extensions;

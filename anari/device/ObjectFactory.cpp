@@ -12,6 +12,8 @@
 #include "anari/device/renderer/Renderer.h"
 #include "anari/device/sampler/Sampler.h"
 #include "anari/device/surface/Surface.h"
+#include "anari/device/volume/StructuredRegularField.h"
+#include "anari/device/volume/UnstructuredField.h"
 #include "anari/device/volume/Volume.h"
 #include "anari/device/world/World.h"
 
@@ -68,7 +70,8 @@ constexpr Subtype kSubtypes[] = {
     {ANARI_CAMERA, "orthographic", [](DeviceState& s) -> Object* { return newOrthographicCamera(s); }},
     {ANARI_CAMERA, "omnidirectional", [](DeviceState& s) -> Object* { return newOmnidirectionalCamera(s); }},
     {ANARI_INSTANCE, "transform", [](DeviceState& s) -> Object* { return newTransformInstance(s); }},
-    {ANARI_SPATIAL_FIELD, "structuredRegular", make<SpatialField>},
+    {ANARI_SPATIAL_FIELD, "structuredRegular", make<StructuredRegularField>},
+    {ANARI_SPATIAL_FIELD, "unstructured", make<UnstructuredField>},
     {ANARI_VOLUME, "transferFunction1D", make<Volume>},
     {ANARI_RENDERER, "default", [](DeviceState& s) -> Object* { return new Renderer(s, "default"); }},
     {ANARI_RENDERER, "eyeLight", [](DeviceState& s) -> Object* { return new Renderer(s, "eyeLight"); }},

@@ -99,8 +99,7 @@ struct RenderPlan {
     std::string demo;                   // the demo scene, or empty for a file
     std::optional<GltfScene> gltf;
     std::optional<LinearImage> environment;  // --environment's image
-    std::optional<VolumeData> field;    // --volume
-    FieldSceneOptions fieldOptions;
+    std::optional<FieldPlan> field;     // --volume
     bool depth = false, normal = false, albedo = false;  // --channels
 };
 
@@ -195,10 +194,7 @@ RenderPlan checkOptions(const Options& options, const mpi::Communicator& ranks) 
         throw std::runtime_error("give either a scene file or --demo, not both");
     if (!options.field.volume.empty() && (!options.scene.empty() || !options.demo.empty()))
         throw std::runtime_error("give one of a scene file, --demo or --volume");
-    if (std::optional<FieldPlan> field = planField(options.field, ranks, plan.root, "ripple-render", options.quiet)) {
-        plan.field = std::move(field->data);
-        plan.fieldOptions = std::move(field->scene);
-    }
+    plan.field = planField(options.field, ranks, plan.root, "ripple-render", options.quiet);
     plan.demo = options.scene.empty() && options.demo.empty() && options.field.volume.empty() ? "default" : options.demo;
     if (!plan.demo.empty()) checkDemoSceneName(plan.demo);
     if (ranks.distributed() && !plan.demo.empty())
@@ -246,7 +242,7 @@ AnariWorld buildScene(const Options& options, RenderPlan& plan, const mpi::Commu
                                                   options.environment.rotationDegrees, &edits));
         s.objects.push_back(extraLights.back());
     }
-    AnariWorld scene = plan.field ? buildFieldScene(s.device, *plan.field, plan.fieldOptions, extraLights, &edits)
+    AnariWorld scene = plan.field ? buildPlannedField(s.device, *plan.field, extraLights, &edits)
                        : gltf     ? buildAnariWorld(s.device, *gltf, plan.root, extraLights, &edits)
                                   : buildDemoScene(s.device, plan.demo, extraLights, &edits);
     if (options.viewState) edits.commit(applyViewEdits(*options.viewState, edits, plan.root, options.view));

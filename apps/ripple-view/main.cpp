@@ -118,7 +118,7 @@ void saveView(const std::filesystem::path& file, const CameraView& view, const V
 AnariWorld buildScene(const Options& options, const std::optional<GltfScene>& gltf, const std::optional<FieldPlan>& field,
                       const mpi::Communicator& ranks, Session& s, const std::vector<ANARILight>& extraLights,
                       SceneEdits& edits) {
-    if (field) return buildFieldScene(s.device, field->data, field->scene, extraLights, &edits);
+    if (field) return buildPlannedField(s.device, *field, extraLights, &edits);
     if (!gltf) return buildDemoScene(s.device, options.demo.empty() ? "default" : options.demo, extraLights, &edits);
     const GltfScene share = partitionScene(*gltf, uint32_t(ranks.rank()), uint32_t(ranks.size()),
                                            parsePartitionKind(options.partition));

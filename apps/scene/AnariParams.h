@@ -37,6 +37,8 @@ template <> constexpr ANARIDataType elementType<glm::vec3>() { return ANARI_FLOA
 template <> constexpr ANARIDataType elementType<glm::vec4>() { return ANARI_FLOAT32_VEC4; }
 template <> constexpr ANARIDataType elementType<glm::uvec2>() { return ANARI_UINT32_VEC2; }
 template <> constexpr ANARIDataType elementType<glm::uvec3>() { return ANARI_UINT32_VEC3; }
+template <> constexpr ANARIDataType elementType<uint32_t>() { return ANARI_UINT32; }
+template <> constexpr ANARIDataType elementType<uint8_t>() { return ANARI_UINT8; }
 
 // A device-owned 1D array holding a copy of `values` (of `type`, one element per entry).
 template <typename T>

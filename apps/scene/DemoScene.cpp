@@ -195,6 +195,22 @@ public:
         return field;
     }
 
+    // An unstructured field of `mesh`'s cells and values, its vertices placed at p * scale + offset.
+    // `values`: the whole mesh's smallest and largest value where this is a part of it (the panels' ranges).
+    ANARISpatialField unstructuredField(const UnstructuredMesh& mesh, float scale, const glm::vec3& offset, glm::vec2 values) {
+        std::vector<glm::vec3> positions(mesh.positions.size());
+        for (size_t v = 0; v < positions.size(); ++v) positions[v] = mesh.positions[v] * scale + offset;
+        ANARISpatialField field = handles_.keep(anariNewSpatialField(d_, "unstructured"), "spatial field");
+        attach(field, "vertex.position", positions);
+        attach(field, mesh.cellCentered ? "cell.data" : "vertex.data", mesh.values);
+        attach(field, "index", mesh.index);
+        attach(field, "cell.index", mesh.cellIndex);
+        attach(field, "cell.type", mesh.cellType);
+        anariCommitParameters(d_, field);
+        fieldRanges_[field] = values;
+        return field;
+    }
+
     // The field as a transferFunction1D volume over the value range [lo, hi] with the given colours and
     // opacities (`colorMap`: the named map they are, for the panels; empty: the scene's own).
     void volume(ANARISpatialField field, const std::vector<glm::vec3>& colors, const std::vector<float>& opacities,
@@ -252,8 +268,8 @@ public:
 
 private:
     template <typename T>
-    void attach(ANARIGeometry g, const char* name, const std::vector<T>& values) {
-        setObject(d_, g, name, ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, values), "array"));
+    void attach(ANARIObject object, const char* name, const std::vector<T>& values) {
+        setObject(d_, object, name, ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, values), "array"));
     }
 
     void surface(ANARIGeometry g, ANARIMaterial material) {
@@ -361,14 +377,14 @@ struct FieldPlacement {
     std::optional<glm::vec2> values;    // the whole field's smallest and largest sample (a slab's own: none)
 };
 
-// The floor, sun and sky the field demos and field files stand in; `addField` draws the field. The camera
-// looks at the whole box from the front and above.
-template <class AddField>
-AnariWorld fieldScene(ANARIDevice d, glm::uvec3 dims, const std::vector<float>& samples, const FieldPlacement& at,
-                      const std::vector<ANARILight>& extraLights, SceneEdits* edits, AddField addField) {
+// The floor, sun and sky the field demos and field files stand in; `makeField` makes the field and
+// `addField` draws it. The camera looks at the whole box from the front and above.
+template <class MakeField, class AddField>
+AnariWorld fieldScene(ANARIDevice d, MakeField makeField, const FieldPlacement& at, const std::vector<ANARILight>& extraLights,
+                      SceneEdits* edits, AddField addField) {
     DemoBuilder b(d, at.stage ? extraLights : std::vector<ANARILight>{}, edits);  // lights live where the stage is
     if (at.stage) b.mesh(tiledFloor(4.0f, 8, glm::vec3(0.7f), glm::vec3(0.45f)), b.matteFromColors());
-    addField(b, b.field(dims, samples, at.lo, at.hi, at.values));
+    addField(b, makeField(b));
     if (at.stage) b.directionalLight(glm::vec3(-0.6f, -1.0f, -0.4f), glm::vec3(1.0f, 0.95f, 0.85f), 3.0f);
     const glm::vec3 centre = 0.5f * (at.boxLo + at.boxHi), target(centre.x, centre.y - 0.15f, centre.z);
     AnariWorld out = b.finish(lookAt(target + glm::vec3(0.0f, 1.5f, 4.6f), target, 40.0f), {-4.0f, 0.0f, -4.0f},
@@ -384,7 +400,9 @@ AnariWorld marschnerLobbScene(ANARIDevice d, const std::vector<ANARILight>& extr
                               AddField addField) {
     const glm::uvec3 dims(64);
     const glm::vec3 lo(-1.0f, 0.05f, -1.0f), hi(1.0f, 2.05f, 1.0f);
-    return fieldScene(d, dims, marschnerLobbSamples(dims), {lo, hi, lo, hi}, extraLights, edits, addField);
+    const FieldPlacement at{lo, hi, lo, hi};
+    const auto makeField = [&](DemoBuilder& b) { return b.field(dims, marschnerLobbSamples(dims), at.lo, at.hi, at.values); };
+    return fieldScene(d, makeField, at, extraLights, edits, addField);
 }
 
 // A Marschner-Lobb volume (64^3 samples) standing on a floor, under a sun and a sky: the medium scatters
@@ -447,6 +465,23 @@ void checkTransferFunctionName(const std::string& name) {
     throw std::invalid_argument("unknown transfer function '" + name + "' (known: " + known + ")");
 }
 
+// Draws a field as `options` say: a volume through the colour map over the value range (the options', else
+// `dataRange`), and an iso-surface per isovalue coloured by the map.
+auto drawField(const FieldSceneOptions& options, glm::vec2 dataRange) {
+    return [options, dataRange](DemoBuilder& b, ANARISpatialField field) {
+        const std::vector<glm::vec3> colors = colorMap(options.transferFunction.empty() ? "viridis" : options.transferFunction);
+        const glm::vec2 values = options.valueRange.value_or(dataRange);
+        const float range = values.y - values.x;
+        if (!options.transferFunction.empty())
+            b.volume(field, colors, {0.0f, options.opacity}, options.unitDistance.value_or(kDefaultUnitDistance),
+                     values.x, values.y, options.transferFunction);
+        for (float isovalue : options.isovalues) {
+            const float t = range > 0.0f ? (isovalue - values.x) / range : 0.5f;
+            b.isosurface(field, isovalue, b.matte(colorAt(colors, t)));
+        }
+    };
+}
+
 AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const FieldSceneOptions& options,
                            const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
     if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
@@ -457,18 +492,21 @@ AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const Fie
     FieldPlacement at{boxLo, boxLo, boxLo, boxLo + scale * extent, options.stage, glm::vec2(data.minValue, data.maxValue)};
     at.lo.z += step.z * float(data.zFirst);
     at.hi = at.lo + step * glm::vec3(data.dims - 1u);
-    const std::vector<glm::vec3> colors = colorMap(options.transferFunction.empty() ? "viridis" : options.transferFunction);
-    const glm::vec2 values = options.valueRange.value_or(glm::vec2(data.minValue, data.maxValue));
-    const float range = values.y - values.x;
-    return fieldScene(device, data.dims, data.values, at, extraLights, edits, [&](DemoBuilder& b, ANARISpatialField field) {
-        if (!options.transferFunction.empty())
-            b.volume(field, colors, {0.0f, options.opacity}, options.unitDistance.value_or(kDefaultUnitDistance),
-                     values.x, values.y, options.transferFunction);
-        for (float isovalue : options.isovalues) {
-            const float t = range > 0.0f ? (isovalue - values.x) / range : 0.5f;
-            b.isosurface(field, isovalue, b.matte(colorAt(colors, t)));
-        }
-    });
+    const auto makeField = [&](DemoBuilder& b) { return b.field(data.dims, data.values, at.lo, at.hi, at.values); };
+    return fieldScene(device, makeField, at, extraLights, edits, drawField(options, glm::vec2(data.minValue, data.maxValue)));
+}
+
+AnariWorld buildMeshScene(ANARIDevice device, const MeshPart& mesh, const FieldSceneOptions& options,
+                          const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
+    const glm::vec3 extent = mesh.wholeHi - mesh.wholeLo;
+    const float scale = 2.0f / std::max({extent.x, extent.y, extent.z});
+    const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z);
+    const glm::vec3 offset = boxLo - mesh.wholeLo * scale;
+    const FieldPlacement at{boxLo, boxLo + scale * extent, boxLo, boxLo + scale * extent, options.stage,
+                            glm::vec2(mesh.cells.minValue, mesh.cells.maxValue)};
+    const auto makeField = [&](DemoBuilder& b) { return b.unstructuredField(mesh.cells, scale, offset, *at.values); };
+    return fieldScene(device, makeField, at, extraLights, edits, drawField(options, *at.values));
 }
 
 std::vector<std::string> demoSceneNames() { return {"default", "cornell", "volume", "isosurface"}; }

@@ -6,6 +6,7 @@
 
 #include "apps/scene/AnariScene.h"
 #include "io/volume/VolumeFile.h"
+#include "io/vtk/VtkUnstructuredFile.h"
 
 #include <optional>
 #include <string>
@@ -62,5 +63,17 @@ constexpr float kDefaultUnitDistance = 0.2f;
 // checkTransferFunctionName does.
 AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const FieldSceneOptions& options,
                            const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
+
+// One rank's part of an unstructured mesh (the whole mesh on one rank), with the whole mesh's box.
+struct MeshPart {
+    UnstructuredMesh cells;              // minValue, maxValue: the whole mesh's
+    glm::vec3 wholeLo{0.0f}, wholeHi{0.0f};
+};
+
+// The mesh on the same stage as buildFieldScene's field, placed the same way (its whole box's longest side
+// 2, centred, just above the floor), as an unstructured field drawn as a volume and iso-surfaces as
+// `options` say.
+AnariWorld buildMeshScene(ANARIDevice device, const MeshPart& mesh, const FieldSceneOptions& options,
+                          const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
 
 }  // namespace ripple::apps

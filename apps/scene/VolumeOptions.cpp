@@ -3,6 +3,7 @@
 
 #include "io/vtk/VtkImageFile.h"
 #include "io/vtk/VtkUnstructuredFile.h"
+#include "apps/scene/MeshPartition.h"
 
 #include <cctype>
 #include <cmath>
@@ -110,17 +111,38 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
     field.stage = root;
     std::string extension = std::filesystem::path(options.volume).extension().string();
     for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (extension == ".vtm" || extension == ".vthb" || isVtkUnstructuredFile(options.volume))
-        throw std::runtime_error("--volume " + options.volume + ": VTK unstructured grids, multiblock and AMR sets "
-                                 "are not rendered yet (--list-fields reads an unstructured grid); image data (.vti, "
-                                 "legacy .vtk STRUCTURED_POINTS) is");
+    if (extension == ".vtm" || extension == ".vthb")
+        throw std::runtime_error("--volume " + options.volume + ": VTK multiblock and AMR sets are not rendered yet; "
+                                 "image data (.vti, legacy .vtk STRUCTURED_POINTS) and unstructured grids (.vtu, legacy "
+                                 ".vtk UNSTRUCTURED_GRID) are");
     const bool vtkOptions = !options.field.empty() || options.fieldComponent;
-    if (vtkOptions && !isVtkImageFile(options.volume))
+    const bool unstructured = isVtkUnstructuredFile(options.volume);
+    if (vtkOptions && !isVtkImageFile(options.volume) && !unstructured)
         throw std::runtime_error("--volume " + options.volume + ": --field and --field-component are for VTK files");
-    if (isVtkImageFile(options.volume)) {
-        if (rawOptions)
-            throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
-                                     "the VTK file gives them");
+    if ((isVtkImageFile(options.volume) || unstructured) && rawOptions)
+        throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
+                                 "the VTK file gives them");
+    if (unstructured) {
+        // Every rank reads the whole file (its box frames the view, its values span the colour map) and keeps
+        // only its part of the cells.
+        MeshPart mesh;
+        mesh.cells = readVtkUnstructured(options.volume, {options.field, options.fieldComponent.value_or(-1)});
+        if (mesh.cells.values.empty())
+            throw std::runtime_error("--volume " + options.volume + ": the file has no point or cell array to draw");
+        mesh.wholeLo = glm::vec3(INFINITY);
+        mesh.wholeHi = glm::vec3(-INFINITY);
+        for (const glm::vec3& p : mesh.cells.positions) {
+            mesh.wholeLo = glm::min(mesh.wholeLo, p);
+            mesh.wholeHi = glm::max(mesh.wholeHi, p);
+        }
+        if (!quiet && root)
+            for (const std::string& warning : mesh.cells.warnings)
+                std::fprintf(stderr, "[%s] WARNING: %s: %s\n", program, options.volume.c_str(), warning.c_str());
+        plan.data.minValue = mesh.cells.minValue;
+        plan.data.maxValue = mesh.cells.maxValue;
+        mesh.cells = meshPart(mesh.cells, slab.index, slab.count);
+        plan.mesh = std::move(mesh);
+    } else if (isVtkImageFile(options.volume)) {
         plan.data = readVtkImageVolume(options.volume, {options.field, options.fieldComponent.value_or(-1)}, slab);
     } else if (isNrrdFile(options.volume)) {
         if (rawOptions)
@@ -133,7 +155,7 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
                                      "(or give an NRRD file, .nrrd or .nhdr)");
         plan.data = readRawVolume(options.volume, {options.dims, options.type, options.spacing}, slab);
     }
-    if (ranks.distributed()) {  // the colour map spans every rank's values
+    if (ranks.distributed() && !plan.mesh) {  // the colour map spans every rank's values
         float lowest = plan.data.minValue, highest = plan.data.maxValue;
         ranks.min(std::span<float>(&lowest, 1));
         ranks.max(std::span<float>(&highest, 1));
@@ -151,6 +173,12 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
                          double(plan.data.minValue));
     }
     return plan;
+}
+
+AnariWorld buildPlannedField(ANARIDevice device, const FieldPlan& plan, const std::vector<ANARILight>& extraLights,
+                             SceneEdits* edits) {
+    if (plan.mesh) return buildMeshScene(device, *plan.mesh, plan.scene, extraLights, edits);
+    return buildFieldScene(device, plan.data, plan.scene, extraLights, edits);
 }
 
 }  // namespace ripple::apps

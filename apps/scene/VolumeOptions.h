@@ -1,6 +1,7 @@
 // The command-line options that draw a volume file, shared by ripple-render and ripple-view: the file, a
 // raw file's layout, the colour map, opacity, unit distance and isovalues; and the file read and checked
-// into what buildFieldScene draws (under mpirun each rank reads only its z-slab).
+// into what buildFieldScene draws (under mpirun each rank reads only its z-slab), or an unstructured grid
+// into what buildMeshScene draws (under mpirun each rank keeps only its part of the cells).
 #pragma once
 
 #include "apps/scene/DemoScene.h"
@@ -37,6 +38,7 @@ std::string describeVolumeOptions(const VolumeOptions& options);
 
 struct FieldPlan {
     VolumeData data;                    // this rank's slab; minValue/maxValue span every rank's
+    std::optional<MeshPart> mesh;       // an unstructured grid instead: this rank's part of it
     FieldSceneOptions scene;
 };
 
@@ -50,5 +52,9 @@ void checkVolumeOptions(const VolumeOptions& options);
 // them) unless `quiet`.
 std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Communicator& ranks, bool root,
                                    const char* program, bool quiet);
+
+// The planned field's scene: buildFieldScene, or buildMeshScene for a mesh.
+AnariWorld buildPlannedField(ANARIDevice device, const FieldPlan& plan, const std::vector<ANARILight>& extraLights,
+                             SceneEdits* edits);
 
 }  // namespace ripple::apps

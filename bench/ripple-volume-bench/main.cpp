@@ -9,15 +9,22 @@
 // null/real collision ratio, the GPU time per frame of the main stages and whether the volume has
 // macrocells deep enough to be crossed cell by cell (core/scene/VolumeMajorants.h); --json writes the
 // same. --case runs only the cases whose name holds the given text. Core only: no ANARI, no files.
+// The case "tetrahedra, smooth" is the same field on an unstructured mesh of about as many tetrahedra as
+// the grid has voxels (the grid's nodes at 1 / cbrt(6) of its resolution, each cell cut into six), drawn like
+// "volume, smooth": its bytes are per tetrahedron, and it also prints what one of 2 ranks holds of the mesh
+// (apps/scene/MeshPartition.h) against 1 rank. Up to --dims 128 (2.1M tetrahedra).
 #include "bench/ripple-bench/Timing.h"
 #include "core/render/PathTracer.h"
 #include "core/scene/Scene.h"
+#include "core/scene/UnstructuredGrid.h"
+#include "apps/scene/MeshPartition.h"
 #include "core/vk/Context.h"
 #include "io/FileWrite.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -77,6 +84,44 @@ core::Volume volumeOf(uint32_t n, std::shared_ptr<const std::vector<float>> valu
     return v;
 }
 
+// The field on m^3 nodes over [-1, 1]^3 (quantised as above), each of the (m - 1)^3 cells cut into six
+// tetrahedra around its diagonal, in the layout of a VTK file's mesh.
+apps::UnstructuredMesh tetrahedralField(uint32_t m) {
+    apps::UnstructuredMesh mesh;
+    const auto at = [m](uint32_t i, uint32_t j, uint32_t k) { return (k * m + j) * m + i; };
+    for (uint32_t k = 0; k < m; ++k)
+        for (uint32_t j = 0; j < m; ++j)
+            for (uint32_t i = 0; i < m; ++i) {
+                const glm::vec3 p = glm::vec3(i, j, k) / float(m - 1) * 2.0f - 1.0f;
+                mesh.positions.push_back(p);
+                mesh.values.push_back(std::round(marschnerLobb(p) * 255.0f) / 255.0f);
+            }
+    for (uint32_t k = 0; k + 1 < m; ++k)
+        for (uint32_t j = 0; j + 1 < m; ++j)
+            for (uint32_t i = 0; i + 1 < m; ++i) {
+                const uint32_t h[8] = {at(i, j, k),     at(i + 1, j, k),     at(i + 1, j + 1, k),     at(i, j + 1, k),
+                                       at(i, j, k + 1), at(i + 1, j, k + 1), at(i + 1, j + 1, k + 1), at(i, j + 1, k + 1)};
+                for (const auto& t : {std::array{0, 1, 2, 6}, std::array{0, 2, 3, 6}, std::array{0, 3, 7, 6},
+                                      std::array{0, 7, 4, 6}, std::array{0, 4, 5, 6}, std::array{0, 5, 1, 6}}) {
+                    mesh.cellIndex.push_back(uint32_t(mesh.index.size()));
+                    mesh.cellType.push_back(10);
+                    for (int c : t) mesh.index.push_back(h[c]);
+                }
+            }
+    return mesh;
+}
+
+std::shared_ptr<const core::UnstructuredGrid> prepared(const apps::UnstructuredMesh& mesh) {
+    core::UnstructuredCells cells;
+    cells.positions = mesh.positions;
+    cells.values = mesh.values;
+    cells.cellCentered = mesh.cellCentered;
+    cells.index = mesh.index;
+    cells.cellIndex = mesh.cellIndex;
+    cells.cellType = mesh.cellType;
+    return core::prepareUnstructuredGrid(cells);
+}
+
 std::vector<Case> cases(uint32_t n) {
     const auto values = std::make_shared<const std::vector<float>>(quantisedField(n));
     std::vector<Case> out;
@@ -91,6 +136,15 @@ std::vector<Case> cases(uint32_t n) {
         core::SceneDescription scene = litScene();
         scene.volumes.push_back(volumeOf(n, values, {0.0f, 0.05f, 0.2f, 0.5f}, 0.05f));
         out.push_back({"volume, smooth", std::move(scene)});
+    }
+    if (n <= 128) {
+        core::SceneDescription scene = litScene();
+        const apps::UnstructuredMesh mesh = tetrahedralField(uint32_t(std::lround(double(n) / std::cbrt(6.0))) + 1);
+        core::Volume v = volumeOf(n, values, {0.0f, 0.05f, 0.2f, 0.5f}, 0.05f);
+        v.values.reset();
+        v.unstructured = prepared(mesh);
+        scene.volumes.push_back(std::move(v));
+        out.push_back({"tetrahedra, smooth", std::move(scene)});
     }
     {
         // Stiff: extinction from 1e-6 to 1e6 per unit, log-spaced over the value range (the opacity cap
@@ -172,8 +226,18 @@ int main(int argc, char** argv) {
             const core::Scene scene(context, c.scene);
             buildSeconds = bench::wallSeconds() - buildSeconds;
             const double majorantSeconds = scene.report().volumeMajorantSeconds;  // on the device, within the build
-            const double voxels = double(n) * n * n;
+            // Per voxel, or per tetrahedron of a mesh (its words, BVH included, and the tables and majorants).
+            const core::Volume* mesh = !c.scene.volumes.empty() && c.scene.volumes[0].unstructured ? &c.scene.volumes[0] : nullptr;
+            const double voxels = mesh ? double(mesh->unstructured->cellsKept) : double(n) * n * n;
             const double bytesPerVoxel = double(scene.report().gpuBytes) / voxels;
+            double halfShare = 0.0;  // one of 2 ranks' mesh bytes over 1 rank's
+            if (mesh) {
+                const apps::UnstructuredMesh whole = tetrahedralField(uint32_t(std::lround(double(n) / std::cbrt(6.0))) + 1);
+                halfShare = double(prepared(apps::meshPart(whole, 0, 2))->words.size()) / double(mesh->unstructured->words.size());
+                std::printf("  %.0f tetrahedra (macrocells %ux%ux%u, BVH depth %u); one of 2 ranks holds %.3f of the mesh's bytes\n",
+                            voxels, mesh->unstructured->macrocells.x, mesh->unstructured->macrocells.y,
+                            mesh->unstructured->macrocells.z, mesh->unstructured->bvhDepth, halfShare);
+            }
             core::PathTracer tracer(context);
             tracer.resize({size, size}, false);
             double first = bench::wallSeconds();
@@ -232,7 +296,9 @@ int main(int argc, char** argv) {
             }
             results.push_back({{"case", c.name}, {"dims", n}, {"size", size}, {"spp", spp},
                                {"sceneBuildSeconds", buildSeconds}, {"majorantBuildSeconds", majorantSeconds},
-                               {"gpuBytesPerVoxel", bytesPerVoxel}, {"renderSeconds", first + wall},
+                               {mesh ? "gpuBytesPerTetrahedron" : "gpuBytesPerVoxel", bytesPerVoxel},
+                               {"tetrahedra", mesh ? voxels : 0.0}, {"oneOfTwoRanksMeshShare", halfShare},
+                               {"renderSeconds", first + wall},
                                {"firstFrameSeconds", first}, {"cpuSecondsAfterFirst", cpu},
                                {"realCollisions", total.realCollisions}, {"nullCollisions", total.nullCollisions},
                                {"freeFlightPerCpuSecond", perCpu * 1e6}, {"nullPerReal", ratio},

@@ -23,10 +23,11 @@
 
 namespace ripple::core {
 
-// A volume's voxels on the device (VolumeRecord::voxels), with the identity that lets a later scene reuse them.
+// A volume's voxels (or unstructured mesh) on the device (VolumeRecord::voxels), with the identity that lets
+// a later scene reuse them.
 struct VolumeVoxels {
     GeometryIdentity identity;
-    size_t count = 0;
+    size_t bytes = 0;
     vk::Buffer buffer;
 };
 
@@ -505,9 +506,12 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     // scene: one field in several volumes) when the voxel identity matches, else uploaded.
     for (size_t r = 0; r < volumes.records.size(); ++r) {
         const Volume& v = description.volumes[volumes.sources[r]];
+        // The voxels, or an unstructured mesh's words (UnstructuredGrid.h).
+        const void* fieldData = v.unstructured ? static_cast<const void*>(v.unstructured->words.data()) : v.values->data();
+        const size_t fieldBytes = v.unstructured ? v.unstructured->words.size() * sizeof(uint32_t) : v.values->size() * sizeof(float);
         const auto same = [&](const std::shared_ptr<const VolumeVoxels>& kept) {
             return v.voxelIdentity.key != 0 && kept->identity.key == v.voxelIdentity.key &&
-                   kept->identity.version == v.voxelIdentity.version && kept->count == v.values->size();
+                   kept->identity.version == v.voxelIdentity.version && kept->bytes == fieldBytes;
         };
         std::shared_ptr<const VolumeVoxels> voxels;
         if (const auto it = std::find_if(volumeVoxels_.begin(), volumeVoxels_.end(), same); it != volumeVoxels_.end())
@@ -521,9 +525,9 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         } else {
             auto made = std::make_shared<VolumeVoxels>();
             made->identity = v.voxelIdentity;
-            made->count = v.values->size();
-            made->buffer = vk::Buffer(context, made->count * sizeof(float), "volume voxels");
-            made->buffer.upload(v.values->data(), made->count * sizeof(float));
+            made->bytes = fieldBytes;
+            made->buffer = vk::Buffer(context, fieldBytes, "volume voxels");
+            made->buffer.upload(fieldData, fieldBytes);
             voxels = std::move(made);
             ++report_.volumeVoxelsUploaded;
         }

@@ -4,6 +4,7 @@
 // space (the ANARI layer applies instance transforms to lights before they get here).
 #pragma once
 
+#include "core/scene/UnstructuredGrid.h"
 #include "shaders/shared/material.h"
 
 #include <glm/glm.hpp>
@@ -231,8 +232,8 @@ struct Light {
     int32_t texture = kNoTexture;         // hdri: an equirectangular Rgba32Float texture (its radiance)
 };
 
-// A structured-regular scalar field seen through a 1D transfer function (ANARI spatialField
-// "structuredRegular" inside a volume "transferFunction1D"), placed in the world by `transform`. Values are
+// A structured-regular scalar field (or an unstructured mesh's) seen through a 1D transfer function (ANARI
+// spatialField "structuredRegular" or "unstructured" inside a volume "transferFunction1D"), placed in the world by `transform`. Values are
 // cell-vertex samples: voxel (i, j, k) sits at origin + (i, j, k) * spacing in object space, so the field
 // spans origin .. origin + (dims - 1) * spacing. Opacity o means transmittance 1 - o over unitDistance
 // world units (extinction -ln(1 - o) / unitDistance); the colour is the single-scattering albedo.
@@ -240,6 +241,9 @@ struct Volume {
     glm::uvec3 dims{0};
     // dims.x * dims.y * dims.z, x fastest; shared with whoever made them (never changed once shared).
     std::shared_ptr<const std::vector<float>> values;
+    // Set: the field is this unstructured mesh instead (dims, values, origin, spacing and linearFilter are
+    // unused; the mesh is placed in object space by its own vertices).
+    std::shared_ptr<const UnstructuredGrid> unstructured;
     // Nonzero key: the same (key, version) as a volume of a Scene's `previous` means the same values, and
     // their device buffer is reused (a transfer-function edit uploads no voxels). Zero: always uploaded.
     GeometryIdentity voxelIdentity;

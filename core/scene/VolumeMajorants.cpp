@@ -44,6 +44,7 @@ MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& vol
         vk::computeBarrier(cmd);  // after the uploads
         pipeline.bind(cmd);
         for (uint32_t i = 0; i < records.size(); ++i) {
+            if (records[i].kind != gpu::VOLUME_KIND_STRUCTURED) continue;  // its majorants came with its table
             const uint64_t cells = cellCount(macrocellsPerAxis(dimsOf(records[i])));
             for (uint64_t first = 0; first < cells; first += cellsPerDispatch) {
                 const gpu::MajorantParams params{volumes.address(), volumeData.address(), i, static_cast<uint32_t>(first)};
@@ -56,7 +57,7 @@ MajorantGrids buildMajorantsOnDevice(const vk::Context& context, vk::Buffer& vol
 
     bool changed = false;
     for (gpu::VolumeRecord& r : records) {
-        const bool refinable = r.filterMode == gpu::VOLUME_FILTER_LINEAR && r.dimX > 1 && r.dimY > 1 && r.dimZ > 1;
+        const bool refinable = r.kind == gpu::VOLUME_KIND_STRUCTURED && r.filterMode == gpu::VOLUME_FILTER_LINEAR && r.dimX > 1 && r.dimY > 1 && r.dimZ > 1;
         if (!refinable) continue;
         std::vector<float> majorants(cellCount(macrocellsPerAxis(dimsOf(r))));
         volumeData.download(majorants.data(), majorants.size() * sizeof(float), VkDeviceSize(r.majorantOffset) * sizeof(float));

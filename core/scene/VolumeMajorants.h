@@ -16,7 +16,7 @@ struct MajorantGrids {
     uint64_t cellByCellVolumes = 0;  // volumes whose records got cellByCell = 1
 };
 
-// Fills the majorant grid of every record in `volumeData` and sets each record's cellByCell: 1 where a
+// Fills the majorant grid of every structured record in `volumeData` and sets each record's cellByCell: 1 where a
 // linearly filtered volume has a macrocell whose majorant times the longest cell edge (in world units)
 // reaches VOLUME_REFINE_DEPTH, so that some ray may cross it cell by cell (a cell crossing is at most that
 // long). The records are uploaded again to `volumes` when one changed. Waits for the device.

@@ -24,7 +24,9 @@ T resampled(const std::vector<T>& values, float x) {
     return values[i] * (1.0f - w) + values[i + 1] * w;
 }
 
-std::optional<std::string> problemOf(const Volume& v) {
+// The field's problems (an unstructured mesh was checked when it was prepared).
+std::optional<std::string> fieldProblemOf(const Volume& v) {
+    if (v.unstructured) return std::nullopt;
     const uint64_t voxels = uint64_t(v.dims.x) * v.dims.y * v.dims.z;
     if (v.dims.x == 0 || v.dims.y == 0 || v.dims.z == 0) return "a dimension is 0";
     const size_t count = v.values ? v.values->size() : 0;
@@ -37,6 +39,11 @@ std::optional<std::string> problemOf(const Volume& v) {
     if (!glm::all(glm::greaterThan(v.spacing, glm::vec3(0.0f))) || !std::isfinite(v.spacing.x + v.spacing.y + v.spacing.z))
         return "spacing is not finite and positive";
     if (!std::isfinite(v.origin.x + v.origin.y + v.origin.z)) return "origin is not finite";
+    return std::nullopt;
+}
+
+std::optional<std::string> problemOf(const Volume& v) {
+    if (std::optional<std::string> problem = fieldProblemOf(v)) return problem;
     if (!std::isfinite(v.valueRange.x) || !std::isfinite(v.valueRange.y)) return "valueRange is not finite";
     // The kernels map a value to the table by multiplying with 1 / (highest - lowest): past 1e37 that
     // reciprocal is no longer a normal float (a device may flush it to 0, and every value would read entry 0).
@@ -51,6 +58,24 @@ std::optional<std::string> problemOf(const Volume& v) {
         if (!std::isfinite(o)) return "an opacity is not finite";
     if (!affineAndInvertible(v.transform)) return "transform is not finite, affine and invertible";
     return std::nullopt;
+}
+
+// The largest extinction the table gives over values [range.x, range.y] (0 for an empty range), as the
+// kernels bound it (extinctionMax in shaders/volume.glsl): from the range-maximum table at `levelsAt`, the
+// entries from below the range's first position to above its last, raised by 1e-5.
+float extinctionMax(const gpu::VolumeRecord& r, size_t levelsAt, const std::vector<float>& data, glm::vec2 range) {
+    if (range.y < range.x) return 0.0f;
+    const float top = float(r.tableSize - 1);
+    const auto position = [&](float value) {
+        const float x = (value - r.valueRange.x) * r.valueRange.y;
+        return (x >= 0.0f ? std::min(x, 1.0f) : 0.0f) * top;
+    };
+    const float p0 = position(range.x), p1 = std::max(position(range.y), p0);
+    const uint32_t first = std::min(uint32_t(p0), r.tableSize - 1), last = std::min(uint32_t(std::ceil(p1)), r.tableSize - 1);
+    uint32_t level = 0;
+    while ((uint32_t(2) << level) <= last - first + 1) ++level;
+    const size_t at = levelsAt + size_t(level) * r.tableSize;
+    return std::max(data[at + first], data[at + last + 1 - (uint32_t(1) << level)]) * (1.0f + 1e-5f);
 }
 
 void storeRows(const glm::dmat4& m, gpu::vec4* rows) {
@@ -85,7 +110,7 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         // The kernels index the one float array with 32-bit offsets: a volume that would reach past them is
         // skipped (the majorants would otherwise be written over another volume's data).
         const size_t entries = transferTableSize(v);
-        const glm::uvec3 macroCells = macrocellsPerAxis(v.dims);
+        const glm::uvec3 macroCells = v.unstructured ? v.unstructured->macrocells : macrocellsPerAxis(v.dims);
         const uint64_t floatsNeeded = 4 * uint64_t(entries) + uint64_t(entries) * extinctionMaxLevels(entries) +
                                       uint64_t(macroCells.x) * macroCells.y * macroCells.z;
         if (table.data.size() + floatsNeeded > uint64_t(UINT32_MAX)) {
@@ -95,18 +120,23 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
             continue;
         }
         gpu::VolumeRecord record{};
+        // An unstructured mesh's grid is a virtual one over its box, of whole macrocells.
+        const glm::uvec3 dims = v.unstructured ? v.unstructured->macrocells * gpu::VOLUME_MACROCELL + 1u : v.dims;
+        const glm::vec3 origin = v.unstructured ? v.unstructured->lo : v.origin;
+        const glm::vec3 spacing = v.unstructured ? (v.unstructured->hi - v.unstructured->lo) / glm::vec3(dims - 1u) : v.spacing;
         // World -> object -> grid index space (voxel i at i).
-        const glm::dmat4 objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / glm::dvec3(v.spacing)) *
-                                        glm::translate(glm::dmat4(1.0), -glm::dvec3(v.origin));
+        const glm::dmat4 objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / glm::dvec3(spacing)) *
+                                        glm::translate(glm::dmat4(1.0), -glm::dvec3(origin));
         storeRows(objectToGrid * glm::inverse(glm::dmat4(v.transform)), record.worldToGrid);
-        const glm::uvec3 extent = v.dims - 1u;
+        const glm::uvec3 extent = dims - 1u;
         record.gridExtent = gpu::vec4(glm::vec3(extent), 0.0f);
+        record.kind = v.unstructured ? gpu::VOLUME_KIND_UNSTRUCTURED : gpu::VOLUME_KIND_STRUCTURED;
         const float lo = std::min(v.valueRange.x, v.valueRange.y), hi = std::max(v.valueRange.x, v.valueRange.y);
         record.valueRange = gpu::vec4(lo, hi > lo ? 1.0f / (hi - lo) : 0.0f, 0.0f, 0.0f);
-        record.dimX = v.dims.x;
-        record.dimY = v.dims.y;
-        record.dimZ = v.dims.z;
-        record.filterMode = v.linearFilter ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
+        record.dimX = dims.x;
+        record.dimY = dims.y;
+        record.dimZ = dims.z;
+        record.filterMode = v.linearFilter && !v.unstructured ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
         record.objectId = v.objectId;
         record.instanceId = v.instanceId;
         record.macroX = macroCells.x;
@@ -153,16 +183,20 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         }
 
         // Majorants: one float per macrocell, filled on the device once the data is uploaded
-        // (VolumeMajorants.h), which also sets cellByCell.
+        // (VolumeMajorants.h), which also sets cellByCell; an unstructured mesh's here, from the value ranges
+        // of its macrocells.
         record.majorantOffset = static_cast<uint32_t>(table.data.size());
         table.data.resize(table.data.size() + size_t(macroCells.x) * macroCells.y * macroCells.z, 0.0f);
+        if (v.unstructured)
+            for (size_t m = 0; m < v.unstructured->macrocellRanges.size(); ++m)
+                table.data[record.majorantOffset + m] = extinctionMax(record, levelsAt, table.data, v.unstructured->macrocellRanges[m]);
 
         // World bounds: the grid box's corners.
-        const glm::vec3 hiCorner = v.origin + glm::vec3(extent) * v.spacing;
+        const glm::vec3 hiCorner = origin + glm::vec3(extent) * spacing;
         bvh::Aabb box;
         for (int c = 0; c < 8; ++c) {
-            const glm::vec3 corner((c & 1) ? hiCorner.x : v.origin.x, (c & 2) ? hiCorner.y : v.origin.y,
-                                   (c & 4) ? hiCorner.z : v.origin.z);
+            const glm::vec3 corner((c & 1) ? hiCorner.x : origin.x, (c & 2) ? hiCorner.y : origin.y,
+                                   (c & 4) ? hiCorner.z : origin.z);
             box.extend(glm::vec3(v.transform * glm::vec4(corner, 1.0f)));
         }
         table.bounds.extend(box);

@@ -45,8 +45,34 @@ struct VolumeRecord {
                            // scene reuses while the field is unchanged)
     uint cellByCell;       // 1: some macrocell may be crossed cell by cell (VOLUME_REFINE_DEPTH), so the kernels
                            // take the march that can; 0: none can (set with the majorants)
-    uint pad0;
+    uint kind;             // VOLUME_KIND_*. Unstructured: `voxels` is the mesh (UnstructuredHeader and what it
+                           // indexes); the grid is a virtual one of macrocells over the mesh's box, whose
+                           // majorants the host fills (core/scene/UnstructuredGrid.h); dim* are the macrocells
+                           // times VOLUME_MACROCELL plus 1; filterMode and cellByCell are unused (0)
 };
+
+RIPPLE_CONST uint VOLUME_KIND_STRUCTURED = 0u;
+RIPPLE_CONST uint VOLUME_KIND_UNSTRUCTURED = 1u;
+
+// An unstructured mesh on the device: 32-bit words from the address VolumeRecord.voxels, this header first.
+// Positions are in the volume's grid space (the record's worldToGrid applies to rays, not to vertices).
+// Cells are in the order of the BVH's leaves; a cell's word is its first index << 2 | its shape
+// (UNSTRUCTURED_TETRAHEDRON..), whose corners are indices[first ..] in VTK's vertex order.
+struct UnstructuredHeader {
+    uint cellCount;
+    uint nodeCount;        // BvhNodes (shared/bvh.h) at nodeOffset; 0: no cell
+    uint positionOffset;   // 3 floats per vertex
+    uint valueOffset;      // a float per vertex, or per cell (in leaf order) when cellCentered
+    uint cellOffset;       // a word per cell
+    uint indexOffset;      // vertex indices
+    uint nodeOffset;       // a multiple of 4 (the nodes are read as vec4s)
+    uint cellCentered;
+};
+
+RIPPLE_CONST uint UNSTRUCTURED_TETRAHEDRON = 0u;  // VTK 10
+RIPPLE_CONST uint UNSTRUCTURED_HEXAHEDRON = 1u;   // VTK 12
+RIPPLE_CONST uint UNSTRUCTURED_WEDGE = 2u;        // VTK 13
+RIPPLE_CONST uint UNSTRUCTURED_PYRAMID = 3u;      // VTK 14
 
 // Push constants of volume_majorants.comp: the majorants of macrocells firstCell.. of one volume.
 struct MajorantParams {

@@ -56,6 +56,15 @@ int scalarTypeOf(ANARIDataType type) {
     return scalar;
 }
 
+// The array's elements as floats times `scale`, at least `lowest`.
+template <class T>
+std::vector<float> scaled(const Array& array, double scale, double lowest) {
+    const std::span<const T> in = array.as<T>();
+    std::vector<float> out(in.size());
+    for (size_t i = 0; i < in.size(); ++i) out[i] = float(std::max(double(in[i]) * scale, lowest));
+    return out;
+}
+
 }  // namespace
 
 int componentCount(ANARIDataType elementType) {
@@ -104,6 +113,18 @@ std::optional<std::vector<uint64_t>> readIndices(const Array& array, int compone
         indices[i] = raw;
     }
     return indices;
+}
+
+std::optional<std::vector<float>> readScalars(const Array& array) {
+    const double none = -std::numeric_limits<double>::max();
+    switch (array.elementType()) {
+        case ANARI_UFIXED8: return scaled<uint8_t>(array, 1.0 / 255.0, none);
+        case ANARI_UFIXED16: return scaled<uint16_t>(array, 1.0 / 65535.0, none);
+        case ANARI_FIXED16: return scaled<int16_t>(array, 1.0 / 32767.0, -1.0);
+        case ANARI_FLOAT32: return scaled<float>(array, 1.0, none);
+        case ANARI_FLOAT64: return scaled<double>(array, 1.0, none);
+        default: return std::nullopt;
+    }
 }
 
 }  // namespace ripple::device

@@ -20,6 +20,10 @@ int componentCount(ANARIDataType elementType);
 // [0,1], FIXED to [-1,1], sRGB bytes are decoded to linear. nullopt when the type is not numeric.
 std::optional<std::vector<glm::vec4>> readFloatVectors(const Array& array, glm::vec4 fill = {0, 0, 0, 1});
 
+// The samples of a spatial field: UFIXED8 and UFIXED16 normalised to [0, 1], FIXED16 to [-1, 1], FLOAT32
+// and FLOAT64 as they are; nullopt for any other element type.
+std::optional<std::vector<float>> readScalars(const Array& array);
+
 // Elements as unsigned integers (indices), flattened: an array of UINT32_VEC3 of n elements gives 3n
 // values. Accepts 8- to 64-bit signed and unsigned integers with exactly `components` components; a
 // negative value becomes UINT64_MAX so the caller's range check rejects it. nullopt for other types.

@@ -1,42 +1,21 @@
-// ANARI spatial field "structuredRegular" (KHR_SPATIAL_FIELD_STRUCTURED_REGULAR): a 3D array of
-// cell-vertex samples ("data": UFIXED8, FIXED16, UFIXED16 normalised as the spec says, FLOAT32, FLOAT64)
-// at origin + index * spacing, filtered "linear" or "nearest". Volumes (Volume.h) read it.
+// ANARI spatial fields: what a volume (Volume.h) draws through its transfer function. Subtypes
+// "structuredRegular" (StructuredRegularField.h) and "unstructured" (UnstructuredField.h).
 #pragma once
 
 #include "anari/device/scene/SceneObject.h"
 #include "core/bvh/Aabb.h"
-
-#include <glm/glm.hpp>
-
-#include <memory>
-#include <vector>
+#include "core/scene/SceneDescription.h"
 
 namespace ripple::device {
 
-class SpatialField final : public SceneObject {
+class SpatialField : public SceneObject {
 public:
-    explicit SpatialField(DeviceState& state) : SceneObject(state, ANARI_SPATIAL_FIELD, "structuredRegular") {}
+    SpatialField(DeviceState& state, const char* subtype) : SceneObject(state, ANARI_SPATIAL_FIELD, subtype) {}
 
-    void commit() override;
-
-    glm::uvec3 dims() const { return dims_; }
-    // x fastest; empty when the field is not valid. A commit makes a new array (a scene being built or
-    // rendered keeps the one it took: sharedValues).
-    const std::vector<float>& values() const { return values_ ? *values_ : kNoValues; }
-    std::shared_ptr<const std::vector<float>> sharedValues() const { return values_; }
-    glm::vec3 origin() const { return origin_; }
-    glm::vec3 spacing() const { return spacing_; }
-    bool linearFilter() const { return linearFilter_; }
-    // Object-space box the samples span; empty when the field is not valid.
-    bvh::Aabb bounds() const;
-
-private:
-    glm::uvec3 dims_{0};
-    static inline const std::vector<float> kNoValues;
-    std::shared_ptr<const std::vector<float>> values_;
-    glm::vec3 origin_{0.0f};
-    glm::vec3 spacing_{1.0f};
-    bool linearFilter_ = true;
+    // Object-space box the field spans; empty when the field is not valid.
+    virtual bvh::Aabb bounds() const = 0;
+    // Sets the field's part of `volume` (its samples, or its mesh, and their identity).
+    virtual void describe(core::Volume& volume) const = 0;
 };
 
 }  // namespace ripple::device

@@ -117,13 +117,7 @@ void Volume::commit() {
 core::Volume Volume::volume() const {
     core::Volume v;
     if (!field_) return v;
-    v.dims = field_->dims();
-    v.values = field_->sharedValues();
-    // The voxels change only when the field is committed: a later scene reuses their device buffer.
-    v.voxelIdentity = {reinterpret_cast<uintptr_t>(field_), field_->lastCommitted()};
-    v.origin = field_->origin();
-    v.spacing = field_->spacing();
-    v.linearFilter = field_->linearFilter();
+    field_->describe(v);
     v.valueRange = valueRange_;
     v.colors = colors_;
     v.opacities = opacities_;

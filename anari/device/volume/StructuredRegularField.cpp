@@ -1,7 +1,8 @@
 // Spatial field "structuredRegular": the voxels converted to float32 once, at commit.
-#include "anari/device/volume/SpatialField.h"
+#include "anari/device/volume/StructuredRegularField.h"
 
 #include "anari/device/object/ArrayChecks.h"
+#include "anari/device/scene/ArrayConversion.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,32 +10,7 @@
 #include <string>
 
 namespace ripple::device {
-namespace {
-
-// The array's elements as floats, normalised as the spec says for the fixed-point types (UFIXED to
-// [0, 1], FIXED16 to [-1, 1]); false for an element type the field does not take.
-template <class T>
-void convert(const Array& array, std::vector<float>& out, double scale, double lowest) {
-    const std::span<const T> in = array.as<T>();
-    out.resize(in.size());
-    for (size_t i = 0; i < in.size(); ++i) out[i] = float(std::max(double(in[i]) * scale, lowest));
-}
-
-bool convertVoxels(const Array& array, std::vector<float>& out) {
-    const double none = -std::numeric_limits<double>::max();
-    switch (array.elementType()) {
-        case ANARI_UFIXED8: convert<uint8_t>(array, out, 1.0 / 255.0, none); return true;
-        case ANARI_UFIXED16: convert<uint16_t>(array, out, 1.0 / 65535.0, none); return true;
-        case ANARI_FIXED16: convert<int16_t>(array, out, 1.0 / 32767.0, -1.0); return true;
-        case ANARI_FLOAT32: convert<float>(array, out, 1.0, none); return true;
-        case ANARI_FLOAT64: convert<double>(array, out, 1.0, none); return true;
-        default: return false;
-    }
-}
-
-}  // namespace
-
-void SpatialField::commit() {
+void StructuredRegularField::commit() {
     forgetDependencies();
     values_.reset();
     dims_ = glm::uvec3(0);
@@ -50,12 +26,13 @@ void SpatialField::commit() {
                    std::to_string(dims.z) + ")");
         return;
     }
-    std::vector<float> values;
-    if (!convertVoxels(*data, values)) {
+    std::optional<std::vector<float>> converted = readScalars(*data);
+    if (!converted) {
         invalidate(std::string("parameter 'data' has element type ") + ripple_anari::typeName(data->elementType()) +
                    "; a structuredRegular field takes UFIXED8, FIXED16, UFIXED16, FLOAT32 or FLOAT64");
         return;
     }
+    std::vector<float>& values = *converted;
     for (size_t i = 0; i < values.size(); ++i)
         if (!std::isfinite(values[i])) {
             invalidate("parameter 'data' element " + std::to_string(i) + " is not finite");
@@ -76,12 +53,22 @@ void SpatialField::commit() {
     linearFilter_ = filter != "nearest";
 }
 
-bvh::Aabb SpatialField::bounds() const {
+bvh::Aabb StructuredRegularField::bounds() const {
     bvh::Aabb box;
     if (!isValid() || values().empty()) return box;
     box.extend(origin_);
     box.extend(origin_ + glm::vec3(dims_ - 1u) * spacing_);
     return box;
+}
+
+void StructuredRegularField::describe(core::Volume& v) const {
+    v.dims = dims_;
+    v.values = values_;
+    // The voxels change only when the field is committed: a later scene reuses their device buffer.
+    v.voxelIdentity = {reinterpret_cast<uintptr_t>(this), lastCommitted()};
+    v.origin = origin_;
+    v.spacing = spacing_;
+    v.linearFilter = linearFilter_;
 }
 
 }  // namespace ripple::device

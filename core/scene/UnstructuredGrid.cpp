@@ -1,0 +1,237 @@
+// Checking and packing unstructured meshes for the kernels (see UnstructuredGrid.h).
+#include "core/scene/UnstructuredGrid.h"
+
+#include "core/bvh/BinnedSahBuilder.h"
+#include "shaders/shared/volume.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+namespace ripple::core {
+
+namespace {
+
+using glm::dvec3;
+
+constexpr uint32_t kMaxIndices = uint32_t(1) << 30;  // a cell's word keeps its first index in 30 bits
+constexpr uint32_t kLeafCells = 4;                    // point location tests every cell of a leaf
+
+uint32_t shapeOf(uint8_t type) {
+    switch (type) {
+        case 10: return gpu::UNSTRUCTURED_TETRAHEDRON;
+        case 12: return gpu::UNSTRUCTURED_HEXAHEDRON;
+        case 13: return gpu::UNSTRUCTURED_WEDGE;
+        default: return gpu::UNSTRUCTURED_PYRAMID;
+    }
+}
+
+double det(const dvec3& a, const dvec3& b, const dvec3& c) { return glm::dot(a, glm::cross(b, c)); }
+
+// The Jacobian determinant of the cell's map from its parametric space (shaders/unstructured.glsl) at an
+// inner point: its sign is the cell's orientation, positive for VTK's vertex order (VTK orders a wedge's
+// first triangle with its normal pointing away from the second, hence the sign flip there).
+double orientedVolume(uint8_t type, const dvec3* x) {
+    switch (type) {
+        case 10: return det(x[1] - x[0], x[2] - x[0], x[3] - x[0]);
+        case 12:
+            return det(0.25 * ((x[1] - x[0]) + (x[2] - x[3]) + (x[5] - x[4]) + (x[6] - x[7])),
+                       0.25 * ((x[3] - x[0]) + (x[2] - x[1]) + (x[7] - x[4]) + (x[6] - x[5])),
+                       0.25 * ((x[4] - x[0]) + (x[5] - x[1]) + (x[6] - x[2]) + (x[7] - x[3])));
+        case 13: {
+            const double third = 1.0 / 3.0;
+            return -det(0.5 * ((x[1] - x[0]) + (x[4] - x[3])), 0.5 * ((x[2] - x[0]) + (x[5] - x[3])),
+                        third * ((x[3] - x[0]) + (x[4] - x[1]) + (x[5] - x[2])));
+        }
+        default: {
+            const dvec3 base = 0.25 * (x[0] + x[1] + x[2] + x[3]);
+            return det(0.5 * ((x[1] - x[0]) + (x[2] - x[3])), 0.5 * ((x[3] - x[0]) + (x[2] - x[1])), x[4] - base);
+        }
+    }
+}
+
+void pushFloat(std::vector<uint32_t>& words, float f) {
+    uint32_t bits = 0;
+    std::memcpy(&bits, &f, sizeof bits);
+    words.push_back(bits);
+}
+
+// Macrocells per axis over a box of `extent`: about one per two cells, cubes as far as the box allows,
+// between 1 and 256 per axis.
+glm::uvec3 macrocellCounts(glm::dvec3 extent, uint64_t cells) {
+    const double longest = std::max({extent.x, extent.y, extent.z});
+    const dvec3 e = glm::max(extent, dvec3(longest * 1e-3));
+    const double target = std::clamp(double(cells) * 8.0, 1.0, double(1 << 21));
+    const double side = std::cbrt(e.x * e.y * e.z / target);
+    glm::uvec3 counts;
+    for (int a = 0; a < 3; ++a) counts[a] = uint32_t(std::clamp(std::round(e[a] / side), 1.0, 256.0));
+    return counts;
+}
+
+std::string cellName(uint64_t c) { return "cell " + std::to_string(c); }
+
+}  // namespace
+
+uint32_t unstructuredCorners(uint8_t type) {
+    switch (type) {
+        case 10: return 4;
+        case 12: return 8;
+        case 13: return 6;
+        case 14: return 5;
+        default: return 0;
+    }
+}
+
+std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const UnstructuredCells& cells) {
+    const size_t vertexCount = cells.positions.size(), cellCount = cells.cellType.size();
+    if (vertexCount == 0) throw std::invalid_argument("no vertices");
+    if (cellCount == 0) throw std::invalid_argument("no cells");
+    if (cells.cellIndex.size() != cellCount)
+        throw std::invalid_argument(std::to_string(cells.cellIndex.size()) + " cell indices for " + std::to_string(cellCount) +
+                                    " cell types");
+    const size_t valueCount = cells.cellCentered ? cellCount : vertexCount;
+    if (cells.values.size() != valueCount)
+        throw std::invalid_argument(std::to_string(cells.values.size()) + " values for " + std::to_string(valueCount) +
+                                    (cells.cellCentered ? " cells" : " vertices"));
+    if (cells.index.size() >= kMaxIndices)
+        throw std::invalid_argument(std::to_string(cells.index.size()) + " indices, more than 2^30");
+    for (size_t v = 0; v < vertexCount; ++v) {
+        const glm::vec3 p = cells.positions[v];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            throw std::invalid_argument("vertex " + std::to_string(v) + "'s position is not finite");
+    }
+    for (size_t i = 0; i < valueCount; ++i)
+        if (!std::isfinite(cells.values[i]))
+            throw std::invalid_argument((cells.cellCentered ? "cell " : "vertex ") + std::to_string(i) + "'s value is not finite");
+    for (size_t i = 0; i < cells.index.size(); ++i)
+        if (cells.index[i] >= vertexCount)
+            throw std::invalid_argument("index " + std::to_string(i) + " is " + std::to_string(cells.index[i]) + ", past the " +
+                                        std::to_string(vertexCount) + " vertices");
+
+    auto grid = std::make_shared<UnstructuredGrid>();
+    std::vector<uint32_t> kept;
+    std::vector<bvh::Aabb> boxes;
+    bvh::Aabb whole;
+    uint64_t firstDegenerate = 0, firstInverted = 0;
+    for (size_t c = 0; c < cellCount; ++c) {
+        const uint8_t type = cells.cellType[c];
+        const uint32_t corners = unstructuredCorners(type);
+        if (corners == 0)
+            throw std::invalid_argument(cellName(c) + " has type " + std::to_string(type) +
+                                        "; Ripple takes 10 (tetrahedron), 12 (hexahedron), 13 (wedge) and 14 (pyramid)");
+        if (uint64_t(cells.cellIndex[c]) + corners > cells.index.size())
+            throw std::invalid_argument(cellName(c) + "'s " + std::to_string(corners) + " indices from " +
+                                        std::to_string(cells.cellIndex[c]) + " run past the " +
+                                        std::to_string(cells.index.size()) + " of the index array");
+        dvec3 x[8];
+        bvh::Aabb box;
+        for (uint32_t k = 0; k < corners; ++k) {
+            const glm::vec3 p = cells.positions[cells.index[cells.cellIndex[c] + k]];
+            x[k] = dvec3(p);
+            box.extend(p);
+        }
+        const double volume = orientedVolume(type, x);
+        const dvec3 extent = dvec3(box.hi) - dvec3(box.lo);
+        // Zero volume, relative to the cell's box (so that thin cells of any scale and aspect are kept):
+        // no point is inside it, and its inverse map is singular.
+        if (!(std::abs(volume) > 1e-12 * extent.x * extent.y * extent.z) || !(extent.x * extent.y * extent.z > 0.0)) {
+            if (grid->degenerateCells++ == 0) firstDegenerate = c;
+            continue;
+        }
+        if (volume < 0.0 && grid->invertedCells++ == 0) firstInverted = c;
+        kept.push_back(uint32_t(c));
+        boxes.push_back(box);
+        whole.extend(box);
+    }
+    if (grid->degenerateCells)
+        grid->warnings.push_back(std::to_string(grid->degenerateCells) + " cell(s) of zero volume dropped (the first is " +
+                                 cellName(firstDegenerate) + ")");
+    if (grid->invertedCells)
+        grid->warnings.push_back(std::to_string(grid->invertedCells) + " cell(s) with corners in the order opposite to VTK's "
+                                 "(inverted; rendered as given, the first is " + cellName(firstInverted) + ")");
+    if (kept.empty()) throw std::invalid_argument("no cell has volume (all " + std::to_string(cellCount) + " are degenerate)");
+    grid->cellsKept = kept.size();
+    grid->lo = whole.lo;
+    grid->hi = whole.hi;
+
+    // Grid space: [lo, hi] onto [0, 8 * macrocells] per axis.
+    const dvec3 extent = dvec3(whole.hi) - dvec3(whole.lo);
+    grid->macrocells = macrocellCounts(extent, kept.size());
+    const dvec3 scale = dvec3(grid->macrocells) * double(gpu::VOLUME_MACROCELL) / extent;
+    const auto toGrid = [&](glm::vec3 p) { return glm::vec3((dvec3(p) - dvec3(whole.lo)) * scale); };
+    for (bvh::Aabb& box : boxes) box = bvh::Aabb{toGrid(box.lo), toGrid(box.hi)};
+
+    bvh::BuildOptions options;
+    options.maxLeafSize = kLeafCells;
+    const bvh::Bvh tree = bvh::buildBinnedSah(boxes, options);
+    grid->bvhDepth = tree.depth;
+
+    // The value range of each macrocell, over the cells whose boxes overlap it: an interpolated value lies
+    // between its cell's lowest and highest corner values (every shape function is non-negative inside).
+    const glm::uvec3 m = grid->macrocells;
+    grid->macrocellRanges.assign(size_t(m.x) * m.y * m.z, glm::vec2(INFINITY, -INFINITY));
+    grid->valueRange = glm::vec2(INFINITY, -INFINITY);
+    std::vector<glm::vec2> cellRanges(kept.size());
+    for (size_t k = 0; k < kept.size(); ++k) {
+        const uint32_t c = kept[k];
+        glm::vec2 range(INFINITY, -INFINITY);
+        if (cells.cellCentered) {
+            range = glm::vec2(cells.values[c]);
+        } else {
+            for (uint32_t j = 0; j < unstructuredCorners(cells.cellType[c]); ++j) {
+                const float value = cells.values[cells.index[cells.cellIndex[c] + j]];
+                range = glm::vec2(std::min(range.x, value), std::max(range.y, value));
+            }
+        }
+        cellRanges[k] = range;
+        grid->valueRange = glm::vec2(std::min(grid->valueRange.x, range.x), std::max(grid->valueRange.y, range.y));
+        const float size = float(gpu::VOLUME_MACROCELL);
+        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(boxes[k].lo / size, 0.0f)), m - 1u);
+        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(boxes[k].hi / size, 0.0f)), m - 1u);
+        for (uint32_t z = first.z; z <= last.z; ++z)
+            for (uint32_t y = first.y; y <= last.y; ++y)
+                for (uint32_t x = first.x; x <= last.x; ++x) {
+                    glm::vec2& r = grid->macrocellRanges[(size_t(z) * m.y + y) * m.x + x];
+                    r = glm::vec2(std::min(r.x, range.x), std::max(r.y, range.y));
+                }
+    }
+
+    // The words: header, positions (grid space), values, cells in leaf order, indices, nodes.
+    std::vector<uint32_t>& words = grid->words;
+    gpu::UnstructuredHeader header{};
+    header.cellCount = uint32_t(kept.size());
+    header.nodeCount = uint32_t(tree.nodes.size());
+    header.cellCentered = cells.cellCentered ? 1u : 0u;
+    words.resize(sizeof(header) / sizeof(uint32_t));
+    header.positionOffset = uint32_t(words.size());
+    for (const glm::vec3& p : cells.positions) {
+        const glm::vec3 g = toGrid(p);
+        pushFloat(words, g.x);
+        pushFloat(words, g.y);
+        pushFloat(words, g.z);
+    }
+    header.valueOffset = uint32_t(words.size());
+    if (cells.cellCentered)
+        for (uint32_t slot : tree.primOrder) pushFloat(words, cells.values[kept[slot]]);
+    else
+        for (float value : cells.values) pushFloat(words, value);
+    header.cellOffset = uint32_t(words.size());
+    for (uint32_t slot : tree.primOrder) {
+        const uint32_t c = kept[slot];
+        words.push_back(cells.cellIndex[c] << 2 | shapeOf(cells.cellType[c]));
+    }
+    header.indexOffset = uint32_t(words.size());
+    words.insert(words.end(), cells.index.begin(), cells.index.end());
+    words.resize((words.size() + 3) / 4 * 4);
+    header.nodeOffset = uint32_t(words.size());
+    const size_t nodeWords = tree.nodes.size() * sizeof(gpu::BvhNode) / sizeof(uint32_t);
+    if (uint64_t(words.size()) + nodeWords > uint64_t(UINT32_MAX))
+        throw std::invalid_argument("the mesh needs more than 2^32 words on the device");
+    words.resize(words.size() + nodeWords);
+    std::memcpy(words.data() + header.nodeOffset, tree.nodes.data(), nodeWords * sizeof(uint32_t));
+    std::memcpy(words.data(), &header, sizeof(header));
+    return grid;
+}
+
+}  // namespace ripple::core

@@ -1,0 +1,173 @@
+// Unstructured meshes (shared/volume.h UnstructuredHeader, packed by core/scene/UnstructuredGrid.cpp): the
+// field at a point, found by descending the BVH over the cells to the cells whose boxes hold the point and
+// solving each one's map from its parametric space for the point. Tetrahedra: barycentric coordinates,
+// exact. Hexahedra (trilinear), wedges (linear triangle times linear) and pyramids (bilinear base collapsing
+// linearly to the apex): Newton's method on the map itself, so curved (non-planar) faces are where the
+// interpolant puts them, and a point is inside when its parametric coordinates are in the reference cell and
+// the map reproduces it. The value is the shape functions' blend of the corner values, or the cell's own
+// value when the field is cell-centred (piecewise constant).
+#ifndef RIPPLE_UNSTRUCTURED_GLSL
+#define RIPPLE_UNSTRUCTURED_GLSL
+
+#include "shared/bvh.h"
+#include "shared/volume.h"
+
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer MeshWordsRef { uint words[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MeshNodesRef { BvhNode nodes[]; };
+
+// Parametric tolerance of the inside test (so that points on a shared face are in both cells), and the
+// Newton iterations a hexahedron, wedge or pyramid may take.
+const float UNSTRUCTURED_INSIDE_EPSILON = 1e-5;
+const uint UNSTRUCTURED_NEWTON_STEPS = 16u;
+
+vec3 meshPosition(MeshWordsRef m, UnstructuredHeader h, uint vertex) {
+    uint at = h.positionOffset + 3u * vertex;
+    return vec3(uintBitsToFloat(m.words[at]), uintBitsToFloat(m.words[at + 1u]), uintBitsToFloat(m.words[at + 2u]));
+}
+
+// Shape functions of a hexahedron, wedge or pyramid at parametric point q, with their gradients.
+void shapeFunctions(uint shape, vec3 q, out float n[8], out vec3 dn[8]) {
+    float r = q.x, s = q.y, t = q.z;
+    for (int k = 0; k < 8; ++k) {
+        n[k] = 0.0;
+        dn[k] = vec3(0.0);
+    }
+    if (shape == UNSTRUCTURED_WEDGE) {
+        float u = 1.0 - r - s;
+        n[0] = u * (1.0 - t); n[1] = r * (1.0 - t); n[2] = s * (1.0 - t);
+        n[3] = u * t;         n[4] = r * t;         n[5] = s * t;
+        dn[0] = vec3(-(1.0 - t), -(1.0 - t), -u); dn[1] = vec3(1.0 - t, 0.0, -r); dn[2] = vec3(0.0, 1.0 - t, -s);
+        dn[3] = vec3(-t, -t, u);                  dn[4] = vec3(t, 0.0, r);        dn[5] = vec3(0.0, t, s);
+        return;
+    }
+    // The bilinear base (of the bottom face, and for a hexahedron also of the top).
+    float b[4] = float[4]((1.0 - r) * (1.0 - s), r * (1.0 - s), r * s, (1.0 - r) * s);
+    vec2 db[4] = vec2[4](vec2(-(1.0 - s), -(1.0 - r)), vec2(1.0 - s, -r), vec2(s, r), vec2(-s, 1.0 - r));
+    for (int k = 0; k < 4; ++k) {
+        n[k] = b[k] * (1.0 - t);
+        dn[k] = vec3(db[k] * (1.0 - t), -b[k]);
+        if (shape == UNSTRUCTURED_HEXAHEDRON) {
+            n[k + 4] = b[k] * t;
+            dn[k + 4] = vec3(db[k] * t, b[k]);
+        }
+    }
+    if (shape == UNSTRUCTURED_PYRAMID) {
+        n[4] = t;
+        dn[4] = vec3(0.0, 0.0, 1.0);
+    }
+}
+
+bool insideReference(uint shape, vec3 q) {
+    const float e = UNSTRUCTURED_INSIDE_EPSILON;
+    bool box = all(greaterThanEqual(q, vec3(-e))) && all(lessThanEqual(q, vec3(1.0 + e)));
+    return shape == UNSTRUCTURED_WEDGE ? box && q.x + q.y <= 1.0 + e : box;
+}
+
+// Whether grid-space point p lies in leaf-order cell `cell`, and the field's value there.
+bool cellValue(MeshWordsRef m, UnstructuredHeader h, uint cell, vec3 p, out float value) {
+    value = 0.0;
+    uint word = m.words[h.cellOffset + cell];
+    uint shape = word & 3u, first = h.indexOffset + (word >> 2u);
+    uint corners = shape == UNSTRUCTURED_TETRAHEDRON ? 4u : shape == UNSTRUCTURED_HEXAHEDRON ? 8u
+                 : shape == UNSTRUCTURED_WEDGE ? 6u : 5u;
+    uint vertex[8];
+    vec3 x[8];
+    for (uint k = 0u; k < 8u; ++k) {
+        vertex[k] = k < corners ? m.words[first + k] : 0u;
+        x[k] = k < corners ? meshPosition(m, h, vertex[k]) : vec3(0.0);
+    }
+    float weight[8];
+    if (shape == UNSTRUCTURED_TETRAHEDRON) {
+        // Barycentric: p = x0 + mat3(x1 - x0, x2 - x0, x3 - x0) b. A cell of no volume was dropped on the host;
+        // a nearly flat one gives a huge or NaN b, which fails the test.
+        vec3 b = inverse(mat3(x[1] - x[0], x[2] - x[0], x[3] - x[0])) * (p - x[0]);
+        const float e = UNSTRUCTURED_INSIDE_EPSILON;
+        if (!(all(greaterThanEqual(b, vec3(-e))) && b.x + b.y + b.z <= 1.0 + e)) return false;
+        weight = float[8](1.0 - b.x - b.y - b.z, b.x, b.y, b.z, 0.0, 0.0, 0.0, 0.0);
+    } else {
+        // Newton's method from the reference cell's centre, kept near the cell (a point outside may have
+        // no preimage); the cell's size scales the residual test.
+        vec3 q = shape == UNSTRUCTURED_WEDGE ? vec3(1.0 / 3.0, 1.0 / 3.0, 0.5) : vec3(0.5, 0.5, shape == UNSTRUCTURED_PYRAMID ? 0.25 : 0.5);
+        vec3 lo = x[0], hi = x[0];
+        for (uint k = 1u; k < corners; ++k) {
+            lo = min(lo, x[k]);
+            hi = max(hi, x[k]);
+        }
+        float size = max(hi.x - lo.x, max(hi.y - lo.y, hi.z - lo.z));
+        float n[8];
+        vec3 dn[8];
+        vec3 residual = vec3(INFINITY);
+        for (uint step = 0u; step < UNSTRUCTURED_NEWTON_STEPS; ++step) {
+            shapeFunctions(shape, q, n, dn);
+            vec3 f = -p;
+            mat3 jacobian = mat3(0.0);
+            for (uint k = 0u; k < corners; ++k) {
+                f += n[k] * x[k];
+                jacobian += outerProduct(x[k], dn[k]);
+            }
+            residual = f;
+            vec3 dq = inverse(jacobian) * f;
+            if (any(isnan(dq)) || any(isinf(dq))) return false;
+            q = clamp(q - dq, vec3(-0.5), vec3(1.5));
+            if (dot(dq, dq) < 1e-14) break;
+        }
+        shapeFunctions(shape, q, n, dn);
+        residual = -p;
+        for (uint k = 0u; k < corners; ++k) residual += n[k] * x[k];
+        if (!insideReference(shape, q) || !(length(residual) <= 1e-4 * size)) return false;
+        weight = n;
+    }
+    if (h.cellCentered != 0u) {
+        value = uintBitsToFloat(m.words[h.valueOffset + cell]);
+    } else {
+        for (uint k = 0u; k < corners; ++k) value += weight[k] * uintBitsToFloat(m.words[h.valueOffset + vertex[k]]);
+    }
+    return true;
+}
+
+bool boxHolds(vec4 lo, vec4 hi, vec3 p) {
+    return all(greaterThanEqual(p, lo.xyz)) && all(lessThanEqual(p, hi.xyz));
+}
+
+// The field of the mesh at `mesh` (a device address) at grid-space point p: false where no cell holds p.
+bool unstructuredValue(uint64_t mesh, vec3 p, out float value) {
+    value = 0.0;
+    MeshWordsRef m = MeshWordsRef(mesh);
+    UnstructuredHeader h = UnstructuredHeader(m.words[0], m.words[1], m.words[2], m.words[3], m.words[4], m.words[5],
+                                              m.words[6], m.words[7]);
+    if (h.nodeCount == 0u) return false;
+    MeshNodesRef nodes = MeshNodesRef(mesh + 4ul * uint64_t(h.nodeOffset));
+    uint stack[BVH_MAX_DEPTH];
+    uint top = 0u;
+    uint node = 0u;
+    // Nodes visited, bounded (the tree has nodeCount of them); lavapipe ends any one loop after 65,535
+    // iterations, so the walk is two nested loops.
+    for (uint chunk = 0u; chunk < 64u; ++chunk) {
+        for (uint visit = 0u; visit < 32768u; ++visit) {
+            BvhNode n = nodes.nodes[node];
+            bool descended = false;
+            for (int side = 0; side < 2; ++side) {
+                vec4 lo = side == 0 ? n.leftMin : n.rightMin, hi = side == 0 ? n.leftMax : n.rightMax;
+                uint ref = floatBitsToUint(lo.w), count = floatBitsToUint(hi.w);
+                if (count == 0u && ref == 0u) continue;  // empty child (a tree of one leaf)
+                if (!boxHolds(lo, hi, p)) continue;
+                if (count > 0u) {
+                    for (uint c = ref; c < ref + count; ++c)
+                        if (cellValue(m, h, c, p, value)) return true;
+                } else if (!descended) {
+                    node = ref;
+                    descended = true;
+                } else if (top < BVH_MAX_DEPTH) {
+                    stack[top++] = ref;
+                }
+            }
+            if (!descended) {
+                if (top == 0u) return false;
+                node = stack[--top];
+            }
+        }
+    }
+    return false;
+}
+
+#endif

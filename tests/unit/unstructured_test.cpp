@@ -1,0 +1,432 @@
+// Unstructured volumes (core/scene/UnstructuredGrid, shaders/unstructured.glsl) against analytic answers: a
+// box cut into tetrahedra, hexahedra, wedges and pyramids with a constant field lets exp(-sigma L) through,
+// at extinctions 1e-6 to 1e6 (the box's aspect ratio then reaches 10^6); a linear field (the ramp of
+// volume_test.cpp) is interpolated exactly by every cell shape; the same nodal field on hexahedra and as a
+// structuredRegular grid gives the same image; degenerate and inverted cells are reported and never give a
+// NaN or a hole; broken meshes are refused by name. Metric: the mean over the pixels (or over blocks of
+// them), within 1% (relative) plus 4 standard errors of the sample noise.
+#include "core/scene/UnstructuredGrid.h"
+#include "core/scene/UnstructuredIsosurface.h"
+#include "core/vk/Buffer.h"
+#include "core/vk/ComputePipeline.h"
+#include "shaders/test_unstructured_probe.spv.h"
+#include "tests/support/RenderHelpers.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+#include <optional>
+#include <stdexcept>
+
+using namespace ripple;
+
+namespace {
+
+enum class Shape { Tetrahedra, Hexahedra, Wedges, Pyramids };
+const char* nameOf(Shape s) {
+    return s == Shape::Tetrahedra ? "tetrahedra" : s == Shape::Hexahedra ? "hexahedra" : s == Shape::Wedges ? "wedges" : "pyramids";
+}
+
+// The box [-1, 1]^2 x [0, depth] as n^3 hexahedra, each cut into `shape` cells with VTK's orientation;
+// values f(position) per vertex.
+template <class F>
+core::UnstructuredCells boxMesh(Shape shape, uint32_t n, float depth, F f) {
+    core::UnstructuredCells mesh;
+    const auto vertexAt = [&](uint32_t i, uint32_t j, uint32_t k) { return (k * (n + 1) + j) * (n + 1) + i; };
+    for (uint32_t k = 0; k <= n; ++k)
+        for (uint32_t j = 0; j <= n; ++j)
+            for (uint32_t i = 0; i <= n; ++i)
+                mesh.positions.push_back({-1.0f + 2.0f * float(i) / float(n), -1.0f + 2.0f * float(j) / float(n), depth * float(k) / float(n)});
+    const auto cell = [&](uint8_t type, std::initializer_list<uint32_t> corners) {
+        mesh.cellIndex.push_back(uint32_t(mesh.index.size()));
+        mesh.cellType.push_back(type);
+        mesh.index.insert(mesh.index.end(), corners);
+    };
+    for (uint32_t k = 0; k < n; ++k)
+        for (uint32_t j = 0; j < n; ++j)
+            for (uint32_t i = 0; i < n; ++i) {
+                // VTK's hexahedron order: the bottom face counter-clockwise seen from above, then the top.
+                const uint32_t h[8] = {vertexAt(i, j, k),         vertexAt(i + 1, j, k),         vertexAt(i + 1, j + 1, k),
+                                       vertexAt(i, j + 1, k),     vertexAt(i, j, k + 1),         vertexAt(i + 1, j, k + 1),
+                                       vertexAt(i + 1, j + 1, k + 1), vertexAt(i, j + 1, k + 1)};
+                switch (shape) {
+                    case Shape::Hexahedra: cell(12, {h[0], h[1], h[2], h[3], h[4], h[5], h[6], h[7]}); break;
+                    case Shape::Tetrahedra:  // six around the diagonal 0-6, each with 0, 1, 2 counter-clockwise seen from 3
+                        cell(10, {h[0], h[1], h[2], h[6]});
+                        cell(10, {h[0], h[2], h[3], h[6]});
+                        cell(10, {h[0], h[3], h[7], h[6]});
+                        cell(10, {h[0], h[7], h[4], h[6]});
+                        cell(10, {h[0], h[4], h[5], h[6]});
+                        cell(10, {h[0], h[5], h[1], h[6]});
+                        break;
+                    case Shape::Wedges:  // two, split along the diagonal 0-2; the first triangle faces away from the second
+                        cell(13, {h[0], h[2], h[1], h[4], h[6], h[5]});
+                        cell(13, {h[0], h[3], h[2], h[4], h[7], h[6]});
+                        break;
+                    case Shape::Pyramids: {  // six, one per face, with their apex at the centre
+                        const uint32_t centre = uint32_t(mesh.positions.size());
+                        glm::vec3 c(0.0f);
+                        for (uint32_t v : h) c += mesh.positions[v] / 8.0f;
+                        mesh.positions.push_back(c);
+                        for (const auto& face : {std::array{0, 1, 2, 3}, std::array{7, 6, 5, 4}, std::array{4, 5, 1, 0},
+                                              std::array{5, 6, 2, 1}, std::array{6, 7, 3, 2}, std::array{7, 4, 0, 3}})
+                            cell(14, {h[face[0]], h[face[1]], h[face[2]], h[face[3]], centre});
+                        break;
+                    }
+                }
+            }
+    for (const glm::vec3& p : mesh.positions) mesh.values.push_back(f(p));
+    return mesh;
+}
+
+core::Volume meshVolume(const core::UnstructuredCells& mesh, float opacity0, float opacity1, float unitDistance, glm::vec3 albedo) {
+    core::Volume v;
+    v.unstructured = core::prepareUnstructuredGrid(mesh);
+    v.valueRange = {0.0f, 1.0f};
+    v.colors = {albedo};
+    v.opacities = {opacity0, opacity1};
+    v.unitDistance = unitDistance;
+    return v;
+}
+
+struct Mean {
+    double mean = 0.0;
+    double standardError = 0.0;
+};
+
+// The red channel's mean over pixels [x0, x1) x [y0, y1) of a `width`-wide image (all of it by default).
+Mean meanRed(const test::Rendered& image, uint32_t width = 0, glm::uvec4 block = glm::uvec4(0)) {
+    double sum = 0.0, sumSquares = 0.0, n = 0.0;
+    for (size_t p = 0; p < image.color.size(); ++p) {
+        if (width) {
+            const uint32_t x = uint32_t(p % width), y = uint32_t(p / width);
+            if (x < block.x || x >= block.y || y < block.z || y >= block.w) continue;
+        }
+        const double r = image.color[p].r;
+        if (!std::isfinite(r)) return {NAN, NAN};
+        sum += r;
+        sumSquares += r * r;
+        n += 1.0;
+    }
+    const double mean = sum / n;
+    return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / n)};
+}
+
+// Camera rays straight down through the box against a white background: each pixel shows the box's
+// transmittance along the vertical (the medium is black).
+Mean transmittanceDown(core::Volume volume, float depth, test::Rendered* out = nullptr) {
+    core::RenderSettings settings;
+    settings.background = glm::vec4(1.0f);
+    settings.maxPathLength = 1;
+    settings.pixelSamples = 64;
+    core::SceneDescription scene;
+    scene.volumes.push_back(std::move(volume));
+    const test::Rendered image = test::render(scene, test::lookingDown(depth + 1.0f, 1.8f), settings, {24, 24});
+    CHECK(image.stats.flaggedRays == 0);
+    // Each sample either passes (1) or collides once in the black medium (0).
+    double blocked = 0.0;
+    for (const glm::vec4& c : image.color) blocked += (1.0 - double(c.r)) * settings.pixelSamples;
+    CHECK(image.stats.realCollisions == uint64_t(std::llround(blocked)));
+    if (out) *out = image;
+    return meanRed(image);
+}
+
+}  // namespace
+
+TEST_CASE("unstructured volumes: a constant field in each cell shape lets exp(-sigma L) through, sigma 1e-6 to 1e6") {
+    test::ValidationGuard guard;
+    const float opacity = 1.0f - std::exp(-1.0f);  // over unitDistance 1 / sigma: extinction sigma
+    for (const Shape shape : {Shape::Tetrahedra, Shape::Hexahedra, Shape::Wedges, Shape::Pyramids}) {
+        for (const float sigma : {1e-6f, 1.0f, 1e6f}) {
+            const float depth = 1.0f / sigma;  // optical depth 1; the box's aspect ratio is 2 / depth
+            const core::UnstructuredCells mesh = boxMesh(shape, 3, depth, [](glm::vec3) { return 1.0f; });
+            const core::Volume volume = meshVolume(mesh, opacity, opacity, 1.0f / sigma, glm::vec3(0.0f));
+            CHECK(volume.unstructured->invertedCells == 0);
+            CHECK(volume.unstructured->degenerateCells == 0);
+            const Mean m = transmittanceDown(volume, depth);
+            const double expected = std::exp(-1.0);
+            CAPTURE(nameOf(shape));
+            CAPTURE(sigma);
+            MESSAGE(std::string(nameOf(shape)) << ", sigma " << sigma << ": transmittance " << m.mean << " +- " << m.standardError
+                                  << ", expected " << expected);
+            CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
+        }
+    }
+}
+
+TEST_CASE("unstructured volumes: a linear field is interpolated exactly by every cell shape (the ramp's transmittance)") {
+    // Value z / depth, opacity rising linearly with it to o: extinction -ln(1 - o v) sigma, whose mean over the
+    // depth is sigma (1 + (1 - o) ln(1 - o) / o) (as in volume_test.cpp). Every shape function reproduces a
+    // linear field; an error in a cell's inverse map or weights moves the answer.
+    test::ValidationGuard guard;
+    const float sigma = 1.0f, depth = 2.0f, opacity = 1.0f - std::exp(-1.0f);
+    const double o = opacity, rampMean = 1.0 + (1.0 - o) * std::log(1.0 - o) / o;
+    const double expected = std::exp(-double(sigma) * depth * rampMean);
+    for (const Shape shape : {Shape::Tetrahedra, Shape::Hexahedra, Shape::Wedges, Shape::Pyramids}) {
+        const core::UnstructuredCells mesh = boxMesh(shape, 2, depth, [&](glm::vec3 p) { return p.z / depth; });
+        const Mean m = transmittanceDown(meshVolume(mesh, 0.0f, opacity, 1.0f / sigma, glm::vec3(0.0f)), depth);
+        CAPTURE(nameOf(shape));
+        MESSAGE(std::string(nameOf(shape)) << " ramp: transmittance " << m.mean << " +- " << m.standardError << ", expected " << expected);
+        CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
+    }
+}
+
+// The scattering scene both comparisons below render: `volume` lit by a sun, albedo 0.8, several bounces.
+test::Rendered litImage(const core::Volume& volume, float depth) {
+    core::RenderSettings settings;
+    settings.background = glm::vec4(0.2f);
+    settings.maxPathLength = 4;
+    settings.pixelSamples = 64;
+    core::SceneDescription scene;
+    core::Light sun;
+    sun.kind = core::Light::Kind::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
+    sun.intensity = 3.0f;
+    scene.lights.push_back(sun);
+    scene.volumes.push_back(volume);
+    const test::Rendered image = test::render(scene, test::lookingDown(depth + 2.0f, 2.2f), settings, {32, 32});
+    CHECK(image.stats.flaggedRays == 0);
+    return image;
+}
+
+// `mesh`'s box mesh values as a structuredRegular grid of (n + 1)^3 nodes over the same box.
+core::Volume gridOf(const core::Volume& meshVolume, const core::UnstructuredCells& mesh, uint32_t n, float depth) {
+    core::Volume grid = meshVolume;
+    grid.unstructured.reset();
+    grid.dims = glm::uvec3(n + 1);
+    grid.values = std::make_shared<const std::vector<float>>(mesh.values.begin(), mesh.values.begin() + (n + 1) * (n + 1) * (n + 1));
+    grid.origin = {-1.0f, -1.0f, 0.0f};
+    grid.spacing = glm::vec3(2.0f / float(n), 2.0f / float(n), depth / float(n));
+    return grid;
+}
+
+// Two images of 32^2 agree block by block (8^2 pixels): means within 1% plus 4 standard errors.
+void checkBlocksAgree(const test::Rendered& a, const test::Rendered& b) {
+    for (uint32_t by = 0; by < 4; ++by)
+        for (uint32_t bx = 0; bx < 4; ++bx) {
+            const glm::uvec4 block(bx * 8, bx * 8 + 8, by * 8, by * 8 + 8);
+            const Mean ma = meanRed(a, 32, block), mb = meanRed(b, 32, block);
+            CAPTURE(bx);
+            CAPTURE(by);
+            CHECK(std::abs(ma.mean - mb.mean) <= 0.01 * mb.mean + 4.0 * std::hypot(ma.standardError, mb.standardError));
+        }
+}
+
+TEST_CASE("unstructured volumes: the same nodal field on hexahedra and as a structuredRegular grid") {
+    // A smooth field on 6^3 nodes: the trilinear interpolant of the hexahedra is the grid's, so the images
+    // agree within the noise, block by block.
+    test::ValidationGuard guard;
+    const uint32_t n = 5;
+    const float depth = 2.0f;
+    const auto field = [](glm::vec3 p) { return 0.5f + 0.5f * std::sin(2.5f * p.x) * std::cos(2.0f * p.y + p.z); };
+    const core::UnstructuredCells mesh = boxMesh(Shape::Hexahedra, n, depth, field);
+    const core::Volume hexes = meshVolume(mesh, 0.0f, 0.9f, 0.5f, glm::vec3(0.8f));
+    checkBlocksAgree(litImage(hexes, depth), litImage(gridOf(hexes, mesh, n, depth), depth));
+}
+
+TEST_CASE("unstructured volumes: a linear field in every cell shape gives the grid's image") {
+    // A field linear in x, y and z is reproduced exactly by every shape's interpolant and by the grid's
+    // trilinear one: a wrong weight, corner order or inverse map in any shape shows in some block.
+    test::ValidationGuard guard;
+    const uint32_t n = 3;
+    const float depth = 2.0f;
+    const auto field = [](glm::vec3 p) { return 0.5f + 0.3f * p.x - 0.15f * p.y + 0.2f * (p.z - 1.0f); };
+    std::optional<test::Rendered> gridImage;
+    for (const Shape shape : {Shape::Tetrahedra, Shape::Hexahedra, Shape::Wedges, Shape::Pyramids}) {
+        const core::UnstructuredCells mesh = boxMesh(shape, n, depth, field);
+        const core::Volume volume = meshVolume(mesh, 0.0f, 0.9f, 0.5f, glm::vec3(0.8f));
+        if (!gridImage) gridImage = litImage(gridOf(volume, mesh, n, depth), depth);
+        CAPTURE(std::string(nameOf(shape)));
+        checkBlocksAgree(litImage(volume, depth), *gridImage);
+    }
+}
+
+namespace {
+
+// The field as the kernels find it at object-space points: (found, value) per point, from the probe kernel.
+std::vector<glm::vec2> probe(const core::UnstructuredGrid& grid, const std::vector<glm::vec3>& points) {
+    const vk::Context& context = test::testContext();
+    struct Params {
+        uint64_t mesh, points, results;
+        uint32_t count, pad;
+    };
+    const vk::ComputePipeline kernel(context, shaders::test_unstructured_probe, "test_unstructured_probe", sizeof(Params));
+    vk::Buffer mesh(context, grid.words.size() * 4, "probe mesh"), in(context, points.size() * 16, "probe points"),
+        out(context, points.size() * 8, "probe results");
+    mesh.upload(grid.words.data(), grid.words.size() * 4);
+    const glm::vec3 scale = glm::vec3(grid.macrocells) * 8.0f / (grid.hi - grid.lo);
+    std::vector<glm::vec4> gridPoints;
+    for (const glm::vec3& p : points) gridPoints.emplace_back((p - grid.lo) * scale, 0.0f);
+    in.upload(gridPoints.data(), gridPoints.size() * 16);
+    const Params params{mesh.address(), in.address(), out.address(), uint32_t(points.size()), 0};
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+        vk::computeBarrier(cmd);
+        kernel.bind(cmd);
+        kernel.pushConstants(cmd, &params, sizeof params);
+        kernel.dispatch(cmd, (uint32_t(points.size()) + 63) / 64);
+    });
+    std::vector<glm::vec2> results(points.size());
+    out.download(results.data(), results.size() * 8);
+    return results;
+}
+
+}  // namespace
+
+TEST_CASE("unstructured volumes: point location and interpolation are exact, also in cells with curved faces") {
+    // The box's inner vertices moved by up to 0.15 of a cell, so that hexahedra and wedges have non-planar
+    // faces; a linear field f is still reproduced exactly by every (isoparametric) interpolant, so at any
+    // point of the box the kernels must find a cell and return f there, to float precision. Points outside the
+    // box find none.
+    test::ValidationGuard guard;
+    const uint32_t n = 4;
+    const auto field = [](glm::vec3 p) { return 0.5f + 0.3f * p.x - 0.15f * p.y + 0.2f * p.z; };
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<glm::vec3> inside, outside;
+    for (int i = 0; i < 2000; ++i) inside.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), 2.0f * unit(random)});
+    for (int i = 0; i < 200; ++i) outside.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), 2.05f + unit(random)});
+    for (const Shape shape : {Shape::Tetrahedra, Shape::Hexahedra, Shape::Wedges, Shape::Pyramids}) {
+        core::UnstructuredCells mesh = boxMesh(shape, n, 2.0f, field);
+        const float cell = 2.0f / float(n);
+        for (glm::vec3& p : mesh.positions) {
+            const bool boundary = std::abs(std::abs(p.x) - 1.0f) < 1e-6f || std::abs(std::abs(p.y) - 1.0f) < 1e-6f ||
+                                  p.z < 1e-6f || p.z > 2.0f - 1e-6f;
+            if (!boundary) p += 0.15f * cell * (glm::vec3(unit(random), unit(random), unit(random)) * 2.0f - 1.0f);
+        }
+        for (size_t v = 0; v < mesh.positions.size(); ++v) mesh.values[v] = field(mesh.positions[v]);
+        const auto grid = core::prepareUnstructuredGrid(mesh);
+        CAPTURE(std::string(nameOf(shape)));
+        CHECK(grid->degenerateCells == 0);
+        CHECK(grid->invertedCells == 0);
+        std::vector<glm::vec3> points = inside;
+        points.insert(points.end(), outside.begin(), outside.end());
+        const std::vector<glm::vec2> results = probe(*grid, points);
+        size_t found = 0, exact = 0, foundOutside = 0;
+        float worst = 0.0f;
+        for (size_t i = 0; i < inside.size(); ++i) {
+            if (results[i].x != 1.0f) continue;
+            ++found;
+            const float error = std::abs(results[i].y - field(inside[i]));
+            worst = std::max(worst, error);
+            if (error <= 2e-5f) ++exact;
+        }
+        for (size_t i = inside.size(); i < points.size(); ++i) foundOutside += results[i].x == 1.0f ? 1 : 0;
+        MESSAGE(std::string(nameOf(shape)) << ": " << found << " of " << inside.size() << " found, largest error " << worst);
+        CHECK(found == inside.size());
+        CHECK(exact == found);
+        CHECK(foundOutside == 0);
+    }
+}
+
+TEST_CASE("unstructured volumes: degenerate cells are dropped and inverted ones kept, both reported; no NaN") {
+    test::ValidationGuard guard;
+    const float depth = 1.0f, opacity = 1.0f - std::exp(-1.0f);
+    core::UnstructuredCells mesh = boxMesh(Shape::Tetrahedra, 2, depth, [](glm::vec3) { return 1.0f; });
+    std::swap(mesh.index[mesh.cellIndex[5] + 1], mesh.index[mesh.cellIndex[5] + 2]);  // cell 5 inverted
+    // Two cells of no volume: a repeated corner, and four corners in a plane; and a needle 10^6 times longer
+    // than wide, inside the box, whose value is that of the box.
+    const uint32_t first = uint32_t(mesh.positions.size());
+    for (const glm::vec3 p : {glm::vec3(0.1f, 0.1f, 0.5f), glm::vec3(0.3f, 0.1f, 0.5f), glm::vec3(0.1f, 0.3f, 0.5f),
+                              glm::vec3(0.3f, 0.3f, 0.5f), glm::vec3(0.0f, 0.0f, 0.1f), glm::vec3(1e-6f, 0.0f, 0.1f),
+                              glm::vec3(0.0f, 1e-6f, 0.1f), glm::vec3(0.0f, 0.0f, 0.9f)}) {
+        mesh.positions.push_back(p);
+        mesh.values.push_back(1.0f);
+    }
+    for (const std::array<uint32_t, 4> cell : {std::array{0u, 1u, 1u, 2u}, std::array{0u, 1u, 2u, 3u}, std::array{4u, 5u, 6u, 7u}}) {
+        mesh.cellIndex.push_back(uint32_t(mesh.index.size()));
+        mesh.cellType.push_back(10);
+        for (uint32_t v : cell) mesh.index.push_back(first + v);
+    }
+    const core::Volume volume = meshVolume(mesh, opacity, opacity, 1.0f, glm::vec3(0.0f));
+    CHECK(volume.unstructured->degenerateCells == 2);
+    CHECK(volume.unstructured->invertedCells == 1);
+    REQUIRE(volume.unstructured->warnings.size() == 2);
+    CHECK(volume.unstructured->warnings[0].find("cell 48") != std::string::npos);  // the first degenerate one
+    CHECK(volume.unstructured->warnings[1].find("cell 5") != std::string::npos);
+    // The needle overlaps the box's cells: where both hold a point the field is still 1, so the
+    // transmittance is still exp(-1), and the inverted cell still counts.
+    const Mean m = transmittanceDown(volume, depth);
+    MESSAGE("with degenerate, inverted and needle cells: " << m.mean << " +- " << m.standardError);
+    CHECK(std::isfinite(m.mean));
+    CHECK(std::abs(m.mean - std::exp(-1.0)) <= 0.01 * std::exp(-1.0) + 4.0 * m.standardError);
+}
+
+TEST_CASE("unstructured volumes: meshes that cannot be rendered are refused, naming the problem") {
+    const core::UnstructuredCells good = boxMesh(Shape::Hexahedra, 1, 1.0f, [](glm::vec3) { return 0.5f; });
+    const auto refusal = [](const core::UnstructuredCells& mesh) -> std::string {
+        try {
+            core::prepareUnstructuredGrid(mesh);
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return "";
+    };
+    CHECK(refusal(good).empty());
+    core::UnstructuredCells bad = good;
+    bad.index[3] = 8;
+    CHECK(refusal(bad) == "index 3 is 8, past the 8 vertices");
+    bad = good;
+    bad.cellType[0] = 42;
+    CHECK(refusal(bad).find("cell 0 has type 42") == 0);
+    bad = good;
+    bad.cellIndex[0] = 1;
+    CHECK(refusal(bad) == "cell 0's 8 indices from 1 run past the 8 of the index array");
+    bad = good;
+    bad.values[2] = NAN;
+    CHECK(refusal(bad) == "vertex 2's value is not finite");
+    bad = good;
+    bad.positions[7].y = INFINITY;
+    CHECK(refusal(bad) == "vertex 7's position is not finite");
+    bad = good;
+    bad.cellCentered = true;
+    CHECK(refusal(bad) == "8 values for 1 cells");
+    bad = good;
+    for (glm::vec3& p : bad.positions) p.z = 0.0f;
+    CHECK(refusal(bad) == "no cell has volume (all 1 are degenerate)");
+}
+
+TEST_CASE("unstructured iso-surfaces: a linear field's surfaces in tetrahedra are exact planes") {
+    // f = a . p + b on a tetrahedral box with moved inner vertices: every triangle's corners lie on the plane
+    // f = iso to float precision, and every triangle faces along a (up the field). Then the path tracer's
+    // depth through the surface of f = z seen from above is the plane's exactly.
+    const glm::vec3 a = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+    const auto field = [&](glm::vec3 p) { return glm::dot(a, p) + 0.1f; };
+    core::UnstructuredCells mesh = boxMesh(Shape::Tetrahedra, 4, 2.0f, field);
+    std::mt19937 random(3);
+    std::uniform_real_distribution<float> jitter(-0.07f, 0.07f);
+    for (glm::vec3& p : mesh.positions)
+        if (std::abs(std::abs(p.x) - 1.0f) > 1e-6f && std::abs(std::abs(p.y) - 1.0f) > 1e-6f && p.z > 1e-6f && p.z < 2.0f - 1e-6f)
+            p += glm::vec3(jitter(random), jitter(random), jitter(random));
+    for (size_t v = 0; v < mesh.positions.size(); ++v) mesh.values[v] = field(mesh.positions[v]);
+    const std::vector<float> isovalues = {0.2f, 0.6f, 1.1f};
+    const core::UnstructuredIsosurface surface = core::extractIsosurface(mesh, isovalues);
+    REQUIRE(surface.isovalueOf.size() * 3 == surface.mesh.positions.size());
+    size_t perIsovalue[3] = {};
+    float worstDistance = 0.0f, worstNormal = 0.0f;
+    for (size_t t = 0; t < surface.isovalueOf.size(); ++t) {
+        const float iso = isovalues[surface.isovalueOf[t]];
+        ++perIsovalue[surface.isovalueOf[t]];
+        const glm::vec3* p = &surface.mesh.positions[3 * t];
+        for (int k = 0; k < 3; ++k) worstDistance = std::max(worstDistance, std::abs(field(p[k]) - iso));
+        const glm::vec3 normal = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+        worstNormal = std::max(worstNormal, 1.0f - glm::dot(normal, a));
+    }
+    MESSAGE(surface.isovalueOf.size() << " triangles; largest distance from the plane " << worstDistance
+                                      << ", largest 1 - cos(normal, gradient) " << worstNormal);
+    for (size_t i = 0; i < 3; ++i) CHECK(perIsovalue[i] > 0);
+    CHECK(worstDistance <= 1e-6f);
+    CHECK(worstNormal <= 1e-4f);  // triangles as small as a few 1e-3 carry their corners' float rounding
+
+    // The surface of f = z at 0.7 in a box of height 2, seen from z = 3: depth 2.3 at every pixel.
+    test::ValidationGuard guard;
+    const core::UnstructuredCells flat = boxMesh(Shape::Tetrahedra, 3, 2.0f, [](glm::vec3 p) { return p.z; });
+    core::SceneDescription scene;
+    scene.meshes.push_back(core::extractIsosurface(flat, {0.7f}).mesh);
+    scene.materials.push_back(core::Material{});
+    scene.instances.push_back({{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f), 0});
+    core::RenderSettings settings;
+    settings.pixelSamples = 1;
+    const test::Rendered image = test::render(scene, test::lookingDown(3.0f, 1.8f), settings, {16, 16}, true);
+    for (float depth : image.depth) CHECK(depth == doctest::Approx(2.3f).epsilon(1e-6));
+}
