@@ -14,15 +14,16 @@
 
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer MeshWordsRef { uint words[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MeshNodesRef { BvhNode nodes[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer MeshVerticesRef { vec4 vertices[]; };
 
 // Parametric tolerance of the inside test (so that points on a shared face are in both cells), and the
 // Newton iterations a hexahedron, wedge or pyramid may take.
 const float UNSTRUCTURED_INSIDE_EPSILON = 1e-5;
 const uint UNSTRUCTURED_NEWTON_STEPS = 16u;
 
-vec3 meshPosition(MeshWordsRef m, UnstructuredHeader h, uint vertex) {
-    uint at = h.positionOffset + 3u * vertex;
-    return vec3(uintBitsToFloat(m.words[at]), uintBitsToFloat(m.words[at + 1u]), uintBitsToFloat(m.words[at + 2u]));
+// Vertex `vertex`: its grid-space position and its value.
+vec4 meshVertex(uint64_t mesh, UnstructuredHeader h, uint vertex) {
+    return MeshVerticesRef(mesh + 4ul * uint64_t(h.vertexOffset)).vertices[vertex];
 }
 
 // Shape functions of a hexahedron, wedge or pyramid at parametric point q, with their gradients.
@@ -63,83 +64,102 @@ bool insideReference(uint shape, vec3 q) {
     return shape == UNSTRUCTURED_WEDGE ? box && q.x + q.y <= 1.0 + e : box;
 }
 
-// Whether grid-space point p lies in leaf-order cell `cell`, and the field's value there.
-bool cellValue(MeshWordsRef m, UnstructuredHeader h, uint cell, vec3 p, out float value) {
+// Whether grid-space point p lies in the tetrahedron whose indices start at `first`, and the field there:
+// barycentric coordinates b, p = x0 + mat3(x1 - x0, x2 - x0, x3 - x0) b. A cell of no volume was dropped on
+// the host; a nearly flat one gives a huge or NaN b, which fails the test.
+bool tetrahedronValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint first, uint cell, vec3 p, out float value) {
     value = 0.0;
-    uint word = m.words[h.cellOffset + cell];
-    uint shape = word & 3u, first = h.indexOffset + (word >> 2u);
-    uint corners = shape == UNSTRUCTURED_TETRAHEDRON ? 4u : shape == UNSTRUCTURED_HEXAHEDRON ? 8u
-                 : shape == UNSTRUCTURED_WEDGE ? 6u : 5u;
-    uint vertex[8];
+    vec4 x0 = meshVertex(mesh, h, m.words[first]), x1 = meshVertex(mesh, h, m.words[first + 1u]);
+    vec4 x2 = meshVertex(mesh, h, m.words[first + 2u]), x3 = meshVertex(mesh, h, m.words[first + 3u]);
+    vec3 e1 = x1.xyz - x0.xyz, e2 = x2.xyz - x0.xyz, e3 = x3.xyz - x0.xyz, r = p - x0.xyz;
+    vec3 c23 = cross(e2, e3);
+    vec3 b = vec3(dot(r, c23), dot(e1, cross(r, e3)), dot(e1, cross(e2, r))) / dot(e1, c23);  // Cramer's rule
+    const float e = UNSTRUCTURED_INSIDE_EPSILON;
+    if (!(all(greaterThanEqual(b, vec3(-e))) && b.x + b.y + b.z <= 1.0 + e)) return false;
+    value = h.cellCentered != 0u ? uintBitsToFloat(m.words[h.cellValueOffset + cell])
+                                 : dot(vec4(1.0 - b.x - b.y - b.z, b), vec4(x0.w, x1.w, x2.w, x3.w));
+    return true;
+}
+
+// The same for a hexahedron, wedge or pyramid with `corners` corners: Newton's method on its map from the
+// reference cell's centre, kept near the cell (a point outside may have no preimage); the cell's size
+// scales the residual test.
+bool isoparametricValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint shape, uint corners, uint first, uint cell,
+                        vec3 p, out float value) {
+    value = 0.0;
     vec3 x[8];
+    float corner[8];
     for (uint k = 0u; k < 8u; ++k) {
-        vertex[k] = k < corners ? m.words[first + k] : 0u;
-        x[k] = k < corners ? meshPosition(m, h, vertex[k]) : vec3(0.0);
+        vec4 vertex = k < corners ? meshVertex(mesh, h, m.words[first + k]) : vec4(0.0);
+        x[k] = vertex.xyz;
+        corner[k] = vertex.w;
     }
-    float weight[8];
-    if (shape == UNSTRUCTURED_TETRAHEDRON) {
-        // Barycentric: p = x0 + mat3(x1 - x0, x2 - x0, x3 - x0) b. A cell of no volume was dropped on the host;
-        // a nearly flat one gives a huge or NaN b, which fails the test.
-        vec3 b = inverse(mat3(x[1] - x[0], x[2] - x[0], x[3] - x[0])) * (p - x[0]);
-        const float e = UNSTRUCTURED_INSIDE_EPSILON;
-        if (!(all(greaterThanEqual(b, vec3(-e))) && b.x + b.y + b.z <= 1.0 + e)) return false;
-        weight = float[8](1.0 - b.x - b.y - b.z, b.x, b.y, b.z, 0.0, 0.0, 0.0, 0.0);
-    } else {
-        // Newton's method from the reference cell's centre, kept near the cell (a point outside may have
-        // no preimage); the cell's size scales the residual test.
-        vec3 q = shape == UNSTRUCTURED_WEDGE ? vec3(1.0 / 3.0, 1.0 / 3.0, 0.5) : vec3(0.5, 0.5, shape == UNSTRUCTURED_PYRAMID ? 0.25 : 0.5);
-        vec3 lo = x[0], hi = x[0];
-        for (uint k = 1u; k < corners; ++k) {
-            lo = min(lo, x[k]);
-            hi = max(hi, x[k]);
-        }
-        float size = max(hi.x - lo.x, max(hi.y - lo.y, hi.z - lo.z));
-        float n[8];
-        vec3 dn[8];
-        vec3 residual = vec3(INFINITY);
-        for (uint step = 0u; step < UNSTRUCTURED_NEWTON_STEPS; ++step) {
-            shapeFunctions(shape, q, n, dn);
-            vec3 f = -p;
-            mat3 jacobian = mat3(0.0);
-            for (uint k = 0u; k < corners; ++k) {
-                f += n[k] * x[k];
-                jacobian += outerProduct(x[k], dn[k]);
-            }
-            residual = f;
-            vec3 dq = inverse(jacobian) * f;
-            if (any(isnan(dq)) || any(isinf(dq))) return false;
-            q = clamp(q - dq, vec3(-0.5), vec3(1.5));
-            if (dot(dq, dq) < 1e-14) break;
-        }
+    vec3 q = shape == UNSTRUCTURED_WEDGE ? vec3(1.0 / 3.0, 1.0 / 3.0, 0.5) : vec3(0.5, 0.5, shape == UNSTRUCTURED_PYRAMID ? 0.25 : 0.5);
+    vec3 lo = x[0], hi = x[0];
+    for (uint k = 1u; k < corners; ++k) {
+        lo = min(lo, x[k]);
+        hi = max(hi, x[k]);
+    }
+    float size = max(hi.x - lo.x, max(hi.y - lo.y, hi.z - lo.z));
+    float n[8];
+    vec3 dn[8];
+    for (uint step = 0u; step < UNSTRUCTURED_NEWTON_STEPS; ++step) {
         shapeFunctions(shape, q, n, dn);
-        residual = -p;
-        for (uint k = 0u; k < corners; ++k) residual += n[k] * x[k];
-        if (!insideReference(shape, q) || !(length(residual) <= 1e-4 * size)) return false;
-        weight = n;
+        vec3 f = -p;
+        mat3 jacobian = mat3(0.0);
+        for (uint k = 0u; k < corners; ++k) {
+            f += n[k] * x[k];
+            jacobian += outerProduct(x[k], dn[k]);
+        }
+        vec3 dq = inverse(jacobian) * f;
+        if (any(isnan(dq)) || any(isinf(dq))) return false;
+        q = clamp(q - dq, vec3(-0.5), vec3(1.5));
+        if (dot(dq, dq) < 1e-14) break;
     }
+    shapeFunctions(shape, q, n, dn);
+    vec3 residual = -p;
+    for (uint k = 0u; k < corners; ++k) residual += n[k] * x[k];
+    if (!insideReference(shape, q) || !(length(residual) <= 1e-4 * size)) return false;
     if (h.cellCentered != 0u) {
-        value = uintBitsToFloat(m.words[h.valueOffset + cell]);
+        value = uintBitsToFloat(m.words[h.cellValueOffset + cell]);
     } else {
-        for (uint k = 0u; k < corners; ++k) value += weight[k] * uintBitsToFloat(m.words[h.valueOffset + vertex[k]]);
+        for (uint k = 0u; k < corners; ++k) value += n[k] * corner[k];
     }
     return true;
+}
+
+// Whether grid-space point p lies in leaf-order cell `cell`, and the field's value there.
+bool cellValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint cell, vec3 p, out float value) {
+    uint word = m.words[h.cellOffset + cell];
+    uint shape = word & 3u, first = h.indexOffset + (word >> 2u);
+    if (shape == UNSTRUCTURED_TETRAHEDRON) return tetrahedronValue(mesh, m, h, first, cell, p, value);
+    uint corners = shape == UNSTRUCTURED_HEXAHEDRON ? 8u : shape == UNSTRUCTURED_WEDGE ? 6u : 5u;
+    return isoparametricValue(mesh, m, h, shape, corners, first, cell, p, value);
 }
 
 bool boxHolds(vec4 lo, vec4 hi, vec3 p) {
     return all(greaterThanEqual(p, lo.xyz)) && all(lessThanEqual(p, hi.xyz));
 }
 
-// The field of the mesh at `mesh` (a device address) at grid-space point p: false where no cell holds p.
-bool unstructuredValue(uint64_t mesh, vec3 p, out float value) {
+UnstructuredHeader unstructuredHeader(uint64_t mesh) {
+    MeshWordsRef m = MeshWordsRef(mesh);
+    return UnstructuredHeader(m.words[0], m.words[1], m.words[2], m.words[3], m.words[4], m.words[5], m.words[6],
+                              m.words[7], m.words[8], m.words[9], m.words[10], m.words[11]);
+}
+
+// The field of the mesh at `mesh` (a device address; `h` its header) at grid-space point p: false where no
+// cell holds p.
+bool unstructuredValue(uint64_t mesh, UnstructuredHeader h, vec3 p, out float value) {
     value = 0.0;
     MeshWordsRef m = MeshWordsRef(mesh);
-    UnstructuredHeader h = UnstructuredHeader(m.words[0], m.words[1], m.words[2], m.words[3], m.words[4], m.words[5],
-                                              m.words[6], m.words[7]);
     if (h.nodeCount == 0u) return false;
+    // The walk starts at the macrocell's start node (none: no cell overlaps it).
+    uvec3 macro = uvec3(clamp(ivec3(floor(p / float(VOLUME_MACROCELL))), ivec3(0), ivec3(h.macroX, h.macroY, h.macroZ) - 1));
+    uint node = m.words[h.startOffset + (macro.z * h.macroY + macro.y) * h.macroX + macro.x];
+    if (node == UNSTRUCTURED_NO_NODE) return false;
     MeshNodesRef nodes = MeshNodesRef(mesh + 4ul * uint64_t(h.nodeOffset));
     uint stack[BVH_MAX_DEPTH];
     uint top = 0u;
-    uint node = 0u;
     // Nodes visited, bounded (the tree has nodeCount of them); lavapipe ends any one loop after 65,535
     // iterations, so the walk is two nested loops.
     for (uint chunk = 0u; chunk < 64u; ++chunk) {
@@ -153,7 +173,7 @@ bool unstructuredValue(uint64_t mesh, vec3 p, out float value) {
                 if (!boxHolds(lo, hi, p)) continue;
                 if (count > 0u) {
                     for (uint c = ref; c < ref + count; ++c)
-                        if (cellValue(m, h, c, p, value)) return true;
+                        if (cellValue(mesh, m, h, c, p, value)) return true;
                 } else if (!descended) {
                     node = ref;
                     descended = true;

@@ -101,10 +101,11 @@ vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
 
 // (albedo rgb, extinction per world unit) at grid-space point g: the transfer function of the field there;
 // none outside an unstructured mesh's cells.
-vec4 mediumAt(VolumeRecord v, VolumeDataRef data, vec3 g) {
+// `mesh`: an unstructured mesh's header (read once per march).
+vec4 mediumAt(VolumeRecord v, VolumeDataRef data, vec3 g, UnstructuredHeader mesh) {
     if (v.kind == VOLUME_KIND_UNSTRUCTURED) {
         float value;
-        return unstructuredValue(v.voxels, g, value) ? transferFunction(v, data, value) : vec4(0.0);
+        return unstructuredValue(v.voxels, mesh, g, value) ? transferFunction(v, data, value) : vec4(0.0);
     }
     return transferFunction(v, data, fieldValue(v, data, g));
 }
@@ -260,6 +261,8 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
     // Tentative collisions of the piecewise-constant majorant: an exponential optical depth tau, spent piece
     // by piece (majorant times the length crossed) until a piece holds the rest. One logarithm per tentative
     // collision, none per macrocell crossed: rays cross many more cells than they collide in.
+    UnstructuredHeader mesh;
+    if (v.kind == VOLUME_KIND_UNSTRUCTURED) mesh = unstructuredHeader(v.voxels);
     float tau = -log(1.0 - volumeRandom(rng));
     for (uint chunk = 0u; chunk < VOLUME_STEP_CHUNKS && budget > 0u; ++chunk) {
         uint chunkSteps = min(budget, VOLUME_STEP_CHUNK);
@@ -299,7 +302,7 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
                 // may put it a few ulps outside the Bernstein hull).
                 vec4 medium = refined ? transferFunction(v, data, clamp(cubicAt(cubic, (t - voxelEntry) / (voxelExit - voxelEntry)),
                                                                         range.x, range.y))
-                                      : mediumAt(v, data, o + t * d);
+                                      : mediumAt(v, data, o + t * d, mesh);
                 float ratio = clamp(medium.w * speed / mu, 0.0, 1.0);
                 if (mode == TRACK_RATIO) {
                     result.transmittance *= 1.0 - ratio;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
 
 namespace ripple::core {
 
@@ -16,7 +17,7 @@ namespace {
 using glm::dvec3;
 
 constexpr uint32_t kMaxIndices = uint32_t(1) << 30;  // a cell's word keeps its first index in 30 bits
-constexpr uint32_t kLeafCells = 4;                    // point location tests every cell of a leaf
+constexpr uint32_t kLeafCells = 8;                    // point location tests every cell of a leaf
 
 uint32_t shapeOf(uint8_t type) {
     switch (type) {
@@ -57,13 +58,15 @@ void pushFloat(std::vector<uint32_t>& words, float f) {
     words.push_back(bits);
 }
 
-// Macrocells per axis over a box of `extent`: about one per two cells, cubes as far as the box allows,
-// between 1 and 256 per axis.
-glm::uvec3 macrocellCounts(glm::dvec3 extent, uint64_t cells) {
+// Macrocells per axis over a box of `extent`: cubes as far as the box allows, their side the median of the
+// cells' longest box edges (so that a thin shell of cells in a large box still gets macrocells about as
+// small as its cells, and majorants that follow it), at most 2^21 of them and 256 per axis.
+glm::uvec3 macrocellCounts(glm::dvec3 extent, std::vector<double> cellSizes) {
     const double longest = std::max({extent.x, extent.y, extent.z});
     const dvec3 e = glm::max(extent, dvec3(longest * 1e-3));
-    const double target = std::clamp(double(cells) * 8.0, 1.0, double(1 << 21));
-    const double side = std::cbrt(e.x * e.y * e.z / target);
+    std::nth_element(cellSizes.begin(), cellSizes.begin() + std::ptrdiff_t(cellSizes.size() / 2), cellSizes.end());
+    double side = std::max(cellSizes[cellSizes.size() / 2], longest / 256.0);
+    side = std::max(side, std::cbrt(e.x * e.y * e.z / double(1 << 21)));
     glm::uvec3 counts;
     for (int a = 0; a < 3; ++a) counts[a] = uint32_t(std::clamp(std::round(e[a] / side), 1.0, 256.0));
     return counts;
@@ -157,7 +160,12 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
 
     // Grid space: [lo, hi] onto [0, 8 * macrocells] per axis.
     const dvec3 extent = dvec3(whole.hi) - dvec3(whole.lo);
-    grid->macrocells = macrocellCounts(extent, kept.size());
+    std::vector<double> cellSizes(boxes.size());
+    for (size_t k = 0; k < boxes.size(); ++k) {
+        const dvec3 size = dvec3(boxes[k].hi) - dvec3(boxes[k].lo);
+        cellSizes[k] = std::max({size.x, size.y, size.z});
+    }
+    grid->macrocells = macrocellCounts(extent, std::move(cellSizes));
     const dvec3 scale = dvec3(grid->macrocells) * double(gpu::VOLUME_MACROCELL) / extent;
     const auto toGrid = [&](glm::vec3 p) { return glm::vec3((dvec3(p) - dvec3(whole.lo)) * scale); };
     for (bvh::Aabb& box : boxes) box = bvh::Aabb{toGrid(box.lo), toGrid(box.hi)};
@@ -197,25 +205,68 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
                 }
     }
 
-    // The words: header, positions (grid space), values, cells in leaf order, indices, nodes.
+    // Each macrocell's start node: the lowest common ancestor of the nodes holding the leaves of the cells
+    // that overlap it (a cell's leaf is a child slot of one node).
+    const size_t nodeCount = tree.nodes.size();
+    std::vector<uint32_t> parent(nodeCount, gpu::UNSTRUCTURED_NO_NODE), depth(nodeCount, 0), nodeOfSlot(kept.size(), 0);
+    for (uint32_t n = 0; n < nodeCount; ++n) {
+        const gpu::BvhNode& node = tree.nodes[n];
+        for (const auto& [lo, hi] : {std::pair{node.leftMin, node.leftMax}, std::pair{node.rightMin, node.rightMax}}) {
+            uint32_t ref = 0, count = 0;
+            std::memcpy(&ref, &lo.w, sizeof ref);
+            std::memcpy(&count, &hi.w, sizeof count);
+            if (count > 0)
+                for (uint32_t slot = ref; slot < ref + count; ++slot) nodeOfSlot[slot] = n;
+            else if (ref != 0)
+                parent[ref] = n;
+        }
+    }
+    for (uint32_t n = 1; n < nodeCount; ++n) depth[n] = depth[parent[n]] + 1;  // parents come first
+    const auto commonAncestor = [&](uint32_t a, uint32_t b) {
+        while (a != b) {
+            if (depth[a] >= depth[b]) a = parent[a];
+            else b = parent[b];
+        }
+        return a;
+    };
+    std::vector<uint32_t> start(grid->macrocellRanges.size(), gpu::UNSTRUCTURED_NO_NODE);
+    for (size_t slot = 0; slot < kept.size(); ++slot) {
+        const bvh::Aabb& box = boxes[tree.primOrder[slot]];
+        const float size = float(gpu::VOLUME_MACROCELL);
+        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo / size, 0.0f)), m - 1u);
+        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi / size, 0.0f)), m - 1u);
+        for (uint32_t z = first.z; z <= last.z; ++z)
+            for (uint32_t y = first.y; y <= last.y; ++y)
+                for (uint32_t x = first.x; x <= last.x; ++x) {
+                    uint32_t& s = start[(size_t(z) * m.y + y) * m.x + x];
+                    s = s == gpu::UNSTRUCTURED_NO_NODE ? nodeOfSlot[slot] : commonAncestor(s, nodeOfSlot[slot]);
+                }
+    }
+
+    // The words: header, vertices (grid space, with their values), cell values, cells in leaf order,
+    // indices, nodes, start nodes.
     std::vector<uint32_t>& words = grid->words;
     gpu::UnstructuredHeader header{};
     header.cellCount = uint32_t(kept.size());
-    header.nodeCount = uint32_t(tree.nodes.size());
+    header.nodeCount = uint32_t(nodeCount);
     header.cellCentered = cells.cellCentered ? 1u : 0u;
+    header.macroX = m.x;
+    header.macroY = m.y;
+    header.macroZ = m.z;
+    const auto align4 = [&] { words.resize((words.size() + 3) / 4 * 4); };
     words.resize(sizeof(header) / sizeof(uint32_t));
-    header.positionOffset = uint32_t(words.size());
-    for (const glm::vec3& p : cells.positions) {
-        const glm::vec3 g = toGrid(p);
+    align4();
+    header.vertexOffset = uint32_t(words.size());
+    for (size_t v = 0; v < vertexCount; ++v) {
+        const glm::vec3 g = toGrid(cells.positions[v]);
         pushFloat(words, g.x);
         pushFloat(words, g.y);
         pushFloat(words, g.z);
+        pushFloat(words, cells.cellCentered ? 0.0f : cells.values[v]);
     }
-    header.valueOffset = uint32_t(words.size());
+    header.cellValueOffset = uint32_t(words.size());
     if (cells.cellCentered)
         for (uint32_t slot : tree.primOrder) pushFloat(words, cells.values[kept[slot]]);
-    else
-        for (float value : cells.values) pushFloat(words, value);
     header.cellOffset = uint32_t(words.size());
     for (uint32_t slot : tree.primOrder) {
         const uint32_t c = kept[slot];
@@ -223,13 +274,15 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     }
     header.indexOffset = uint32_t(words.size());
     words.insert(words.end(), cells.index.begin(), cells.index.end());
-    words.resize((words.size() + 3) / 4 * 4);
+    align4();
     header.nodeOffset = uint32_t(words.size());
-    const size_t nodeWords = tree.nodes.size() * sizeof(gpu::BvhNode) / sizeof(uint32_t);
-    if (uint64_t(words.size()) + nodeWords > uint64_t(UINT32_MAX))
+    const size_t nodeWords = nodeCount * sizeof(gpu::BvhNode) / sizeof(uint32_t);
+    if (uint64_t(words.size()) + nodeWords + start.size() > uint64_t(UINT32_MAX))
         throw std::invalid_argument("the mesh needs more than 2^32 words on the device");
     words.resize(words.size() + nodeWords);
     std::memcpy(words.data() + header.nodeOffset, tree.nodes.data(), nodeWords * sizeof(uint32_t));
+    header.startOffset = uint32_t(words.size());
+    words.insert(words.end(), start.begin(), start.end());
     std::memcpy(words.data(), &header, sizeof(header));
     return grid;
 }

@@ -55,20 +55,27 @@ RIPPLE_CONST uint VOLUME_KIND_STRUCTURED = 0u;
 RIPPLE_CONST uint VOLUME_KIND_UNSTRUCTURED = 1u;
 
 // An unstructured mesh on the device: 32-bit words from the address VolumeRecord.voxels, this header first.
-// Positions are in the volume's grid space (the record's worldToGrid applies to rays, not to vertices).
+// Vertices are in the volume's grid space (the record's worldToGrid applies to rays, not to vertices).
 // Cells are in the order of the BVH's leaves; a cell's word is its first index << 2 | its shape
-// (UNSTRUCTURED_TETRAHEDRON..), whose corners are indices[first ..] in VTK's vertex order.
+// (UNSTRUCTURED_TETRAHEDRON..), whose corners are indices[first ..] in VTK's vertex order. A point query
+// starts at its macrocell's start node: the lowest node whose subtree holds every cell overlapping the
+// macrocell (UNSTRUCTURED_NO_NODE: no cell does).
 struct UnstructuredHeader {
     uint cellCount;
     uint nodeCount;        // BvhNodes (shared/bvh.h) at nodeOffset; 0: no cell
-    uint positionOffset;   // 3 floats per vertex
-    uint valueOffset;      // a float per vertex, or per cell (in leaf order) when cellCentered
+    uint vertexOffset;     // a vec4 per vertex: position, and its value (0 when cellCentered); a multiple of 4
+    uint cellValueOffset;  // cellCentered: a float per cell, in leaf order
     uint cellOffset;       // a word per cell
     uint indexOffset;      // vertex indices
     uint nodeOffset;       // a multiple of 4 (the nodes are read as vec4s)
     uint cellCentered;
+    uint startOffset;      // a word per macrocell (x fastest)
+    uint macroX;           // macrocells per axis, as the volume's record has them
+    uint macroY;
+    uint macroZ;
 };
 
+RIPPLE_CONST uint UNSTRUCTURED_NO_NODE = 0xFFFFFFFFu;
 RIPPLE_CONST uint UNSTRUCTURED_TETRAHEDRON = 0u;  // VTK 10
 RIPPLE_CONST uint UNSTRUCTURED_HEXAHEDRON = 1u;   // VTK 12
 RIPPLE_CONST uint UNSTRUCTURED_WEDGE = 2u;        // VTK 13

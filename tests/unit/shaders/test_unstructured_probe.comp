@@ -24,6 +24,6 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= params.count) return;
     float value;
-    bool found = unstructuredValue(params.mesh, PointsRef(params.points).points[i].xyz, value);
+    bool found = unstructuredValue(params.mesh, unstructuredHeader(params.mesh), PointsRef(params.points).points[i].xyz, value);
     ResultsRef(params.results).results[i] = vec2(found ? 1.0 : 0.0, value);
 }
