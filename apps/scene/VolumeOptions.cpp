@@ -18,9 +18,12 @@ namespace ripple::apps {
 void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
     app.add_option("--volume", options.volume,
                    "scalar field file: NRRD (.nrrd, or .nhdr with a raw data file; encoding raw), VTK image data (.vti, "
-                   "or legacy .vtk STRUCTURED_POINTS) or raw (needs --dims and --type); drawn as a volume, or as "
-                   "isosurfaces with --isovalue, on a floor");
-    app.add_option("--field", options.field, "VTK --volume: the point array to draw (default: the file's active scalars)");
+                   "or legacy .vtk STRUCTURED_POINTS), a VTK unstructured grid of tetrahedra, hexahedra, wedges and "
+                   "pyramids (.vtu, or legacy .vtk UNSTRUCTURED_GRID) or raw (needs --dims and --type); drawn as a "
+                   "volume, or as isosurfaces with --isovalue, on a floor");
+    app.add_option("--field", options.field,
+                   "VTK --volume: the array to draw (a point array, or an unstructured grid's cell array; default: the "
+                   "file's active scalars)");
     app.add_option("--field-component", options.fieldComponent,
                    "VTK --volume: of a vector array, this component (from 0) instead of the magnitude")
         ->check(CLI::Range(0, 8));
