@@ -192,12 +192,13 @@ TEST_CASE("ripple-render: a volume file's z-slabs over 2 and 3 ranks render as 1
 
 // Each rank holds a k-d region of an unstructured grid's cells (MeshPartition.h); the regions' boxes overlap
 // where cells stick out of them.
-TEST_CASE("ripple-render: an unstructured grid's cells over 2, 3 and 4 ranks render as 1 rank holding all of them") {
+TEST_CASE("ripple-render: an unstructured grid's cells over 2, 3 and 4 ranks render as 1 rank holding all of them; ripple-view shows the 2-rank image") {
     if (!std::filesystem::exists(imageFolder() / "mesh_1.pfm")) {
         MESSAGE("skipped: no mesh images (the shared data's can.vtu was not found)");
         return;
     }
     checkTilesAgree("mesh_1.pfm", {"mesh_2.pfm", "mesh_3.pfm", "mesh_4.pfm"});
+    if (std::filesystem::exists(imageFolder() / "view_mesh_2.pfm")) checkSameImage("view_mesh_2.pfm", "mesh_2.pfm");
 }
 
 TEST_CASE("ripple-dp-tutorial: rank 0's image shows the quad of each of 3 ranks, in rank order") {
