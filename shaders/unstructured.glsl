@@ -87,13 +87,17 @@ bool tetrahedronValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint 
 bool isoparametricValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint shape, uint corners, uint first, uint cell,
                         vec3 p, out float value) {
     value = 0.0;
+    // Corners and point relative to corner 0: the residual is then rounded at the cell's own scale, not at
+    // that of its grid coordinates (up to 2048), which would swamp the tolerance of a cell a unit wide.
     vec3 x[8];
     float corner[8];
+    vec4 origin = meshVertex(mesh, h, m.words[first]);
     for (uint k = 0u; k < 8u; ++k) {
-        vec4 vertex = k < corners ? meshVertex(mesh, h, m.words[first + k]) : vec4(0.0);
-        x[k] = vertex.xyz;
+        vec4 vertex = k < corners ? meshVertex(mesh, h, m.words[first + k]) : origin;
+        x[k] = vertex.xyz - origin.xyz;
         corner[k] = vertex.w;
     }
+    p -= origin.xyz;
     vec3 q = shape == UNSTRUCTURED_WEDGE ? vec3(1.0 / 3.0, 1.0 / 3.0, 0.5) : vec3(0.5, 0.5, shape == UNSTRUCTURED_PYRAMID ? 0.25 : 0.5);
     vec3 lo = x[0], hi = x[0];
     for (uint k = 1u; k < corners; ++k) {
@@ -114,7 +118,7 @@ bool isoparametricValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uin
         vec3 dq = inverse(jacobian) * f;
         if (any(isnan(dq)) || any(isinf(dq))) return false;
         q = clamp(q - dq, vec3(-0.5), vec3(1.5));
-        if (dot(dq, dq) < 1e-14) break;
+        if (dot(dq, dq) < 1e-12) break;  // converged to 1e-6 of the reference cell
     }
     shapeFunctions(shape, q, n, dn);
     vec3 residual = -p;

@@ -5,6 +5,7 @@
 #include "io/vtk/VtkUnstructuredFile.h"
 #include "apps/scene/MeshPartition.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -132,12 +133,22 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
         mesh.cells = readVtkUnstructured(options.volume, {options.field, options.fieldComponent.value_or(-1)});
         if (mesh.cells.values.empty())
             throw std::runtime_error("--volume " + options.volume + ": the file has no point or cell array to draw");
+        const size_t cellCount = mesh.cells.cellType.size();
+        if (cellCount == 0) throw std::runtime_error("--volume " + options.volume + ": the file has no cells");
+        if (cellCount < size_t(ranks.size()))
+            throw std::runtime_error("--volume " + options.volume + ": " + std::to_string(cellCount) + " cells cannot be "
+                                     "split over " + std::to_string(ranks.size()) + " ranks (each needs at least one)");
         mesh.wholeLo = glm::vec3(INFINITY);
         mesh.wholeHi = glm::vec3(-INFINITY);
         for (const glm::vec3& p : mesh.cells.positions) {
             mesh.wholeLo = glm::min(mesh.wholeLo, p);
             mesh.wholeHi = glm::max(mesh.wholeHi, p);
         }
+        const glm::vec3 extent = mesh.wholeHi - mesh.wholeLo;
+        const float longest = std::max({extent.x, extent.y, extent.z});
+        if (!(longest > 0.0f) || !std::isfinite(longest) || !std::isfinite(2.0f / longest))
+            throw std::runtime_error("--volume " + options.volume + ": the mesh's points span no finite, non-zero box "
+                                     "(longest side " + std::to_string(longest) + ")");
         if (!quiet && root)
             for (const std::string& warning : mesh.cells.warnings)
                 std::fprintf(stderr, "[%s] WARNING: %s: %s\n", program, options.volume.c_str(), warning.c_str());

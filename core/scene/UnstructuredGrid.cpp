@@ -165,8 +165,28 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
         const dvec3 size = dvec3(boxes[k].hi) - dvec3(boxes[k].lo);
         cellSizes[k] = std::max({size.x, size.y, size.z});
     }
+    // The kernels map rays into grid space in float: the box and its scale must stay finite there.
+    if (!std::isfinite(float(extent.x)) || !std::isfinite(float(extent.y)) || !std::isfinite(float(extent.z)))
+        throw std::invalid_argument("the mesh's box is wider than a float can hold");
     grid->macrocells = macrocellCounts(extent, std::move(cellSizes));
+    // Every (cell, macrocell it overlaps) pair is visited below: macrocells are coarsened until there are at
+    // most 64 per cell or macrocell (overlapping cells of very different sizes would otherwise multiply them).
+    const auto overlaps = [&](glm::uvec3 counts) {
+        const dvec3 perUnit = dvec3(counts) / extent;
+        double pairs = 0.0;
+        for (const bvh::Aabb& box : boxes) {
+            const dvec3 first = glm::floor((dvec3(box.lo) - dvec3(whole.lo)) * perUnit);
+            const dvec3 last = glm::min(glm::floor((dvec3(box.hi) - dvec3(whole.lo)) * perUnit), dvec3(counts) - 1.0);
+            pairs += (last.x - first.x + 1.0) * (last.y - first.y + 1.0) * (last.z - first.z + 1.0);
+        }
+        return pairs;
+    };
+    while (glm::any(glm::greaterThan(grid->macrocells, glm::uvec3(1u))) &&
+           overlaps(grid->macrocells) > 64.0 * double(boxes.size() + size_t(grid->macrocells.x) * grid->macrocells.y * grid->macrocells.z))
+        grid->macrocells = glm::max(grid->macrocells / 2u, glm::uvec3(1u));
     const dvec3 scale = dvec3(grid->macrocells) * double(gpu::VOLUME_MACROCELL) / extent;
+    if (!std::isfinite(float(scale.x)) || !std::isfinite(float(scale.y)) || !std::isfinite(float(scale.z)))
+        throw std::invalid_argument("the mesh's box is narrower than a float can scale to its macrocells");
     const auto toGrid = [&](glm::vec3 p) { return glm::vec3((dvec3(p) - dvec3(whole.lo)) * scale); };
     for (bvh::Aabb& box : boxes) box = bvh::Aabb{toGrid(box.lo), toGrid(box.hi)};
 

@@ -123,11 +123,21 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         // An unstructured mesh's grid is a virtual one over its box, of whole macrocells.
         const glm::uvec3 dims = v.unstructured ? v.unstructured->macrocells * gpu::VOLUME_MACROCELL + 1u : v.dims;
         const glm::vec3 origin = v.unstructured ? v.unstructured->lo : v.origin;
-        const glm::vec3 spacing = v.unstructured ? (v.unstructured->hi - v.unstructured->lo) / glm::vec3(dims - 1u) : v.spacing;
+        // In double: a mesh's box may be narrow or wide enough that its spacing rounds in float.
+        const glm::dvec3 spacing = v.unstructured ? (glm::dvec3(v.unstructured->hi) - glm::dvec3(v.unstructured->lo)) / glm::dvec3(dims - 1u)
+                                                  : glm::dvec3(v.spacing);
         // World -> object -> grid index space (voxel i at i).
-        const glm::dmat4 objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / glm::dvec3(spacing)) *
+        const glm::dmat4 objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / spacing) *
                                         glm::translate(glm::dmat4(1.0), -glm::dvec3(origin));
         storeRows(objectToGrid * glm::inverse(glm::dmat4(v.transform)), record.worldToGrid);
+        bool finiteMap = true;
+        for (const gpu::vec4& row : record.worldToGrid) finiteMap = finiteMap && std::isfinite(row.x + row.y + row.z + row.w);
+        if (!finiteMap) {
+            table.messages.push_back("volume " + std::to_string(index) + ": its transform and spacing map the world to "
+                                     "its grid beyond what a float holds; skipped");
+            ++table.skipped;
+            continue;
+        }
         const glm::uvec3 extent = dims - 1u;
         record.gridExtent = gpu::vec4(glm::vec3(extent), 0.0f);
         record.kind = v.unstructured ? gpu::VOLUME_KIND_UNSTRUCTURED : gpu::VOLUME_KIND_STRUCTURED;
@@ -192,7 +202,7 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
                 table.data[record.majorantOffset + m] = extinctionMax(record, levelsAt, table.data, v.unstructured->macrocellRanges[m]);
 
         // World bounds: the grid box's corners.
-        const glm::vec3 hiCorner = origin + glm::vec3(extent) * spacing;
+        const glm::vec3 hiCorner = v.unstructured ? v.unstructured->hi : origin + glm::vec3(extent) * v.spacing;
         bvh::Aabb box;
         for (int c = 0; c < 8; ++c) {
             const glm::vec3 corner((c & 1) ? hiCorner.x : origin.x, (c & 2) ? hiCorner.y : origin.y,

@@ -319,6 +319,41 @@ TEST_CASE("unstructured volumes: point location and interpolation are exact, als
     }
 }
 
+TEST_CASE("unstructured volumes: small hexahedra far from the grid's origin are still found") {
+    // 1000 hexahedra of side 10 (the median cell, so the macrocells' size) and 1000 of side 0.25 placed 200
+    // away: in grid space the small cells are 0.2 units wide at coordinates about 160, where a Newton
+    // residual summed from absolute coordinates carries rounding of the small cells' own tolerance.
+    test::ValidationGuard guard;
+    const auto field = [](glm::vec3 p) { return 0.01f * p.x - 0.02f * p.y + 0.03f * p.z; };
+    core::UnstructuredCells mesh;
+    for (const auto& [origin, side] : {std::pair{glm::vec3(0.0f), 10.0f}, std::pair{glm::vec3(200.0f), 0.25f}}) {
+        const core::UnstructuredCells box = boxMesh(Shape::Hexahedra, 10, 2.0f, field);
+        const uint32_t first = uint32_t(mesh.positions.size()), firstIndex = uint32_t(mesh.index.size());
+        for (const glm::vec3& p : box.positions) {
+            // boxMesh spans [-1, 1]^2 x [0, 2]: moved to origin + [0, 10 side]^3.
+            mesh.positions.push_back(origin + (p + glm::vec3(1.0f, 1.0f, 0.0f)) * 5.0f * side);
+            mesh.values.push_back(field(mesh.positions.back()));
+        }
+        for (uint32_t i : box.index) mesh.index.push_back(first + i);
+        for (uint32_t c : box.cellIndex) mesh.cellIndex.push_back(firstIndex + c);
+        mesh.cellType.insert(mesh.cellType.end(), box.cellType.begin(), box.cellType.end());
+    }
+    const auto grid = core::prepareUnstructuredGrid(mesh);
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<glm::vec3> points;
+    for (int i = 0; i < 2000; ++i) points.push_back(glm::vec3(200.0f) + 2.5f * glm::vec3(unit(random), unit(random), unit(random)));
+    const std::vector<glm::vec2> results = probe(*grid, points);
+    size_t found = 0, exact = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        found += results[i].x == 1.0f ? 1 : 0;
+        exact += results[i].x == 1.0f && std::abs(results[i].y - field(points[i])) <= 1e-4f ? 1 : 0;
+    }
+    MESSAGE(found << " of " << points.size() << " points in the small cells found, " << exact << " exact");
+    CHECK(found == points.size());
+    CHECK(exact == points.size());
+}
+
 TEST_CASE("unstructured volumes: degenerate cells are dropped and inverted ones kept, both reported; no NaN") {
     test::ValidationGuard guard;
     const float depth = 1.0f, opacity = 1.0f - std::exp(-1.0f);
@@ -384,6 +419,9 @@ TEST_CASE("unstructured volumes: meshes that cannot be rendered are refused, nam
     bad = good;
     for (glm::vec3& p : bad.positions) p.z = 0.0f;
     CHECK(refusal(bad) == "no cell has volume (all 1 are degenerate)");
+    bad = good;
+    for (glm::vec3& p : bad.positions) p *= 3e38f;  // finite, but the box is 6e38 wide
+    CHECK(refusal(bad) == "the mesh's box is wider than a float can hold");
 }
 
 TEST_CASE("unstructured iso-surfaces: a linear field's surfaces in tetrahedra are exact planes") {

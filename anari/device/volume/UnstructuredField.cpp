@@ -54,6 +54,11 @@ void UnstructuredField::commit() {
 
     Array* vertexData = getArray("vertex.data");
     Array* cellData = getArray("cell.data");
+    for (const auto& [name, array] : {std::pair{"vertex.data", vertexData}, std::pair{"cell.data", cellData}})
+        if (has(name) && !array) {
+            invalidate(std::string("parameter '") + name + "' must be an ARRAY1D");
+            return;
+        }
     if (!vertexData && !cellData) {
         invalidate("missing parameter 'vertex.data' or 'cell.data' (the field's values)");
         return;
