@@ -5,6 +5,7 @@
 #define RIPPLE_SURFACE_GLSL
 #include "features.glsl"
 #include "primitive_refs.glsl"
+#include "unstructured.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceShadingRef { InstanceShading instances[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GeometriesRef { GeometryRecord geometries[]; };
@@ -12,6 +13,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ge
 // Gradient of the cell's trilinear interpolant at object-space point x (clamped into the cell): the
 // iso-surface's normal direction, pointing to higher values.
 vec3 isoCellGradient(IsoCellPrim cell, vec3 x) {
+    if ((cell.meshLow | cell.meshHigh) != 0u) return meshIsoGradient(cell, x);
     vec3 w = clamp((x - cell.lowCorner.xyz) / cell.size.xyz, vec3(0.0), vec3(1.0));
     vec3 g = vec3(0.0);
     for (int n = 0; n < 8; ++n) {

@@ -10,6 +10,7 @@
 #define RIPPLE_UNSTRUCTURED_GLSL
 
 #include "shared/bvh.h"
+#include "shared/scene.h"
 #include "shared/volume.h"
 
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer MeshWordsRef { uint words[]; };
@@ -64,29 +65,44 @@ bool insideReference(uint shape, vec3 q) {
     return shape == UNSTRUCTURED_WEDGE ? box && q.x + q.y <= 1.0 + e : box;
 }
 
-// Whether grid-space point p lies in the tetrahedron whose indices start at `first`, and the field there:
-// barycentric coordinates b, p = x0 + mat3(x1 - x0, x2 - x0, x3 - x0) b. A cell of no volume was dropped on
-// the host; a nearly flat one gives a huge or NaN b, which fails the test.
-bool tetrahedronValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint first, uint cell, vec3 p, out float value) {
+// The field of the cell at grid-space point p as its interpolant gives it, also a little outside the cell
+// (extrapolated, for the iso-surface's root finding): `inside` whether p is in the cell, and with
+// `wantGradient` (a constant at each call) the interpolant's gradient in grid space. False where the
+// interpolant cannot be evaluated at p (a singular map, or a point its Newton iteration does not reach).
+//
+// Tetrahedron: barycentric coordinates b, p = x0 + mat3(x1 - x0, x2 - x0, x3 - x0) b. A cell of no volume
+// was dropped on the host; a nearly flat one gives a huge or NaN b, which fails.
+bool tetrahedronField(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint first, uint cell, vec3 p, bool wantGradient,
+                      out float value, out bool inside, out vec3 gradient) {
     value = 0.0;
+    inside = false;
+    gradient = vec3(0.0);
     vec4 x0 = meshVertex(mesh, h, m.words[first]), x1 = meshVertex(mesh, h, m.words[first + 1u]);
     vec4 x2 = meshVertex(mesh, h, m.words[first + 2u]), x3 = meshVertex(mesh, h, m.words[first + 3u]);
     vec3 e1 = x1.xyz - x0.xyz, e2 = x2.xyz - x0.xyz, e3 = x3.xyz - x0.xyz, r = p - x0.xyz;
     vec3 c23 = cross(e2, e3);
     vec3 b = vec3(dot(r, c23), dot(e1, cross(r, e3)), dot(e1, cross(e2, r))) / dot(e1, c23);  // Cramer's rule
+    if (any(isnan(b)) || any(isinf(b))) return false;
     const float e = UNSTRUCTURED_INSIDE_EPSILON;
-    if (!(all(greaterThanEqual(b, vec3(-e))) && b.x + b.y + b.z <= 1.0 + e)) return false;
-    value = h.cellCentered != 0u ? uintBitsToFloat(m.words[h.cellValueOffset + cell])
-                                 : dot(vec4(1.0 - b.x - b.y - b.z, b), vec4(x0.w, x1.w, x2.w, x3.w));
+    inside = all(greaterThanEqual(b, vec3(-e))) && b.x + b.y + b.z <= 1.0 + e;
+    if (h.cellCentered != 0u) {
+        value = uintBitsToFloat(m.words[h.cellValueOffset + cell]);
+    } else {
+        value = dot(vec4(1.0 - b.x - b.y - b.z, b), vec4(x0.w, x1.w, x2.w, x3.w));
+        // f = f0 + (f1 - f0, f2 - f0, f3 - f0) . b with b = E^-1 (p - x0): its gradient is E^-T times that.
+        if (wantGradient) gradient = transpose(inverse(mat3(e1, e2, e3))) * vec3(x1.w - x0.w, x2.w - x0.w, x3.w - x0.w);
+    }
     return true;
 }
 
 // The same for a hexahedron, wedge or pyramid with `corners` corners: Newton's method on its map from the
 // reference cell's centre, kept near the cell (a point outside may have no preimage); the cell's size
 // scales the residual test.
-bool isoparametricValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint shape, uint corners, uint first, uint cell,
-                        vec3 p, out float value) {
+bool isoparametricField(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint shape, uint corners, uint first, uint cell,
+                        vec3 p, bool wantGradient, out float value, out bool inside, out vec3 gradient) {
     value = 0.0;
+    inside = false;
+    gradient = vec3(0.0);
     // Corners and point relative to corner 0: the residual is then rounded at the cell's own scale, not at
     // that of its grid coordinates (up to 2048), which would swamp the tolerance of a cell a unit wide.
     vec3 x[8];
@@ -107,10 +123,11 @@ bool isoparametricValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uin
     float size = max(hi.x - lo.x, max(hi.y - lo.y, hi.z - lo.z));
     float n[8];
     vec3 dn[8];
+    mat3 jacobian;
     for (uint step = 0u; step < UNSTRUCTURED_NEWTON_STEPS; ++step) {
         shapeFunctions(shape, q, n, dn);
         vec3 f = -p;
-        mat3 jacobian = mat3(0.0);
+        jacobian = mat3(0.0);
         for (uint k = 0u; k < corners; ++k) {
             f += n[k] * x[k];
             jacobian += outerProduct(x[k], dn[k]);
@@ -122,23 +139,38 @@ bool isoparametricValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uin
     }
     shapeFunctions(shape, q, n, dn);
     vec3 residual = -p;
-    for (uint k = 0u; k < corners; ++k) residual += n[k] * x[k];
-    if (!insideReference(shape, q) || !(length(residual) <= 1e-4 * size)) return false;
+    jacobian = mat3(0.0);
+    vec3 valueGradient = vec3(0.0);  // of the interpolant in the reference cell
+    for (uint k = 0u; k < corners; ++k) {
+        residual += n[k] * x[k];
+        jacobian += outerProduct(x[k], dn[k]);
+        valueGradient += corner[k] * dn[k];
+    }
+    if (!(length(residual) <= 1e-4 * size)) return false;
+    inside = insideReference(shape, q);
     if (h.cellCentered != 0u) {
         value = uintBitsToFloat(m.words[h.cellValueOffset + cell]);
     } else {
         for (uint k = 0u; k < corners; ++k) value += n[k] * corner[k];
+        if (wantGradient) gradient = transpose(inverse(jacobian)) * valueGradient;
     }
     return true;
 }
 
-// Whether grid-space point p lies in leaf-order cell `cell`, and the field's value there.
-bool cellValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint cell, vec3 p, out float value) {
+bool cellField(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint cell, vec3 p, bool wantGradient, out float value,
+               out bool inside, out vec3 gradient) {
     uint word = m.words[h.cellOffset + cell];
     uint shape = word & 3u, first = h.indexOffset + (word >> 2u);
-    if (shape == UNSTRUCTURED_TETRAHEDRON) return tetrahedronValue(mesh, m, h, first, cell, p, value);
+    if (shape == UNSTRUCTURED_TETRAHEDRON) return tetrahedronField(mesh, m, h, first, cell, p, wantGradient, value, inside, gradient);
     uint corners = shape == UNSTRUCTURED_HEXAHEDRON ? 8u : shape == UNSTRUCTURED_WEDGE ? 6u : 5u;
-    return isoparametricValue(mesh, m, h, shape, corners, first, cell, p, value);
+    return isoparametricField(mesh, m, h, shape, corners, first, cell, p, wantGradient, value, inside, gradient);
+}
+
+// Whether grid-space point p lies in leaf-order cell `cell`, and the field's value there.
+bool cellValue(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint cell, vec3 p, out float value) {
+    bool inside;
+    vec3 gradient;
+    return cellField(mesh, m, h, cell, p, false, value, inside, gradient) && inside;
 }
 
 bool boxHolds(vec4 lo, vec4 hi, vec3 p) {
@@ -192,6 +224,78 @@ bool unstructuredValue(uint64_t mesh, UnstructuredHeader h, vec3 p, out float va
         }
     }
     return false;
+}
+
+// Iso-surfaces in mesh cells (shared/scene.h IsoCellPrim with a mesh address): where the cell's own
+// interpolant equals the isovalue along the ray. The ray's segment in the cell's box (grown by 1e-4 of it)
+// is sampled at 16 even steps of the interpolant, extrapolated past the cell where its map reaches; the
+// nearest pair of samples whose values straddle the isovalue is bisected to float precision, and the root
+// counts where it lies inside the cell. In a tetrahedron the field is linear along the ray and the root is
+// exact; in the other shapes a surface crossing twice between two samples (1/16 of the cell apart) is missed.
+vec3 isoMeshPoint(IsoCellPrim prim, vec3 objectPoint) {
+    return (objectPoint - prim.values1.xyz) * prim.values0.xyz;
+}
+
+bool intersectMeshIsoCell(vec3 origin, vec3 direction, IsoCellPrim prim, float tmin, inout float tBest) {
+    vec3 lo = prim.lowCorner.xyz, size = prim.size.xyz;
+    vec3 grow = 1e-4 * size + 4e-7 * abs(lo);
+    vec3 inv = vec3(1.0) / mix(direction, vec3(1e-30), equal(direction, vec3(0.0)));
+    vec3 t0 = (lo - grow - origin) * inv, t1 = (lo + size + grow - origin) * inv;
+    vec3 tn = min(t0, t1), tf = max(t0, t1);
+    float enter = max(max(tn.x, tn.y), max(tn.z, tmin));
+    float leave = min(min(tf.x, tf.y), min(tf.z, tBest));
+    if (!(enter < leave)) return false;
+    uint64_t mesh = packUint2x32(uvec2(prim.meshLow, prim.meshHigh));
+    MeshWordsRef m = MeshWordsRef(mesh);
+    UnstructuredHeader h = unstructuredHeader(mesh);
+    uint cell = floatBitsToUint(prim.values0.w);
+    float iso = prim.lowCorner.w;
+    vec3 go = isoMeshPoint(prim, origin), gd = direction * prim.values0.xyz;
+    vec3 unused;
+    bool inside;
+    float fa;
+    bool okA = cellField(mesh, m, h, cell, go + enter * gd, false, fa, inside, unused);
+    float ta = enter;
+    const uint STEPS = 16u;
+    for (uint k = 1u; k <= STEPS; ++k) {
+        float tb = mix(enter, leave, float(k) / float(STEPS));
+        float fb;
+        bool okB = cellField(mesh, m, h, cell, go + tb * gd, false, fb, inside, unused);
+        if (okA && okB && ((fa < iso) != (fb < iso))) {
+            float a = ta, b = tb;
+            bool below = fa < iso;
+            for (int it = 0; it < 40; ++it) {
+                float mid = 0.5 * (a + b);
+                if (mid <= a || mid >= b) break;  // no float between the ends: converged
+                float fm;
+                if (!cellField(mesh, m, h, cell, go + mid * gd, false, fm, inside, unused)) break;
+                if ((fm < iso) == below) a = mid;
+                else b = mid;
+            }
+            float fr;
+            bool found = cellField(mesh, m, h, cell, go + b * gd, false, fr, inside, unused) && inside;
+            if (found && b > tmin && b < tBest) {
+                tBest = b;
+                return true;
+            }
+        }
+        ta = tb;
+        fa = fb;
+        okA = okB;
+    }
+    return false;
+}
+
+// The gradient of the cell's interpolant at an object-space point on its iso-surface (object space): the
+// surface's normal direction, pointing to higher values.
+vec3 meshIsoGradient(IsoCellPrim prim, vec3 objectPoint) {
+    uint64_t mesh = packUint2x32(uvec2(prim.meshLow, prim.meshHigh));
+    float value;
+    bool inside;
+    vec3 gradient;
+    cellField(mesh, MeshWordsRef(mesh), unstructuredHeader(mesh), floatBitsToUint(prim.values0.w), isoMeshPoint(prim, objectPoint),
+              true, value, inside, gradient);
+    return gradient * prim.values0.xyz;  // d/dx = d/dg * scale
 }
 
 #endif

@@ -265,6 +265,9 @@ namespace {
 
 // Whether an iso-surface set's arrays describe a field of at least one cell with a usable grid.
 std::string isosurfaceFieldProblem(const IsosurfaceSet& set) {
+    for (float v : set.isovalues)
+        if (!std::isfinite(v)) return "an isovalue is not finite";
+    if (set.mesh) return {};  // checked when it was prepared
     const glm::uvec3 d = set.dims;
     if (d.x < 2 || d.y < 2 || d.z < 2) return "a field needs at least 2 voxels along each axis";
     uint64_t voxels = 0;
@@ -278,12 +281,19 @@ std::string isosurfaceFieldProblem(const IsosurfaceSet& set) {
     return {};
 }
 
+// The cells an iso-surface's (cell, isovalue) pairs number: the grid's, or the mesh's in leaf order.
+uint64_t isosurfaceCells(const IsosurfaceSet& set) {
+    if (set.mesh) return set.mesh->cellRanges.size();
+    const glm::uvec3 cells = set.dims - 1u;
+    return uint64_t(cells.x) * cells.y * cells.z;
+}
+
 }  // namespace
 
 bool fits(const PreparedGeometry& prepared, const IsosurfaceSet& set) {
-    if (!isosurfaceFieldProblem(set).empty() || prepared.positionCount != set.values.size()) return false;
-    const glm::uvec3 cells = set.dims - 1u;
-    const uint64_t pairs = uint64_t(cells.x) * cells.y * cells.z * set.isovalues.size();
+    const uint64_t samples = set.mesh ? set.mesh->words.size() : set.values.size();
+    if (!isosurfaceFieldProblem(set).empty() || prepared.positionCount != samples) return false;
+    const uint64_t pairs = isosurfaceCells(set) * set.isovalues.size();
     for (uint64_t pair : prepared.isoCells)
         if (pair >= pairs) return false;
     return true;
@@ -294,15 +304,30 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(const IsosurfaceSet& set
     g->kind = GeometryKind::Isosurfaces;
     g->identity = set.identity;
     g->buildOptions = options;
-    g->positionCount = set.values.size();
+    g->positionCount = set.mesh ? set.mesh->words.size() : set.values.size();
     if (const std::string problem = isosurfaceFieldProblem(set); !problem.empty()) {
         g->problems.push_back(problem + "; set skipped");
         return g;
     }
-    const glm::uvec3 d = set.dims;
     const uint64_t isoCount = set.isovalues.size();
-    auto at = [&](uint32_t x, uint32_t y, uint32_t z) { return set.values[(uint64_t(z) * d.y + y) * d.x + x]; };
     std::vector<bvh::Aabb> boxes;
+    if (set.mesh) {
+        // A mesh cell is crossed when its corner values span the isovalue (its interpolant stays within them).
+        const UnstructuredGrid& mesh = *set.mesh;
+        for (uint64_t cell = 0; cell < mesh.cellRanges.size(); ++cell) {
+            const glm::vec2 range = mesh.cellRanges[cell];
+            if (!(range.x < range.y)) continue;
+            const auto& [lo, hi] = mesh.cellBoxes[cell];
+            const glm::vec3 pad = 1e-6f * (glm::abs(lo) + glm::abs(hi));
+            for (uint64_t i = 0; i < isoCount; ++i) {
+                if (set.isovalues[i] < range.x || set.isovalues[i] > range.y) continue;
+                g->isoCells.push_back(cell * isoCount + i);
+                boxes.push_back({lo - pad, hi + pad});
+            }
+        }
+    }
+    const glm::uvec3 d = set.mesh ? glm::uvec3(1u) : set.dims;
+    auto at = [&](uint32_t x, uint32_t y, uint32_t z) { return set.values[(uint64_t(z) * d.y + y) * d.x + x]; };
     uint64_t nonFinite = 0;
     for (uint32_t z = 0; z + 1 < d.z; ++z)
         for (uint32_t y = 0; y + 1 < d.y; ++y)

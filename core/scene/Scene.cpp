@@ -82,6 +82,13 @@ struct FlatScene {
     std::vector<gpu::CylinderPrim> cylinders;
     std::vector<gpu::ConePrim> cones;
     std::vector<gpu::IsoCellPrim> isoCells;
+    // Iso-surfaces of unstructured meshes: their prims [first, first + count) of isoCells take the device
+    // address of `mesh`'s words once uploaded.
+    struct IsoMesh {
+        std::shared_ptr<const UnstructuredGrid> mesh;
+        size_t first = 0, count = 0;
+    };
+    std::vector<IsoMesh> isoMeshes;
     std::vector<gpu::GeometryRecord> geometries;
     std::vector<uint32_t> primSlots;
     std::vector<uint32_t> vertexIndices;
@@ -219,8 +226,26 @@ void flattenIsosurfaces(const IsosurfaceSet& set, UsedGeometry& g, FlatScene& fl
     const PreparedGeometry& p = *g.prepared;
     const glm::uvec3 d = set.dims, cells = d - 1u;
     const uint64_t isoCount = set.isovalues.size();
+    if (set.mesh) {
+        // A mesh cell (shared/scene.h IsoCellPrim): its box, the grid map and its leaf-order index.
+        flat.isoMeshes.push_back({set.mesh, flat.isoCells.size(), p.blas.primOrder.size()});
+        for (uint32_t slot : p.blas.primOrder) {
+            const uint32_t prim = p.validPrims[slot];
+            const uint64_t pair = p.isoCells[prim];
+            const uint32_t cell = static_cast<uint32_t>(pair / isoCount), iso = static_cast<uint32_t>(pair % isoCount);
+            const auto& [lo, hi] = set.mesh->cellBoxes[cell];
+            gpu::IsoCellPrim c{};
+            c.lowCorner = gpu::vec4(lo, set.isovalues[iso]);
+            c.size = gpu::vec4(hi - lo, 0.0f);
+            c.values0 = gpu::vec4(set.mesh->gridScale, glm::uintBitsToFloat(cell));
+            c.values1 = gpu::vec4(set.mesh->lo, 0.0f);
+            c.primId = prim;
+            c.isovalueIndex = iso;
+            flat.isoCells.push_back(c);
+        }
+    }
     auto at = [&](uint64_t x, uint64_t y, uint64_t z) { return set.values[(z * d.y + y) * d.x + x]; };
-    for (uint32_t slot : p.blas.primOrder) {
+    for (uint32_t slot : set.mesh ? std::vector<uint32_t>{} : p.blas.primOrder) {
         const uint32_t prim = p.validPrims[slot];
         const uint64_t pair = p.isoCells[prim], cell = pair / isoCount;
         const uint32_t iso = static_cast<uint32_t>(pair % isoCount);
@@ -491,6 +516,23 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     desc.spheres = upload(spheres_, flat.spheres, "scene spheres");
     desc.cylinders = upload(cylinders_, flat.cylinders, "scene cylinders");
     desc.cones = upload(cones_, flat.cones, "scene cones");
+    // Unstructured meshes whose iso-surfaces are drawn: their words on the device, once per mesh.
+    for (const FlatScene::IsoMesh& m : flat.isoMeshes) {
+        const auto same = [&](const std::pair<std::shared_ptr<const UnstructuredGrid>, vk::Buffer>& kept) { return kept.first == m.mesh; };
+        auto it = std::find_if(isoMeshes_.begin(), isoMeshes_.end(), same);
+        if (it == isoMeshes_.end()) {
+            const size_t bytes = m.mesh->words.size() * sizeof(uint32_t);
+            isoMeshes_.emplace_back(m.mesh, vk::Buffer(context, bytes, "iso-surface mesh"));
+            isoMeshes_.back().second.upload(m.mesh->words.data(), bytes);
+            report_.gpuBytes += bytes;
+            it = std::prev(isoMeshes_.end());
+        }
+        const uint64_t address = it->second.address();
+        for (size_t i = m.first; i < m.first + m.count; ++i) {
+            flat.isoCells[i].meshLow = uint32_t(address);
+            flat.isoCells[i].meshHigh = uint32_t(address >> 32);
+        }
+    }
     desc.isoCells = upload(isoCells_, flat.isoCells, "scene iso-surface cells");
     desc.instances = upload(instances_, instances, "scene instances");
     desc.instanceShading = upload(instanceShading_, instanceShading, "scene instance shading");

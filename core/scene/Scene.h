@@ -118,6 +118,8 @@ private:
     std::unique_ptr<AccelerationStructures> accelerationStructures_;  // RayQuery only
     // Each kept volume's voxels (in VolumeTable record order), shared with the scenes that reuse them.
     std::vector<std::shared_ptr<const VolumeVoxels>> volumeVoxels_;
+    // The words of each unstructured mesh an iso-surface is drawn in (IsoCellPrim addresses them).
+    std::vector<std::pair<std::shared_ptr<const UnstructuredGrid>, vk::Buffer>> isoMeshes_;
     vk::Buffer nodes_, triangles_, spheres_, cylinders_, cones_, isoCells_, instances_, instanceShading_, geometries_, primSlots_,
         vertexIndices_, attributes_, materials_, textures_, texels_, lights_, volumes_, volumeData_, desc_;
 };

@@ -100,6 +100,9 @@ struct ConeSet {
 // origin + (i, j, k) * spacing; the primitive id a frame reports is the isovalue's index. Cells with a
 // NaN or Inf corner are left out (reported).
 struct IsosurfaceSet {
+    // Set: the field is this unstructured mesh's (dims, values, origin and spacing are unused), whose cells
+    // the surface is found in by root finding on their own interpolant (shaders/unstructured.glsl).
+    std::shared_ptr<const UnstructuredGrid> mesh;
     glm::uvec3 dims{0};
     std::vector<float> values;            // dims.x * dims.y * dims.z, x fastest
     glm::vec3 origin{0.0f};

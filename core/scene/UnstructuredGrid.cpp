@@ -187,7 +187,10 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     const dvec3 scale = dvec3(grid->macrocells) * double(gpu::VOLUME_MACROCELL) / extent;
     if (!std::isfinite(float(scale.x)) || !std::isfinite(float(scale.y)) || !std::isfinite(float(scale.z)))
         throw std::invalid_argument("the mesh's box is narrower than a float can scale to its macrocells");
+    grid->gridScale = glm::vec3(scale);
+    grid->cellCentered = cells.cellCentered;
     const auto toGrid = [&](glm::vec3 p) { return glm::vec3((dvec3(p) - dvec3(whole.lo)) * scale); };
+    std::vector<bvh::Aabb> objectBoxes = boxes;
     for (bvh::Aabb& box : boxes) box = bvh::Aabb{toGrid(box.lo), toGrid(box.hi)};
 
     bvh::BuildOptions options;
@@ -223,6 +226,11 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
                     glm::vec2& r = grid->macrocellRanges[(size_t(z) * m.y + y) * m.x + x];
                     r = glm::vec2(std::min(r.x, range.x), std::max(r.y, range.y));
                 }
+    }
+
+    for (uint32_t slot : tree.primOrder) {
+        grid->cellBoxes.emplace_back(objectBoxes[slot].lo, objectBoxes[slot].hi);
+        grid->cellRanges.push_back(cellRanges[slot]);
     }
 
     // Each macrocell's start node: the lowest common ancestor of the nodes holding the leaves of the cells

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ripple::core {
@@ -36,6 +37,12 @@ struct UnstructuredGrid {
     // (hi < lo: none does, the macrocell is empty).
     std::vector<glm::vec2> macrocellRanges;
     glm::vec2 valueRange{0.0f};          // of the kept cells' values
+    glm::vec3 gridScale{1.0f};           // grid space is (object - lo) * gridScale
+    bool cellCentered = false;           // values per cell (constant over each), else per vertex
+    // Per kept cell in leaf order (the words' order): its object-space box and the range of its values
+    // (iso-surfaces are built over the cells whose range holds an isovalue).
+    std::vector<std::pair<glm::vec3, glm::vec3>> cellBoxes;
+    std::vector<glm::vec2> cellRanges;
     uint64_t cellsKept = 0;
     uint64_t degenerateCells = 0;        // zero volume: dropped
     uint64_t invertedCells = 0;          // corners in the order opposite to VTK's: kept (the inverse map needs no orientation)

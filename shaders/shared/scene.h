@@ -78,6 +78,10 @@ struct ConePrim {
 // inside it is where the trilinear interpolant of its 8 corner values equals the isovalue. primId is its
 // index among the geometry's (cell, isovalue) pairs. A hit reports u = isovalueIndex (the primitive id
 // ANARI applications see) and v = 0.
+// A cell of an unstructured mesh instead (mesh != 0): lowCorner and size are the cell's object-space box,
+// values0 the mesh's grid scale (xyz) and the cell's leaf-order index (w, as bits), values1.xyz the mesh's
+// lowest corner (grid space is (object - values1.xyz) * values0.xyz); the surface is where the cell's own
+// interpolant equals the isovalue (shaders/unstructured.glsl).
 struct IsoCellPrim {
     vec4 lowCorner;  // xyz: the cell's corner of lowest coordinates, object space; w: the isovalue
     vec4 size;       // xyz: the cell's edge lengths (the field's spacing); w: 0
@@ -85,8 +89,8 @@ struct IsoCellPrim {
     vec4 values1;    // 001, 101, 011, 111
     uint primId;
     uint isovalueIndex;
-    uint pad0;
-    uint pad1;
+    uint meshLow;    // device address of an unstructured mesh's words (UnstructuredHeader), low and high
+    uint meshHigh;   // words; 0: a structured cell
 };
 
 // One instance of a BLAS, in TLAS leaf order. Rays are moved into object space with worldToObject

@@ -5,8 +5,8 @@
 // structuredRegular grid gives the same image; degenerate and inverted cells are reported and never give a
 // NaN or a hole; broken meshes are refused by name. Metric: the mean over the pixels (or over blocks of
 // them), within 1% (relative) plus 4 standard errors of the sample noise.
+#include "core/render/PathTracer.h"
 #include "core/scene/UnstructuredGrid.h"
-#include "core/scene/UnstructuredIsosurface.h"
 #include "core/vk/Buffer.h"
 #include "core/vk/ComputePipeline.h"
 #include "shaders/test_unstructured_probe.spv.h"
@@ -424,47 +424,81 @@ TEST_CASE("unstructured volumes: meshes that cannot be rendered are refused, nam
     CHECK(refusal(bad) == "the mesh's box is wider than a float can hold");
 }
 
-TEST_CASE("unstructured iso-surfaces: a linear field's surfaces in tetrahedra are exact planes") {
-    // f = a . p + b on a tetrahedral box with moved inner vertices: every triangle's corners lie on the plane
-    // f = iso to float precision, and every triangle faces along a (up the field). Then the path tracer's
-    // depth through the surface of f = z seen from above is the plane's exactly.
-    const glm::vec3 a = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
-    const auto field = [&](glm::vec3 p) { return glm::dot(a, p) + 0.1f; };
-    core::UnstructuredCells mesh = boxMesh(Shape::Tetrahedra, 4, 2.0f, field);
-    std::mt19937 random(3);
-    std::uniform_real_distribution<float> jitter(-0.07f, 0.07f);
-    for (glm::vec3& p : mesh.positions)
-        if (std::abs(std::abs(p.x) - 1.0f) > 1e-6f && std::abs(std::abs(p.y) - 1.0f) > 1e-6f && p.z > 1e-6f && p.z < 2.0f - 1e-6f)
-            p += glm::vec3(jitter(random), jitter(random), jitter(random));
-    for (size_t v = 0; v < mesh.positions.size(); ++v) mesh.values[v] = field(mesh.positions[v]);
-    const std::vector<float> isovalues = {0.2f, 0.6f, 1.1f};
-    const core::UnstructuredIsosurface surface = core::extractIsosurface(mesh, isovalues);
-    REQUIRE(surface.isovalueOf.size() * 3 == surface.mesh.positions.size());
-    size_t perIsovalue[3] = {};
-    float worstDistance = 0.0f, worstNormal = 0.0f;
-    for (size_t t = 0; t < surface.isovalueOf.size(); ++t) {
-        const float iso = isovalues[surface.isovalueOf[t]];
-        ++perIsovalue[surface.isovalueOf[t]];
-        const glm::vec3* p = &surface.mesh.positions[3 * t];
-        for (int k = 0; k < 3; ++k) worstDistance = std::max(worstDistance, std::abs(field(p[k]) - iso));
-        const glm::vec3 normal = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
-        worstNormal = std::max(worstNormal, 1.0f - glm::dot(normal, a));
-    }
-    MESSAGE(surface.isovalueOf.size() << " triangles; largest distance from the plane " << worstDistance
-                                      << ", largest 1 - cos(normal, gradient) " << worstNormal);
-    for (size_t i = 0; i < 3; ++i) CHECK(perIsovalue[i] > 0);
-    CHECK(worstDistance <= 1e-6f);
-    CHECK(worstNormal <= 1e-4f);  // triangles as small as a few 1e-3 carry their corners' float rounding
+namespace {
 
-    // The surface of f = z at 0.7 in a box of height 2, seen from z = 3: depth 2.3 at every pixel.
-    test::ValidationGuard guard;
-    const core::UnstructuredCells flat = boxMesh(Shape::Tetrahedra, 3, 2.0f, [](glm::vec3 p) { return p.z; });
+// The iso-surface of `mesh` at `isovalue` seen straight down from z = 3 (orthographic, 24^2, one sample):
+// depth, world normal and primitive id per pixel.
+struct IsoView {
+    std::vector<float> depth;
+    std::vector<glm::vec3> normal;
+    std::vector<uint32_t> primitiveId;
+};
+
+IsoView viewIsosurface(const core::UnstructuredCells& mesh, std::vector<float> isovalues) {
     core::SceneDescription scene;
-    scene.meshes.push_back(core::extractIsosurface(flat, {0.7f}).mesh);
+    core::IsosurfaceSet set;
+    set.mesh = core::prepareUnstructuredGrid(mesh);
+    set.isovalues = std::move(isovalues);
+    scene.isosurfaceSets.push_back(set);
     scene.materials.push_back(core::Material{});
-    scene.instances.push_back({{core::GeometryKind::Triangles, 0}, glm::mat4(1.0f), 0});
+    scene.instances.push_back({{core::GeometryKind::Isosurfaces, 0}, glm::mat4(1.0f), 0});
+    core::Scene built(test::testContext(), scene);
+    core::PathTracer tracer(test::testContext());
+    core::FrameChannels channels;
+    channels.depth = channels.normal = channels.primitiveId = true;
+    const glm::uvec2 size(24, 24);
+    tracer.resize(size, channels);
     core::RenderSettings settings;
     settings.pixelSamples = 1;
-    const test::Rendered image = test::render(scene, test::lookingDown(3.0f, 1.8f), settings, {16, 16}, true);
-    for (float depth : image.depth) CHECK(depth == doctest::Approx(2.3f).epsilon(1e-6));
+    (void)tracer.render(built, test::lookingDown(3.0f, 1.8f), settings);
+    IsoView view;
+    view.depth.resize(size_t(size.x) * size.y);
+    view.normal.resize(view.depth.size());
+    view.primitiveId.resize(view.depth.size());
+    tracer.readDepth(view.depth.data());
+    tracer.readChannel(core::SurfaceChannel::Normal, view.normal.data());
+    tracer.readChannel(core::SurfaceChannel::PrimitiveId, view.primitiveId.data());
+    return view;
+}
+
+}  // namespace
+
+TEST_CASE("unstructured iso-surfaces: a linear field's surfaces are exact planes in every cell shape") {
+    // Every shape's interpolant reproduces a linear field, so its iso-surface is a plane, found by root
+    // finding in each cell's own interpolant (inner vertices moved, so hexahedra and wedges have curved
+    // faces). f = z: the depth from z = 3 through the surface at 0.7 is 2.3 at every pixel. f = a . p: the
+    // normal is along a at every pixel. The primitive id is the isovalue's index.
+    test::ValidationGuard guard;
+    const glm::vec3 a = glm::normalize(glm::vec3(0.3f, -0.5f, 0.8f));
+    for (const Shape shape : {Shape::Tetrahedra, Shape::Hexahedra, Shape::Wedges, Shape::Pyramids}) {
+        CAPTURE(std::string(nameOf(shape)));
+        for (const bool tilted : {false, true}) {
+            const auto field = [&](glm::vec3 p) { return tilted ? glm::dot(a, p) : p.z; };
+            // 2.5 deep: the grid's scale differs between the axes (macrocells 2 x 2 x 3 over 2 x 2 x 2.5).
+            core::UnstructuredCells mesh = boxMesh(shape, 3, 2.5f, field);
+            std::mt19937 random(3);
+            std::uniform_real_distribution<float> jitter(-0.07f, 0.07f);
+            for (glm::vec3& p : mesh.positions)
+                if (std::abs(std::abs(p.x) - 1.0f) > 1e-6f && std::abs(std::abs(p.y) - 1.0f) > 1e-6f && p.z > 1e-6f && p.z < 2.5f - 1e-6f)
+                    p += glm::vec3(jitter(random), jitter(random), jitter(random));
+            for (size_t v = 0; v < mesh.positions.size(); ++v) mesh.values[v] = field(mesh.positions[v]);
+            // At 0.8 the tilted plane stays inside the box under the whole view; -5 crosses no cell.
+            const IsoView view = viewIsosurface(mesh, {-5.0f, tilted ? 0.8f : 0.7f});
+            float worstDepth = 0.0f, worstNormal = 0.0f;
+            size_t hits = 0, idOne = 0;
+            for (size_t i = 0; i < view.depth.size(); ++i) {
+                if (!std::isfinite(view.depth[i])) continue;
+                ++hits;
+                idOne += view.primitiveId[i] == 1 ? 1 : 0;
+                if (!tilted) worstDepth = std::max(worstDepth, std::abs(view.depth[i] - 2.3f));
+                else worstNormal = std::max(worstNormal, 1.0f - std::abs(glm::dot(glm::normalize(view.normal[i]), a)));
+            }
+            MESSAGE((std::string(nameOf(shape)) + (tilted ? " tilted: " : " level: ")) << hits << " of " << view.depth.size()
+                                  << " pixels hit; largest depth error " << worstDepth << ", largest 1 - |cos(normal, a)| " << worstNormal);
+            CHECK(hits == view.depth.size());
+            CHECK(idOne == hits);
+            CHECK(worstDepth <= 1e-5f);
+            CHECK(worstNormal <= 1e-5f);
+        }
+    }
 }

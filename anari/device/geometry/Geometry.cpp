@@ -45,6 +45,7 @@ struct BoundsOf {
         return box;
     }
     bvh::Aabb operator()(const core::IsosurfaceSet& set) const {  // the whole field: no surface leaves it
+        if (set.mesh) return bvh::Aabb{set.mesh->lo, set.mesh->hi};
         return {set.origin, set.origin + glm::vec3(set.dims - 1u) * set.spacing};
     }
     bvh::Aabb operator()(const core::ConeSet& cones) const {

@@ -1,5 +1,5 @@
 // Geometry subtype "isosurface" (KHR_GEOMETRY_ISOSURFACE): the surfaces where a structuredRegular field
-// ("field"; or an unstructured one, as triangles: core/scene/UnstructuredIsosurface.h) equals each of the isovalues ("isovalue": one FLOAT32 or an ARRAY1D of them), intersected
+// ("field"; or an unstructured one, in the interpolant of each of its cells) equals each of the isovalues ("isovalue": one FLOAT32 or an ARRAY1D of them), intersected
 // exactly with the field's trilinear interpolant (shaders/intersect.glsl). Colour: "primitive.color" (one
 // per isovalue) or the uniform "color"; attribute0..3 likewise ("primitive.attributeN" or the uniform
 // "attributeN"); the primitive id a frame reports is the isovalue's index.
@@ -8,7 +8,6 @@
 #include "anari/device/scene/ArrayConversion.h"
 #include "anari/device/volume/StructuredRegularField.h"
 #include "anari/device/volume/UnstructuredField.h"
-#include "core/scene/UnstructuredIsosurface.h"
 
 #include <cmath>
 #include <string>
@@ -31,13 +30,13 @@ private:
         useChild(anyField);
         auto* field = dynamic_cast<StructuredRegularField*>(anyField);
         auto* mesh = dynamic_cast<UnstructuredField*>(anyField);
-        if (!anyField->isValid() || (field && field->values().empty()) || (mesh && !mesh->cells())) {
+        if (!anyField->isValid() || (field && field->values().empty()) || (mesh && !mesh->grid())) {
             invalidate("parameter 'field' is not a valid spatial field");
             return {};
         }
         if (field && !field->linearFilter())
             reportWarning("the field's filter 'nearest' is ignored: iso-surfaces use the trilinear interpolant");
-        if (mesh && mesh->cells()->cellCentered) {
+        if (mesh && mesh->grid()->cellCentered) {
             invalidate("parameter 'field' is an unstructured field with cell values, constant in each cell: it has "
                        "no iso-surfaces (give it vertex.data)");
             return {};
@@ -70,38 +69,18 @@ private:
                 return {};
             }
         }
-        if (mesh) return meshSurface(*mesh->cells(), set.isovalues);
-        set.dims = field->dims();
-        set.values = field->values();
-        set.origin = field->origin();
-        set.spacing = field->spacing();
+        if (mesh) {
+            set.mesh = mesh->grid();
+        } else {
+            set.dims = field->dims();
+            set.values = field->values();
+            set.origin = field->origin();
+            set.spacing = field->spacing();
+        }
         set.colors = pullVectors("primitive.color", set.isovalues.size());
         if (set.colors.empty()) set.colors = pullUniformColor(set.isovalues.size());
         set.attributes = pullAttributes(0, set.isovalues.size());
         return set;
-    }
-
-    // An unstructured field's surfaces as triangles (core/scene/UnstructuredIsosurface.h), each taking the
-    // colour and attributes of its isovalue; the primitive id a frame reports is the triangle's.
-    Shape meshSurface(const core::UnstructuredCells& cells, const std::vector<float>& isovalues) {
-        core::UnstructuredIsosurface surface = core::extractIsosurface(cells, isovalues);
-        core::TriangleMesh triangles = std::move(surface.mesh);
-        std::vector<glm::vec4> colors = pullVectors("primitive.color", isovalues.size());
-        if (colors.empty()) colors = pullUniformColor(isovalues.size());
-        const core::GeometryAttributes attributes = pullAttributes(0, isovalues.size());
-        for (uint32_t isovalue : surface.isovalueOf) {
-            if (!colors.empty()) triangles.primitiveColors.push_back(colors[isovalue]);
-            for (size_t a = 0; a < attributes.size(); ++a) {
-                triangles.attributes[a].rate = attributes[a].rate;
-                if (attributes[a].rate == core::GeometryAttribute::Rate::Primitive && !attributes[a].values.empty())
-                    triangles.attributes[a].values.push_back(attributes[a].values[isovalue]);
-                else
-                    triangles.attributes[a].values = attributes[a].values;
-            }
-        }
-        if (triangles.positions.empty())
-            reportWarning("no isovalue is crossed by the field's cells: the iso-surface is empty");
-        return triangles;
     }
 };
 

@@ -35,7 +35,6 @@ std::optional<std::vector<uint32_t>> readIndexArray(const Array& array, const ch
 void UnstructuredField::commit() {
     forgetDependencies();
     grid_.reset();
-    cells_.reset();
     core::UnstructuredCells cells;
 
     Array* positions = getArray("vertex.position");
@@ -109,7 +108,6 @@ void UnstructuredField::commit() {
         return;
     }
     for (const std::string& warning : grid_->warnings) reportWarning(warning);
-    cells_ = std::make_shared<const core::UnstructuredCells>(std::move(cells));
 }
 
 bvh::Aabb UnstructuredField::bounds() const {

@@ -20,11 +20,11 @@ public:
     void commit() override;
     bvh::Aabb bounds() const override;
     void describe(core::Volume& volume) const override;
-    // The committed mesh as given (for iso-surfaces); null when the field is not valid.
-    std::shared_ptr<const core::UnstructuredCells> cells() const { return isValid() ? cells_ : nullptr; }
+    // The committed mesh as the kernels read it (iso-surfaces are found in it too); null when the field is
+    // not valid.
+    std::shared_ptr<const core::UnstructuredGrid> grid() const { return isValid() ? grid_ : nullptr; }
 
 private:
-    std::shared_ptr<const core::UnstructuredCells> cells_;
     std::shared_ptr<const core::UnstructuredGrid> grid_;
 };
 
