@@ -5,6 +5,7 @@
 // (Ray Tracing Gems, ch. 7).
 #ifndef RIPPLE_INTERSECT_GLSL
 #define RIPPLE_INTERSECT_GLSL
+#include "features.glsl"
 #include "unstructured.glsl"
 
 // Per-ray constants of the watertight test: the axis permutation and shear.
@@ -276,7 +277,8 @@ float isoCubic(vec4 k, float s) {
 
 // Returns true and updates tBest when the iso-surface in `cell` is crossed with tmin < t < tBest.
 bool intersectIsoCell(vec3 origin, vec3 direction, IsoCellPrim cell, float tmin, inout float tBest) {
-    if ((cell.meshLow | cell.meshHigh) != 0u) return intersectMeshIsoCell(origin, direction, cell, tmin, tBest);
+    if (hasFeature(FEATURE_MESH_ISOSURFACES) && (cell.meshLow | cell.meshHigh) != 0u)
+        return intersectMeshIsoCell(origin, direction, cell, tmin, tBest);
     vec3 lo = cell.lowCorner.xyz;
     vec3 inv = safeReciprocal(direction);
     // The cell's box grown by a few ulps of its coordinates: neighbouring cells compute their shared face

@@ -13,7 +13,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Ge
 // Gradient of the cell's trilinear interpolant at object-space point x (clamped into the cell): the
 // iso-surface's normal direction, pointing to higher values.
 vec3 isoCellGradient(IsoCellPrim cell, vec3 x) {
-    if ((cell.meshLow | cell.meshHigh) != 0u) return meshIsoGradient(cell, x);
+    if (hasFeature(FEATURE_MESH_ISOSURFACES) && (cell.meshLow | cell.meshHigh) != 0u) return meshIsoGradient(cell, x);
     vec3 w = clamp((x - cell.lowCorner.xyz) / cell.size.xyz, vec3(0.0), vec3(1.0));
     vec3 g = vec3(0.0);
     for (int n = 0; n < 8; ++n) {

@@ -189,9 +189,10 @@ bool unstructuredValue(uint64_t mesh, UnstructuredHeader h, vec3 p, out float va
     value = 0.0;
     MeshWordsRef m = MeshWordsRef(mesh);
     if (h.nodeCount == 0u) return false;
-    // The walk starts at the macrocell's start node (none: no cell overlaps it).
-    uvec3 macro = uvec3(clamp(ivec3(floor(p / float(VOLUME_MACROCELL))), ivec3(0), ivec3(h.macroX, h.macroY, h.macroZ) - 1));
-    uint node = m.words[h.startOffset + (macro.z * h.macroY + macro.y) * h.macroX + macro.x];
+    // The walk starts at the start cell's node (none: no cell overlaps it).
+    const float startCell = float(VOLUME_MACROCELL) / float(UNSTRUCTURED_START_CELLS);
+    uvec3 at = uvec3(clamp(ivec3(floor(p / startCell)), ivec3(0), ivec3(h.startX, h.startY, h.startZ) - 1));
+    uint node = m.words[h.startOffset + (at.z * h.startY + at.y) * h.startX + at.x];
     if (node == UNSTRUCTURED_NO_NODE) return false;
     MeshNodesRef nodes = MeshNodesRef(mesh + 4ul * uint64_t(h.nodeOffset));
     uint stack[BVH_MAX_DEPTH];

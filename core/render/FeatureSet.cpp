@@ -22,6 +22,7 @@ std::string FeatureSet::describe() const {
         {gpu::FEATURE_CHANNEL_NORMAL, "normal"},    {gpu::FEATURE_CHANNEL_PRIMITIVE_ID, "primitiveId"},
         {gpu::FEATURE_CHANNEL_OBJECT_ID, "objectId"}, {gpu::FEATURE_CHANNEL_INSTANCE_ID, "instanceId"},
         {gpu::FEATURE_MULTI_RANK, "ranks"},        {gpu::FEATURE_ISOSURFACES, "isosurfaces"},
+        {gpu::FEATURE_MESH_ISOSURFACES, "meshIsosurfaces"},
         {gpu::FEATURE_PHYSICALLY_BASED, "physicallyBased"}, {gpu::FEATURE_CLEARCOAT, "clearcoat"},
         {gpu::FEATURE_TRANSMISSION, "transmission"}};
     std::string text;

@@ -395,6 +395,8 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         valid.push_back({i, static_cast<uint32_t>(slot)});
         // FEATURE_TRIANGLES.. FEATURE_CONES are bit GEOMETRY_*; iso-surfaces have a bit of their own.
         features_ |= inst.geometry.kind == GeometryKind::Isosurfaces ? gpu::FEATURE_ISOSURFACES : 1u << kindIndex;
+        if (inst.geometry.kind == GeometryKind::Isosurfaces && description.isosurfaceSets[inst.geometry.index].mesh)
+            features_ |= gpu::FEATURE_MESH_ISOSURFACES;
     }
     report_.instancesKept = valid.size();
     report_.blasBuildSeconds = secondsSince(start);

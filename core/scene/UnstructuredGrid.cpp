@@ -233,8 +233,8 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
         grid->cellRanges.push_back(cellRanges[slot]);
     }
 
-    // Each macrocell's start node: the lowest common ancestor of the nodes holding the leaves of the cells
-    // that overlap it (a cell's leaf is a child slot of one node).
+    // Each start cell's node: the lowest common ancestor of the nodes holding the leaves of the cells that
+    // overlap it (a cell's leaf is a child slot of one node).
     const size_t nodeCount = tree.nodes.size();
     std::vector<uint32_t> parent(nodeCount, gpu::UNSTRUCTURED_NO_NODE), depth(nodeCount, 0), nodeOfSlot(kept.size(), 0);
     for (uint32_t n = 0; n < nodeCount; ++n) {
@@ -257,16 +257,17 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
         }
         return a;
     };
-    std::vector<uint32_t> start(grid->macrocellRanges.size(), gpu::UNSTRUCTURED_NO_NODE);
+    const glm::uvec3 startCells = m * gpu::UNSTRUCTURED_START_CELLS;
+    std::vector<uint32_t> start(size_t(startCells.x) * startCells.y * startCells.z, gpu::UNSTRUCTURED_NO_NODE);
     for (size_t slot = 0; slot < kept.size(); ++slot) {
         const bvh::Aabb& box = boxes[tree.primOrder[slot]];
-        const float size = float(gpu::VOLUME_MACROCELL);
-        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo / size, 0.0f)), m - 1u);
-        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi / size, 0.0f)), m - 1u);
+        const float size = float(gpu::VOLUME_MACROCELL) / float(gpu::UNSTRUCTURED_START_CELLS);
+        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo / size, 0.0f)), startCells - 1u);
+        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi / size, 0.0f)), startCells - 1u);
         for (uint32_t z = first.z; z <= last.z; ++z)
             for (uint32_t y = first.y; y <= last.y; ++y)
                 for (uint32_t x = first.x; x <= last.x; ++x) {
-                    uint32_t& s = start[(size_t(z) * m.y + y) * m.x + x];
+                    uint32_t& s = start[(size_t(z) * startCells.y + y) * startCells.x + x];
                     s = s == gpu::UNSTRUCTURED_NO_NODE ? nodeOfSlot[slot] : commonAncestor(s, nodeOfSlot[slot]);
                 }
     }
@@ -278,9 +279,9 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     header.cellCount = uint32_t(kept.size());
     header.nodeCount = uint32_t(nodeCount);
     header.cellCentered = cells.cellCentered ? 1u : 0u;
-    header.macroX = m.x;
-    header.macroY = m.y;
-    header.macroZ = m.z;
+    header.startX = startCells.x;
+    header.startY = startCells.y;
+    header.startZ = startCells.z;
     const auto align4 = [&] { words.resize((words.size() + 3) / 4 * 4); };
     words.resize(sizeof(header) / sizeof(uint32_t));
     align4();

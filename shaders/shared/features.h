@@ -13,7 +13,8 @@ RIPPLE_CONST uint FEATURE_SPHERES = 1u << 1;
 RIPPLE_CONST uint FEATURE_CYLINDERS = 1u << 2;
 RIPPLE_CONST uint FEATURE_CONES = 1u << 3;     // cones and curves
 RIPPLE_CONST uint FEATURE_ISOSURFACES = 1u << 23; // GEOMETRY_ISOSURFACES (bit 4 was taken by volumes)
-RIPPLE_CONST uint FEATURE_GEOMETRY = 0xFu | FEATURE_ISOSURFACES;
+RIPPLE_CONST uint FEATURE_MESH_ISOSURFACES = 1u << 27; // some of them are in an unstructured mesh's cells
+RIPPLE_CONST uint FEATURE_GEOMETRY = 0xFu | FEATURE_ISOSURFACES | FEATURE_MESH_ISOSURFACES;
 RIPPLE_CONST uint FEATURE_VOLUMES = 1u << 4;   // the world has volumes: pt_volume and pt_shadow_volume run
 RIPPLE_CONST uint FEATURE_TEXTURES = 1u << 5;  // a material reads a texture
 RIPPLE_CONST uint FEATURE_EMISSIVE = 1u << 6;  // a material emits
@@ -35,7 +36,7 @@ RIPPLE_CONST uint FEATURE_MULTI_RANK = 1u << 22;           // rays cross ranks: 
 RIPPLE_CONST uint FEATURE_PHYSICALLY_BASED = 1u << 24;     // a physicallyBased material
 RIPPLE_CONST uint FEATURE_CLEARCOAT = 1u << 25;            // one with a clear coat
 RIPPLE_CONST uint FEATURE_TRANSMISSION = 1u << 26;         // one with transmission
-RIPPLE_CONST uint FEATURE_ALL = 0x7FFFFFFu;
+RIPPLE_CONST uint FEATURE_ALL = 0xFFFFFFFu;
 
 RIPPLE_GPU_END
 #endif

@@ -58,8 +58,8 @@ RIPPLE_CONST uint VOLUME_KIND_UNSTRUCTURED = 1u;
 // Vertices are in the volume's grid space (the record's worldToGrid applies to rays, not to vertices).
 // Cells are in the order of the BVH's leaves; a cell's word is its first index << 2 | its shape
 // (UNSTRUCTURED_TETRAHEDRON..), whose corners are indices[first ..] in VTK's vertex order. A point query
-// starts at its macrocell's start node: the lowest node whose subtree holds every cell overlapping the
-// macrocell (UNSTRUCTURED_NO_NODE: no cell does).
+// starts at its start cell's node: the lowest node whose subtree holds every cell overlapping the start
+// cell (UNSTRUCTURED_NO_NODE: no cell does).
 struct UnstructuredHeader {
     uint cellCount;
     uint nodeCount;        // BvhNodes (shared/bvh.h) at nodeOffset; 0: no cell
@@ -69,11 +69,15 @@ struct UnstructuredHeader {
     uint indexOffset;      // vertex indices
     uint nodeOffset;       // a multiple of 4 (the nodes are read as vec4s)
     uint cellCentered;
-    uint startOffset;      // a word per macrocell (x fastest)
-    uint macroX;           // macrocells per axis, as the volume's record has them
-    uint macroY;
-    uint macroZ;
+    uint startOffset;      // a word per start cell (x fastest)
+    uint startX;           // start cells per axis: UNSTRUCTURED_START_CELLS per macrocell edge
+    uint startY;
+    uint startZ;
 };
+
+// Start cells per macrocell edge: a point query starts from the start node of the finer grid of start
+// cells, whose lowest common ancestors lie deeper in the BVH than a macrocell's would.
+RIPPLE_CONST uint UNSTRUCTURED_START_CELLS = 2u;
 
 RIPPLE_CONST uint UNSTRUCTURED_NO_NODE = 0xFFFFFFFFu;
 RIPPLE_CONST uint UNSTRUCTURED_TETRAHEDRON = 0u;  // VTK 10
