@@ -502,3 +502,71 @@ TEST_CASE("unstructured iso-surfaces: a linear field's surfaces are exact planes
         }
     }
 }
+
+TEST_CASE("unstructured volumes: random hostile meshes are refused by name or render without NaN") {
+    // 400 meshes of random cells over few vertices: random types (some unknown), indices (some past the
+    // vertices), index spans (some past the array), values and positions (some NaN, Inf or 1e38). Each is
+    // refused with std::invalid_argument or prepared; every 10th prepared one is rendered, and its image is
+    // finite. Under the sanitizer build this also checks that preparing reads and writes nothing out of bounds.
+    test::ValidationGuard guard;
+    std::mt19937 random(2026);
+    const auto pick = [&](uint32_t n) { return uint32_t(random() % n); };
+    const float specials[] = {NAN, INFINITY, -INFINITY, 1e38f, -1e38f, 0.0f};
+    size_t refused = 0, prepared = 0, rendered = 0;
+    for (int m = 0; m < 400; ++m) {
+        core::UnstructuredCells mesh;
+        const uint32_t vertices = 1 + pick(12);
+        for (uint32_t v = 0; v < vertices; ++v) {
+            glm::vec3 p(float(pick(5)), float(pick(5)), float(pick(5)));
+            if (pick(50) == 0) p[int(pick(3))] = specials[pick(6)];
+            mesh.positions.push_back(p);
+        }
+        const uint32_t cells = 1 + pick(6);
+        mesh.cellCentered = pick(2) == 0;
+        for (uint32_t c = 0; c < cells; ++c) {
+            const uint8_t types[] = {10, 12, 13, 14, 42};
+            mesh.cellType.push_back(pick(30) == 0 ? types[4] : types[pick(4)]);
+            mesh.cellIndex.push_back(uint32_t(mesh.index.size()) + (pick(30) == 0 ? pick(20) : 0));
+            const uint32_t corners = pick(20) == 0 ? pick(9) : std::max(core::unstructuredCorners(mesh.cellType.back()), 1u);
+            for (uint32_t k = 0; k < corners; ++k) mesh.index.push_back(pick(40) == 0 ? vertices + pick(3) : pick(vertices));
+        }
+        const size_t valueCount = mesh.cellCentered ? cells : vertices;
+        for (size_t i = 0; i < valueCount + (pick(30) == 0 ? 1 : 0); ++i)
+            mesh.values.push_back(pick(40) == 0 ? specials[pick(6)] : float(pick(100)) / 100.0f);
+        std::shared_ptr<const core::UnstructuredGrid> grid;
+        try {
+            grid = core::prepareUnstructuredGrid(mesh);
+        } catch (const std::invalid_argument& e) {
+            CHECK(std::string(e.what()).size() > 0);
+            ++refused;
+            continue;
+        }
+        ++prepared;
+        REQUIRE(grid->cellsKept > 0);
+        if (prepared % 10 != 1) continue;
+        core::Volume volume;
+        volume.unstructured = grid;
+        volume.valueRange = {0.0f, 1.0f};
+        volume.opacities = {0.2f, 0.9f};
+        volume.colors = {glm::vec3(0.8f)};
+        core::SceneDescription scene;
+        scene.volumes.push_back(volume);
+        core::Light sun;
+        sun.kind = core::Light::Kind::Directional;
+        sun.direction = glm::normalize(glm::vec3(0.2f, -0.3f, -1.0f));
+        sun.intensity = 2.0f;
+        scene.lights.push_back(sun);
+        core::RenderSettings settings;
+        settings.pixelSamples = 4;
+        settings.maxPathLength = 3;
+        core::Camera camera = test::lookingDown(8.0f, 10.0f);
+        camera.position = glm::vec3(2.0f, 2.0f, 8.0f);
+        const test::Rendered image = test::render(scene, camera, settings, {16, 16});
+        for (const glm::vec4& c : image.color) CHECK(std::isfinite(c.r + c.g + c.b + c.a));
+        CHECK(image.stats.flaggedRays == 0);
+        ++rendered;
+    }
+    MESSAGE(refused << " refused, " << prepared << " prepared, " << rendered << " rendered");
+    CHECK(refused > 40);
+    CHECK(prepared > 40);
+}
