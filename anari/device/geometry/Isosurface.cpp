@@ -1,7 +1,8 @@
-// Geometry subtype "isosurface" (KHR_GEOMETRY_ISOSURFACE): the surfaces where a structuredRegular field
-// ("field"; or an unstructured one, in the interpolant of each of its cells) equals each of the isovalues ("isovalue": one FLOAT32 or an ARRAY1D of them), intersected
-// exactly with the field's trilinear interpolant (shaders/intersect.glsl). Colour: "primitive.color" (one
-// per isovalue) or the uniform "color"; attribute0..3 likewise ("primitive.attributeN" or the uniform
+// Geometry subtype "isosurface" (KHR_GEOMETRY_ISOSURFACE): the surfaces where a field ("field") equals each
+// of the isovalues ("isovalue": one FLOAT32 or an ARRAY1D of them). A structuredRegular field's are
+// intersected exactly with its trilinear interpolant (shaders/intersect.glsl), an unstructured field's in
+// the interpolant of each of its cells (shaders/unstructured.glsl). Colour: "primitive.color" (one per
+// isovalue) or the uniform "color"; attribute0..3 likewise ("primitive.attributeN" or the uniform
 // "attributeN"); the primitive id a frame reports is the isovalue's index.
 #include "anari/device/geometry/Geometry.h"
 #include "anari/device/object/ArrayChecks.h"
