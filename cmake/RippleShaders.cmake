@@ -20,7 +20,7 @@ function(ripple_add_shaders target)
     add_custom_command(
       OUTPUT "${header}"
       COMMAND ${GLSLC} --target-env=vulkan1.2 -O -Werror -I "${CMAKE_CURRENT_SOURCE_DIR}"
-              -I "${PROJECT_SOURCE_DIR}/shaders"
+              -I "${PROJECT_SOURCE_DIR}/shaders" -I "${NANOVDB_INCLUDE_DIR}"
               -MD -MF "${spv}.d" -MT "${header}" -o "${spv}" "${abs_source}"
       COMMAND ${SPIRV_VAL} --target-env vulkan1.2 "${spv}"
       COMMAND ${CMAKE_COMMAND} -DINPUT=${spv} -DOUTPUT=${header} -DNAME=${name}

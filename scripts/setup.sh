@@ -11,6 +11,7 @@ packages=(
   nlohmann-json3-dev                                                           # glTF importer: JSON checks
   zlib1g-dev                                                                   # gzip-encoded NRRD volumes
   libpugixml-dev                                                               # VTK XML files
+  libnanovdb-dev                                                               # NanoVDB grids (PNanoVDB.h in the kernels)
   python3-meshio                                                               # an independent VTK reader for the tests
   libopenmpi-dev openmpi-bin                                                   # data-parallel rendering
   clang-14 libclang-rt-14-dev                                                  # libFuzzer (scripts/fuzz.sh)

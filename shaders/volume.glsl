@@ -12,6 +12,7 @@
 
 #include "shared/volume.h"
 #include "unstructured.glsl"
+#include "nanovdb.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer VolumesRef { VolumeRecord volumes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VolumeDataRef { float values[]; };
@@ -107,6 +108,7 @@ vec4 mediumAt(VolumeRecord v, VolumeDataRef data, vec3 g, UnstructuredHeader mes
         float value;
         return unstructuredValue(v.voxels, mesh, g, value) ? transferFunction(v, data, value) : vec4(0.0);
     }
+    if (v.kind == VOLUME_KIND_NANOVDB) return transferFunction(v, data, nanovdbValue(v.voxels, g, v.filterMode));
     return transferFunction(v, data, fieldValue(v, data, g));
 }
 

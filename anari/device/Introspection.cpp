@@ -385,6 +385,11 @@ const std::vector<Entry>& table() {
              {"cell.type", ANARI_ARRAY1D, "each cell's VTK type: 10 tetrahedron, 12 hexahedron, 13 wedge, 14 pyramid (UINT8)",
               nullptr, nullptr, true},
          }})},
+        {ANARI_SPATIAL_FIELD, "nanovdb", "a NanoVDB float grid, sparse: only its leaves and tiles are stored",
+         joined({kName, {
+             {"data", ANARI_ARRAY1D, "the NanoVDB grid buffer (UINT8)", nullptr, nullptr, true},
+             {"filter", ANARI_STRING, "sample interpolation", "linear", kFilters},
+         }})},
         {ANARI_VOLUME, "transferFunction1D", "a scalar field as a scattering medium: albedo and opacity from the value",
          joined({kName, {
              {"value", ANARI_SPATIAL_FIELD, "the field", nullptr, nullptr, true},
@@ -456,7 +461,7 @@ const char** deviceExtensions() {
         "ANARI_KHR_CAMERA_DEPTH_OF_FIELD", "ANARI_KHR_FRAME_CHANNEL_ALBEDO",  "ANARI_KHR_FRAME_CHANNEL_NORMAL",
         "ANARI_KHR_FRAME_CHANNEL_PRIMITIVE_ID", "ANARI_KHR_FRAME_CHANNEL_OBJECT_ID", "ANARI_KHR_FRAME_CHANNEL_INSTANCE_ID",
         "ANARI_KHR_DATA_PARALLEL_MPI",    "ANARI_KHR_FRAME_ACCUMULATION",     "ANARI_KHR_DEVICE_SYNCHRONIZATION",
-        "ANARI_KHR_FRAME_COMPLETION_CALLBACK", "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR", "ANARI_KHR_SPATIAL_FIELD_UNSTRUCTURED",
+        "ANARI_KHR_FRAME_COMPLETION_CALLBACK", "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR", "ANARI_KHR_SPATIAL_FIELD_UNSTRUCTURED", "ANARI_KHR_SPATIAL_FIELD_NANOVDB",
         "ANARI_KHR_VOLUME_TRANSFER_FUNCTION1D", "ANARI_KHR_GEOMETRY_ISOSURFACE",
         nullptr};
     return extensions;

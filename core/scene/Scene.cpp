@@ -550,9 +550,10 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     // scene: one field in several volumes) when the voxel identity matches, else uploaded.
     for (size_t r = 0; r < volumes.records.size(); ++r) {
         const Volume& v = description.volumes[volumes.sources[r]];
-        // The voxels, or an unstructured mesh's words (UnstructuredGrid.h).
-        const void* fieldData = v.unstructured ? static_cast<const void*>(v.unstructured->words.data()) : v.values->data();
-        const size_t fieldBytes = v.unstructured ? v.unstructured->words.size() * sizeof(uint32_t) : v.values->size() * sizeof(float);
+        // The voxels, or an unstructured mesh's words (UnstructuredGrid.h), or a NanoVDB grid's (NanoVdbGrid.h).
+        const std::vector<uint32_t>* words = v.unstructured ? &v.unstructured->words : v.nanovdb ? &v.nanovdb->words : nullptr;
+        const void* fieldData = words ? static_cast<const void*>(words->data()) : v.values->data();
+        const size_t fieldBytes = words ? words->size() * sizeof(uint32_t) : v.values->size() * sizeof(float);
         const auto same = [&](const std::shared_ptr<const VolumeVoxels>& kept) {
             return v.voxelIdentity.key != 0 && kept->identity.key == v.voxelIdentity.key &&
                    kept->identity.version == v.voxelIdentity.version && kept->bytes == fieldBytes;

@@ -4,6 +4,7 @@
 // space (the ANARI layer applies instance transforms to lights before they get here).
 #pragma once
 
+#include "core/scene/NanoVdbGrid.h"
 #include "core/scene/UnstructuredGrid.h"
 #include "shaders/shared/material.h"
 
@@ -247,6 +248,9 @@ struct Volume {
     // Set: the field is this unstructured mesh instead (dims, values, origin, spacing and linearFilter are
     // unused; the mesh is placed in object space by its own vertices).
     std::shared_ptr<const UnstructuredGrid> unstructured;
+    // Set: the field is this NanoVDB grid instead (dims, values, origin and spacing unused; its own map places
+    // it in object space; linearFilter applies).
+    std::shared_ptr<const NanoVdbGrid> nanovdb;
     // Nonzero key: the same (key, version) as a volume of a Scene's `previous` means the same values, and
     // their device buffer is reused (a transfer-function edit uploads no voxels). Zero: always uploaded.
     GeometryIdentity voxelIdentity;

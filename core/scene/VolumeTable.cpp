@@ -24,9 +24,9 @@ T resampled(const std::vector<T>& values, float x) {
     return values[i] * (1.0f - w) + values[i + 1] * w;
 }
 
-// The field's problems (an unstructured mesh was checked when it was prepared).
+// The field's problems (an unstructured mesh or a NanoVDB grid was checked when it was prepared).
 std::optional<std::string> fieldProblemOf(const Volume& v) {
-    if (v.unstructured) return std::nullopt;
+    if (v.unstructured || v.nanovdb) return std::nullopt;
     const uint64_t voxels = uint64_t(v.dims.x) * v.dims.y * v.dims.z;
     if (v.dims.x == 0 || v.dims.y == 0 || v.dims.z == 0) return "a dimension is 0";
     const size_t count = v.values ? v.values->size() : 0;
@@ -110,7 +110,13 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         // The kernels index the one float array with 32-bit offsets: a volume that would reach past them is
         // skipped (the majorants would otherwise be written over another volume's data).
         const size_t entries = transferTableSize(v);
-        const glm::uvec3 macroCells = v.unstructured ? v.unstructured->macrocells : macrocellsPerAxis(v.dims);
+        const glm::uvec3 macroCells = v.unstructured ? v.unstructured->macrocells
+                                      : v.nanovdb    ? v.nanovdb->macrocells
+                                                     : macrocellsPerAxis(v.dims);
+        // The value ranges the host knows per macrocell (the device computes a structured grid's).
+        const std::vector<glm::vec2>* hostRanges = v.unstructured ? &v.unstructured->macrocellRanges
+                                                   : v.nanovdb    ? &v.nanovdb->macrocellRanges
+                                                                  : nullptr;
         const uint64_t floatsNeeded = 4 * uint64_t(entries) + uint64_t(entries) * extinctionMaxLevels(entries) +
                                       uint64_t(macroCells.x) * macroCells.y * macroCells.z;
         if (table.data.size() + floatsNeeded > uint64_t(UINT32_MAX)) {
@@ -120,15 +126,19 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
             continue;
         }
         gpu::VolumeRecord record{};
-        // An unstructured mesh's grid is a virtual one over its box, of whole macrocells.
-        const glm::uvec3 dims = v.unstructured ? v.unstructured->macrocells * gpu::VOLUME_MACROCELL + 1u : v.dims;
-        const glm::vec3 origin = v.unstructured ? v.unstructured->lo : v.origin;
-        // In double: a mesh's box may be narrow or wide enough that its spacing rounds in float.
-        const glm::dvec3 spacing = v.unstructured ? (glm::dvec3(v.unstructured->hi) - glm::dvec3(v.unstructured->lo)) / glm::dvec3(dims - 1u)
-                                                  : glm::dvec3(v.spacing);
-        // World -> object -> grid index space (voxel i at i).
-        const glm::dmat4 objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / spacing) *
-                                        glm::translate(glm::dmat4(1.0), -glm::dvec3(origin));
+        // An unstructured mesh's or a NanoVDB grid's grid is a virtual one over its box, of whole macrocells.
+        const glm::uvec3 dims = hostRanges ? macroCells * gpu::VOLUME_MACROCELL + 1u : v.dims;
+        // Object -> grid index space (voxel i at i); in double, as a mesh's box may be narrow or wide enough
+        // that its spacing rounds in float.
+        glm::dmat4 objectToGrid(1.0);
+        if (v.unstructured) {
+            const glm::dvec3 lo(v.unstructured->lo), spacing = (glm::dvec3(v.unstructured->hi) - lo) / glm::dvec3(dims - 1u);
+            objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / spacing) * glm::translate(glm::dmat4(1.0), -lo);
+        } else if (v.nanovdb) {
+            objectToGrid = glm::translate(glm::dmat4(1.0), -glm::dvec3(v.nanovdb->base)) * glm::inverse(v.nanovdb->indexToObject);
+        } else {
+            objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / glm::dvec3(v.spacing)) * glm::translate(glm::dmat4(1.0), -glm::dvec3(v.origin));
+        }
         storeRows(objectToGrid * glm::inverse(glm::dmat4(v.transform)), record.worldToGrid);
         bool finiteMap = true;
         for (const gpu::vec4& row : record.worldToGrid) finiteMap = finiteMap && std::isfinite(row.x + row.y + row.z + row.w);
@@ -140,7 +150,9 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         }
         const glm::uvec3 extent = dims - 1u;
         record.gridExtent = gpu::vec4(glm::vec3(extent), 0.0f);
-        record.kind = v.unstructured ? gpu::VOLUME_KIND_UNSTRUCTURED : gpu::VOLUME_KIND_STRUCTURED;
+        record.kind = v.unstructured ? gpu::VOLUME_KIND_UNSTRUCTURED
+                      : v.nanovdb    ? gpu::VOLUME_KIND_NANOVDB
+                                     : gpu::VOLUME_KIND_STRUCTURED;
         const float lo = std::min(v.valueRange.x, v.valueRange.y), hi = std::max(v.valueRange.x, v.valueRange.y);
         record.valueRange = gpu::vec4(lo, hi > lo ? 1.0f / (hi - lo) : 0.0f, 0.0f, 0.0f);
         record.dimX = dims.x;
@@ -197,17 +209,16 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         // of its macrocells.
         record.majorantOffset = static_cast<uint32_t>(table.data.size());
         table.data.resize(table.data.size() + size_t(macroCells.x) * macroCells.y * macroCells.z, 0.0f);
-        if (v.unstructured)
-            for (size_t m = 0; m < v.unstructured->macrocellRanges.size(); ++m)
-                table.data[record.majorantOffset + m] = extinctionMax(record, levelsAt, table.data, v.unstructured->macrocellRanges[m]);
+        if (hostRanges)
+            for (size_t m = 0; m < hostRanges->size(); ++m)
+                table.data[record.majorantOffset + m] = extinctionMax(record, levelsAt, table.data, (*hostRanges)[m]);
 
         // World bounds: the grid box's corners.
-        const glm::vec3 hiCorner = v.unstructured ? v.unstructured->hi : origin + glm::vec3(extent) * v.spacing;
+        const glm::dmat4 gridToWorld = glm::dmat4(v.transform) * glm::inverse(objectToGrid);
         bvh::Aabb box;
         for (int c = 0; c < 8; ++c) {
-            const glm::vec3 corner((c & 1) ? hiCorner.x : origin.x, (c & 2) ? hiCorner.y : origin.y,
-                                   (c & 4) ? hiCorner.z : origin.z);
-            box.extend(glm::vec3(v.transform * glm::vec4(corner, 1.0f)));
+            const glm::dvec4 corner((c & 1) ? extent.x : 0.0, (c & 2) ? extent.y : 0.0, (c & 4) ? extent.z : 0.0, 1.0);
+            box.extend(glm::vec3(gridToWorld * corner));
         }
         table.bounds.extend(box);
         table.boxes.push_back(box);

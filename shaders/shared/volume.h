@@ -53,6 +53,10 @@ struct VolumeRecord {
 
 RIPPLE_CONST uint VOLUME_KIND_STRUCTURED = 0u;
 RIPPLE_CONST uint VOLUME_KIND_UNSTRUCTURED = 1u;
+// A NanoVDB grid: `voxels` is 8 words (the index of grid space's origin, x y z) and then the grid, read with
+// PNanoVDB.h (shaders/nanovdb.glsl); the grid is a virtual one of macrocells over its active box, whose
+// majorants the host fills (core/scene/NanoVdbGrid.h); filterMode as for structured grids.
+RIPPLE_CONST uint VOLUME_KIND_NANOVDB = 2u;
 
 // An unstructured mesh on the device: 32-bit words from the address VolumeRecord.voxels, this header first.
 // Vertices are in the volume's grid space (the record's worldToGrid applies to rays, not to vertices).
