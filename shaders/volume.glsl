@@ -10,6 +10,7 @@
 #ifndef RIPPLE_VOLUME_GLSL
 #define RIPPLE_VOLUME_GLSL
 
+#include "features.glsl"
 #include "shared/volume.h"
 #include "unstructured.glsl"
 #include "nanovdb.glsl"
@@ -104,11 +105,12 @@ vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
 // none outside an unstructured mesh's cells.
 // `mesh`: an unstructured mesh's header (read once per march).
 vec4 mediumAt(VolumeRecord v, VolumeDataRef data, vec3 g, UnstructuredHeader mesh) {
-    if (v.kind == VOLUME_KIND_UNSTRUCTURED) {
+    if (hasFeature(FEATURE_UNSTRUCTURED_VOLUMES) && v.kind == VOLUME_KIND_UNSTRUCTURED) {
         float value;
         return unstructuredValue(v.voxels, mesh, g, value) ? transferFunction(v, data, value) : vec4(0.0);
     }
-    if (v.kind == VOLUME_KIND_NANOVDB) return transferFunction(v, data, nanovdbValue(v.voxels, g, v.filterMode));
+    if (hasFeature(FEATURE_NANOVDB_VOLUMES) && v.kind == VOLUME_KIND_NANOVDB)
+        return transferFunction(v, data, nanovdbValue(v.voxels, g, v.filterMode));
     return transferFunction(v, data, fieldValue(v, data, g));
 }
 
@@ -264,7 +266,7 @@ TrackResult trackVolumeMarch(VolumeRecord v, VolumeDataRef data, vec3 origin, ve
     // by piece (majorant times the length crossed) until a piece holds the rest. One logarithm per tentative
     // collision, none per macrocell crossed: rays cross many more cells than they collide in.
     UnstructuredHeader mesh;
-    if (v.kind == VOLUME_KIND_UNSTRUCTURED) mesh = unstructuredHeader(v.voxels);
+    if (hasFeature(FEATURE_UNSTRUCTURED_VOLUMES) && v.kind == VOLUME_KIND_UNSTRUCTURED) mesh = unstructuredHeader(v.voxels);
     float tau = -log(1.0 - volumeRandom(rng));
     for (uint chunk = 0u; chunk < VOLUME_STEP_CHUNKS && budget > 0u; ++chunk) {
         uint chunkSteps = min(budget, VOLUME_STEP_CHUNK);

@@ -85,9 +85,13 @@ void PathTracer::Impl::selectKernels(uint32_t bits) {
                           options.workgroupSize,
                           gpu::FEATURE_GEOMETRY | gpu::FEATURE_TEXTURES | gpu::FEATURE_SURFACE_CHANNELS},
                          bits, surface);
-        if ((bits & gpu::FEATURE_VOLUMES) && volume.handle() == VK_NULL_HANDLE) {
-            volume = stageKernel(shaders::pt_volume, "pt_volume");
-            shadowVolume = stageKernel(shaders::pt_shadow_volume, "pt_shadow_volume");
+        if (bits & gpu::FEATURE_VOLUMES) {
+            // Specialised on the kinds of volume the world has: meshes and NanoVDB grids bring code of their own.
+            const uint32_t volumeKinds = gpu::FEATURE_UNSTRUCTURED_VOLUMES | gpu::FEATURE_NANOVDB_VOLUMES;
+            const uint32_t stageBytes = static_cast<uint32_t>(sizeof(gpu::StageParams));
+            pipelines.select({shaders::pt_volume, "pt_volume", stageBytes, options.workgroupSize, volumeKinds}, bits, volume);
+            pipelines.select({shaders::pt_shadow_volume, "pt_shadow_volume", stageBytes, options.workgroupSize, volumeKinds},
+                             bits, shadowVolume);
         }
     } catch (...) {
         traced.wait();  // they refer to this frame's locals

@@ -418,6 +418,10 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     if (!volumes.records.empty()) {
         bounds_.extend(volumes.bounds);
         features_ |= gpu::FEATURE_VOLUMES;
+        for (const gpu::VolumeRecord& r : volumes.records) {
+            if (r.kind == gpu::VOLUME_KIND_UNSTRUCTURED) features_ |= gpu::FEATURE_UNSTRUCTURED_VOLUMES;
+            if (r.kind == gpu::VOLUME_KIND_NANOVDB) features_ |= gpu::FEATURE_NANOVDB_VOLUMES;
+        }
     }
     std::vector<bvh::Aabb> occupied = instanceBoxes;
     occupied.insert(occupied.end(), volumes.boxes.begin(), volumes.boxes.end());
