@@ -31,6 +31,11 @@ private:
         useChild(anyField);
         auto* field = dynamic_cast<StructuredRegularField*>(anyField);
         auto* mesh = dynamic_cast<UnstructuredField*>(anyField);
+        if (!field && !mesh) {
+            invalidate("parameter 'field' is a " + anyField->subtype() +
+                       " field; iso-surfaces are drawn in structuredRegular and unstructured fields");
+            return {};
+        }
         if (!anyField->isValid() || (field && field->values().empty()) || (mesh && !mesh->grid())) {
             invalidate("parameter 'field' is not a valid spatial field");
             return {};
