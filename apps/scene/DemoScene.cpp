@@ -211,6 +211,18 @@ public:
         return field;
     }
 
+    // A nanovdb field of the grid buffer `grid`; `values`: its smallest and largest value (the panels' ranges).
+    ANARISpatialField nanovdbField(const std::vector<uint8_t>& grid, glm::vec2 values) {
+        ANARISpatialField field = handles_.keep(anariNewSpatialField(d_, "nanovdb"), "spatial field");
+        setObject(d_, field, "data", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, grid, ANARI_UINT8), "array"));
+        anariCommitParameters(d_, field);
+        fieldRanges_[field] = values;
+        return field;
+    }
+
+    // Volumes placed by `transform` (an instance of their own) instead of standing in the world as given.
+    void placeVolumes(const glm::mat4& transform) { volumeTransform_ = transform; }
+
     // The field as a transferFunction1D volume over the value range [lo, hi] with the given colours and
     // opacities (`colorMap`: the named map they are, for the panels; empty: the scene's own).
     void volume(ANARISpatialField field, const std::vector<glm::vec3>& colors, const std::vector<float>& opacities,
@@ -244,18 +256,27 @@ public:
         ANARIGroup group = handles_.keep(anariNewGroup(d_), "group");
         if (!surfaces_.empty())  // a data-parallel rank's volume slab may stand alone
             setObject(d_, group, "surface", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, surfaces_, ANARI_SURFACE), "array"));
-        if (!volumes_.empty())
+        if (!volumes_.empty() && !volumeTransform_)
             setObject(d_, group, "volume", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, volumes_, ANARI_VOLUME), "array"));
         anariCommitParameters(d_, group);
-        ANARIInstance instance = handles_.keep(anariNewInstance(d_, "transform"), "instance");
-        set(d_, instance, "transform", glm::mat4(1.0f));
-        setObject(d_, instance, "group", ANARI_GROUP, group);
-        anariCommitParameters(d_, instance);
+        const auto instanceOf = [&](ANARIGroup g, const glm::mat4& transform) {
+            ANARIInstance instance = handles_.keep(anariNewInstance(d_, "transform"), "instance");
+            set(d_, instance, "transform", transform);
+            setObject(d_, instance, "group", ANARI_GROUP, g);
+            anariCommitParameters(d_, instance);
+            return instance;
+        };
+        std::vector<ANARIInstance> instances{instanceOf(group, glm::mat4(1.0f))};
+        if (!volumes_.empty() && volumeTransform_) {
+            ANARIGroup placed = handles_.keep(anariNewGroup(d_), "group");
+            setObject(d_, placed, "volume", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, volumes_, ANARI_VOLUME), "array"));
+            anariCommitParameters(d_, placed);
+            instances.push_back(instanceOf(placed, *volumeTransform_));
+        }
 
         AnariWorld out;
         out.world = anariNewWorld(d_);
         if (!out.world) throw std::runtime_error("the ANARI device returned no world");
-        const std::vector<ANARIInstance> instances{instance};
         setObject(d_, out.world, "instance", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, instances, ANARI_INSTANCE), "array"));
         if (!lights_.empty())
             setObject(d_, out.world, "light", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, lights_, ANARI_LIGHT), "array"));
@@ -285,6 +306,7 @@ private:
     anari::HandleList handles_;
     std::vector<ANARISurface> surfaces_;
     std::vector<ANARIVolume> volumes_;
+    std::optional<glm::mat4> volumeTransform_;
     std::vector<ANARILight> lights_;
     SceneEdits* edits_;
     std::map<ANARISpatialField, glm::vec2> fieldRanges_;  // each field's smallest and largest sample
@@ -494,6 +516,23 @@ AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const Fie
     at.hi = at.lo + step * glm::vec3(data.dims - 1u);
     const auto makeField = [&](DemoBuilder& b) { return b.field(data.dims, data.values, at.lo, at.hi, at.values); };
     return fieldScene(device, makeField, at, extraLights, edits, drawField(options, glm::vec2(data.minValue, data.maxValue)));
+}
+
+AnariWorld buildNanoVdbScene(ANARIDevice device, const NanoVdbFile& grid, const FieldSceneOptions& options,
+                             const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
+    const glm::vec3 lo(grid.worldLo), extent = glm::vec3(grid.worldHi - grid.worldLo);
+    const float scale = 2.0f / std::max({extent.x, extent.y, extent.z, 1e-30f});
+    const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z);
+    const FieldPlacement at{boxLo, boxLo + scale * extent, boxLo, boxLo + scale * extent, options.stage,
+                            glm::vec2(grid.minValue, grid.maxValue)};
+    const glm::mat4 place = glm::translate(glm::mat4(1.0f), boxLo) * glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
+                            glm::translate(glm::mat4(1.0f), -lo);
+    const auto makeField = [&](DemoBuilder& b) {
+        b.placeVolumes(place);
+        return b.nanovdbField(grid.grid, *at.values);
+    };
+    return fieldScene(device, makeField, at, extraLights, edits, drawField(options, *at.values));
 }
 
 AnariWorld buildMeshScene(ANARIDevice device, const MeshPart& mesh, const FieldSceneOptions& options,

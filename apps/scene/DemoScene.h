@@ -6,6 +6,7 @@
 
 #include "apps/scene/AnariScene.h"
 #include "io/volume/VolumeFile.h"
+#include "io/volume/NanoVdbFile.h"
 #include "io/vtk/VtkUnstructuredFile.h"
 
 #include <optional>
@@ -75,5 +76,11 @@ struct MeshPart {
 // `options` say.
 AnariWorld buildMeshScene(ANARIDevice device, const MeshPart& mesh, const FieldSceneOptions& options,
                           const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
+
+// A NanoVDB grid on the same stage, placed the same way (its world box's longest side 2, centred, just
+// above the floor, by an instance transform), drawn as a volume. Iso-surfaces of NanoVDB fields are not
+// drawn: the device refuses them by name.
+AnariWorld buildNanoVdbScene(ANARIDevice device, const NanoVdbFile& grid, const FieldSceneOptions& options,
+                             const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
 
 }  // namespace ripple::apps

@@ -20,7 +20,8 @@ void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
     app.add_option("--volume", options.volume,
                    "scalar field file: NRRD (.nrrd, or .nhdr with a raw data file; encoding raw), VTK image data (.vti, "
                    "or legacy .vtk STRUCTURED_POINTS), a VTK unstructured grid of tetrahedra, hexahedra, wedges and "
-                   "pyramids (.vtu, or legacy .vtk UNSTRUCTURED_GRID) or raw (needs --dims and --type); drawn as a "
+                   "pyramids (.vtu, or legacy .vtk UNSTRUCTURED_GRID), a NanoVDB float grid (.nvdb, uncompressed) or "
+                   "raw (needs --dims and --type); drawn as a "
                    "volume, or as isosurfaces with --isovalue, on a floor");
     app.add_option("--field", options.field,
                    "VTK --volume: the array to draw (a point array, or an unstructured grid's cell array; default: the "
@@ -121,12 +122,22 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
                                  ".vtk UNSTRUCTURED_GRID) are");
     const bool vtkOptions = !options.field.empty() || options.fieldComponent;
     const bool unstructured = isVtkUnstructuredFile(options.volume);
-    if (vtkOptions && !isVtkImageFile(options.volume) && !unstructured)
+    if (vtkOptions && !isVtkImageFile(options.volume) && !unstructured && !isNanoVdbFile(options.volume))
         throw std::runtime_error("--volume " + options.volume + ": --field and --field-component are for VTK files");
     if ((isVtkImageFile(options.volume) || unstructured) && rawOptions)
         throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
                                  "the VTK file gives them");
-    if (unstructured) {
+    if (isNanoVdbFile(options.volume)) {
+        if (rawOptions || vtkOptions)
+            throw std::runtime_error("--volume " + options.volume + ": --dims, --type, --spacing, --field and "
+                                     "--field-component are not for NanoVDB files");
+        if (ranks.distributed())
+            throw std::runtime_error("--volume " + options.volume + ": NanoVDB grids are not split over ranks yet; "
+                                     "render it on one rank");
+        plan.nanovdb = readNanoVdbFile(options.volume);
+        plan.data.minValue = plan.nanovdb->minValue;
+        plan.data.maxValue = plan.nanovdb->maxValue;
+    } else if (unstructured) {
         // Every rank reads the whole file (its box frames the view, its values span the colour map) and keeps
         // only its part of the cells.
         MeshPart mesh;
@@ -169,7 +180,7 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
                                      "(or give an NRRD file, .nrrd or .nhdr)");
         plan.data = readRawVolume(options.volume, {options.dims, options.type, options.spacing}, slab);
     }
-    if (ranks.distributed() && !plan.mesh) {  // the colour map spans every rank's values
+    if (ranks.distributed() && !plan.mesh && !plan.nanovdb) {  // the colour map spans every rank's values
         float lowest = plan.data.minValue, highest = plan.data.maxValue;
         ranks.min(std::span<float>(&lowest, 1));
         ranks.max(std::span<float>(&highest, 1));
@@ -192,6 +203,7 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
 AnariWorld buildPlannedField(ANARIDevice device, const FieldPlan& plan, const std::vector<ANARILight>& extraLights,
                              SceneEdits* edits) {
     if (plan.mesh) return buildMeshScene(device, *plan.mesh, plan.scene, extraLights, edits);
+    if (plan.nanovdb) return buildNanoVdbScene(device, *plan.nanovdb, plan.scene, extraLights, edits);
     return buildFieldScene(device, plan.data, plan.scene, extraLights, edits);
 }
 

@@ -39,6 +39,7 @@ std::string describeVolumeOptions(const VolumeOptions& options);
 struct FieldPlan {
     VolumeData data;                    // this rank's slab; minValue/maxValue span every rank's
     std::optional<MeshPart> mesh;       // an unstructured grid instead: this rank's part of it
+    std::optional<NanoVdbFile> nanovdb; // a NanoVDB grid instead (one rank only)
     FieldSceneOptions scene;
 };
 

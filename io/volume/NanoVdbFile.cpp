@@ -1,0 +1,93 @@
+// NanoVDB files (see NanoVdbFile.h). The layout, from NanoVDB's IO.h (its file format, version 32): a
+// 16-byte header (magic, version, grid count, codec), then per grid 176 bytes of metadata and its name,
+// then the grids' buffers in the same order.
+#include "io/volume/NanoVdbFile.h"
+
+#include "io/FileRead.h"
+
+#include <nanovdb/NanoVDB.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+
+namespace ripple::apps {
+
+namespace {
+
+constexpr uint64_t kMaxFileBytes = uint64_t(4) << 30;  // the kernels address a grid with 32 bits
+constexpr size_t kHeaderBytes = 16, kMetaBytes = 176;
+
+template <typename T>
+T readAt(const std::string& bytes, size_t offset) {
+    T value;
+    std::memcpy(&value, bytes.data() + offset, sizeof(T));
+    return value;
+}
+
+}  // namespace
+
+bool isNanoVdbFile(const std::filesystem::path& file) {
+    std::string extension = file.extension().string();
+    for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return extension == ".nvdb";
+}
+
+NanoVdbFile readNanoVdbFile(const std::filesystem::path& file) {
+    const std::string bytes = readRegularFile(file, kMaxFileBytes, "NanoVDB file");
+    const auto fail = [&](const std::string& problem) { return VolumeError(file.string() + ": " + problem); };
+    if (bytes.size() < kHeaderBytes) throw fail("too short for a NanoVDB file header");
+    if (readAt<uint64_t>(bytes, 0) != NANOVDB_MAGIC_NUMBER) throw fail("not a NanoVDB file (its magic number is wrong)");
+    const uint32_t version = readAt<uint32_t>(bytes, 8);
+    if ((version >> 21) != NANOVDB_MAJOR_VERSION_NUMBER)
+        throw fail("NanoVDB file version " + std::to_string(version >> 21) + "; Ripple reads major version " +
+                   std::to_string(NANOVDB_MAJOR_VERSION_NUMBER));
+    const uint16_t gridCount = readAt<uint16_t>(bytes, 12), codec = readAt<uint16_t>(bytes, 14);
+    if (gridCount == 0) throw fail("the file holds no grid");
+    if (codec != 0) throw fail("its grids are compressed (" + std::string(codec == 1 ? "zip" : "blosc") +
+                               "); Ripple reads uncompressed .nvdb files (nanovdb_convert writes them without -z/-b)");
+    // The metadata and names of the segment's grids, then the first grid's buffer.
+    size_t at = kHeaderBytes;
+    NanoVdbFile out;
+    uint64_t gridSize = 0, fileSize = 0;
+    for (uint16_t g = 0; g < gridCount; ++g) {
+        if (bytes.size() - at < kMetaBytes) throw fail("its grid metadata runs past the file");
+        const uint32_t nameSize = readAt<uint32_t>(bytes, at + 136);
+        if (g == 0) {
+            gridSize = readAt<uint64_t>(bytes, at);
+            fileSize = readAt<uint64_t>(bytes, at + 8);
+            const uint32_t gridType = readAt<uint32_t>(bytes, at + 32);
+            if (gridType != uint32_t(nanovdb::GridType::Float))
+                throw fail(std::string("its first grid holds ") + nanovdb::toStr(nanovdb::GridType(std::min(gridType, 25u))) +
+                           "; Ripple reads float grids");
+            for (int k = 0; k < 3; ++k) {
+                out.worldLo[k] = readAt<double>(bytes, at + 40 + 8 * k);
+                out.worldHi[k] = readAt<double>(bytes, at + 64 + 8 * k);
+            }
+        }
+        at += kMetaBytes;
+        if (bytes.size() - at < nameSize) throw fail("a grid's name runs past the file");
+        if (g == 0) out.name.assign(bytes.data() + at, strnlen(bytes.data() + at, nameSize));
+        at += nameSize;
+    }
+    if (gridSize != fileSize) throw fail("its first grid's sizes disagree (" + std::to_string(gridSize) + " in memory, " +
+                                         std::to_string(fileSize) + " on disk) for an uncompressed file");
+    if (gridSize > bytes.size() - at) throw fail("its first grid (" + std::to_string(gridSize) + " bytes) runs past the file");
+    for (int k = 0; k < 3; ++k)
+        if (!std::isfinite(out.worldLo[k]) || !std::isfinite(out.worldHi[k]) || out.worldHi[k] < out.worldLo[k])
+            throw fail("its first grid's world box is not finite and ordered");
+    out.grid.assign(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(at + gridSize));
+    // The root's statistics: the tree follows the 672-byte grid header, the root at its fourth node offset.
+    const size_t treeAt = sizeof(nanovdb::GridData);
+    if (out.grid.size() < treeAt + 32) throw fail("its first grid is too short for a tree");
+    std::string grid(out.grid.begin(), out.grid.end());
+    const uint64_t rootAt = treeAt + readAt<uint64_t>(grid, treeAt + 24);
+    if (rootAt < treeAt || rootAt > grid.size() || grid.size() - rootAt < 40) throw fail("its first grid's root lies outside it");
+    out.minValue = readAt<float>(grid, rootAt + 32);
+    out.maxValue = readAt<float>(grid, rootAt + 36);
+    if (!std::isfinite(out.minValue) || !std::isfinite(out.maxValue)) throw fail("its first grid's value range is not finite");
+    return out;
+}
+
+}  // namespace ripple::apps
