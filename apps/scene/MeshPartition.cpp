@@ -9,8 +9,6 @@ namespace ripple::apps {
 
 namespace {
 
-uint32_t cornersOf(uint8_t type) { return type == 10 ? 4 : type == 12 ? 8 : type == 13 ? 6 : 5; }
-
 // Narrows `cells` (indices into the mesh, centroids alongside) to `rank`'s part among `ranks`: the longest
 // axis of their centroids' box is split where the counts are in proportion to the ranks on each side.
 void narrow(std::vector<uint32_t>& cells, const std::vector<glm::vec3>& centroids, uint32_t rank, uint32_t ranks) {
@@ -51,7 +49,7 @@ UnstructuredMesh meshPart(const UnstructuredMesh& whole, uint32_t rank, uint32_t
     std::vector<glm::vec3> centroids(cellCount);
     for (size_t c = 0; c < cellCount; ++c) {
         glm::vec3 sum(0.0f);
-        const uint32_t corners = cornersOf(whole.cellType[c]);
+        const uint32_t corners = linearCellCorners(whole.cellType[c]);
         for (uint32_t k = 0; k < corners; ++k) sum += whole.positions[whole.index[whole.cellIndex[c] + k]];
         centroids[c] = sum / float(corners);
     }
@@ -70,7 +68,7 @@ UnstructuredMesh meshPart(const UnstructuredMesh& whole, uint32_t rank, uint32_t
         part.cellIndex.push_back(uint32_t(part.index.size()));
         part.cellType.push_back(whole.cellType[c]);
         if (whole.cellCentered) part.values.push_back(whole.values[c]);
-        const uint32_t corners = cornersOf(whole.cellType[c]);
+        const uint32_t corners = linearCellCorners(whole.cellType[c]);
         for (uint32_t k = 0; k < corners; ++k) {
             const uint32_t v = whole.index[whole.cellIndex[c] + k];
             if (newIndex[v] == UINT32_MAX) {

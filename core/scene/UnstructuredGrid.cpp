@@ -202,7 +202,6 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     // between its cell's lowest and highest corner values (every shape function is non-negative inside).
     const glm::uvec3 m = grid->macrocells;
     grid->macrocellRanges.assign(size_t(m.x) * m.y * m.z, glm::vec2(INFINITY, -INFINITY));
-    grid->valueRange = glm::vec2(INFINITY, -INFINITY);
     std::vector<glm::vec2> cellRanges(kept.size());
     for (size_t k = 0; k < kept.size(); ++k) {
         const uint32_t c = kept[k];
@@ -216,7 +215,6 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
             }
         }
         cellRanges[k] = range;
-        grid->valueRange = glm::vec2(std::min(grid->valueRange.x, range.x), std::max(grid->valueRange.y, range.y));
         const float size = float(gpu::VOLUME_MACROCELL);
         const glm::uvec3 first = glm::min(glm::uvec3(glm::max(boxes[k].lo / size, 0.0f)), m - 1u);
         const glm::uvec3 last = glm::min(glm::uvec3(glm::max(boxes[k].hi / size, 0.0f)), m - 1u);

@@ -36,7 +36,6 @@ struct UnstructuredGrid {
     // Per macrocell (x fastest), the lowest and highest value the field takes in the cells overlapping it
     // (hi < lo: none does, the macrocell is empty).
     std::vector<glm::vec2> macrocellRanges;
-    glm::vec2 valueRange{0.0f};          // of the kept cells' values
     glm::vec3 gridScale{1.0f};           // grid space is (object - lo) * gridScale
     bool cellCentered = false;           // values per cell (constant over each), else per vertex
     // Per kept cell in leaf order (the words' order): its object-space box and the range of its values

@@ -185,6 +185,11 @@ StoredGrid readGrid(const std::filesystem::path& file) {
 
 }  // namespace
 
+uint32_t linearCellCorners(uint8_t type) {
+    const std::optional<CellKind> kind = cellKind(type);
+    return kind && !kind->quadratic && kind->linear == type ? kind->corners : 0;
+}
+
 bool isVtkUnstructuredFile(const std::filesystem::path& file) {
     if (isVtu(file)) return true;
     if (!isVtkImageFile(file) || file.extension() == ".vti") return false;

@@ -32,6 +32,9 @@ struct UnstructuredMesh {
     std::vector<std::string> warnings;   // quadratic cells read by their corners, ...
 };
 
+// Corners of a cell of the linear types the mesh holds (10, 12, 13, 14); 0 for any other type.
+uint32_t linearCellCorners(uint8_t type);
+
 // Whether `file` is an unstructured grid: a .vtu, or a legacy .vtk whose DATASET is UNSTRUCTURED_GRID.
 bool isVtkUnstructuredFile(const std::filesystem::path& file);
 

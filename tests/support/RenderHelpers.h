@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace ripple::test {
@@ -65,6 +67,39 @@ inline core::Camera lookingDown(float z, float height) {
 // a size x size image.
 inline glm::vec2 groundPoint(float height, uint32_t size, float x, float y) {
     return glm::vec2((x / float(size) - 0.5f) * height, (y / float(size) - 0.5f) * height);
+}
+
+// The red channel's mean and its standard error over the pixels [x0, x1) x [y0, y1) of `image` (block
+// xyzw; all of it by default); NaN for both when one of them is not finite.
+struct Mean {
+    double mean = 0.0;
+    double standardError = 0.0;
+};
+
+inline Mean meanRed(const Rendered& image, glm::uvec4 block = glm::uvec4(0u, ~0u, 0u, ~0u)) {
+    double sum = 0.0, sumSquares = 0.0, n = 0.0;
+    for (uint32_t y = block.z; y < std::min(block.w, image.size.y); ++y)
+        for (uint32_t x = block.x; x < std::min(block.y, image.size.x); ++x) {
+            const double r = image.at(x, y).r;
+            if (!std::isfinite(r)) return {NAN, NAN};
+            sum += r;
+            sumSquares += r * r;
+            n += 1.0;
+        }
+    const double mean = sum / n;
+    return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / n)};
+}
+
+// `volume` alone under a sun of irradiance 3 from (0.3, -0.2, -1): the lit scenes of the volume tests.
+inline core::SceneDescription sunlitVolume(const core::Volume& volume) {
+    core::SceneDescription scene;
+    core::Light sun;
+    sun.kind = core::Light::Kind::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
+    sun.intensity = 3.0f;
+    scene.lights.push_back(sun);
+    scene.volumes.push_back(volume);
+    return scene;
 }
 
 }  // namespace ripple::test

@@ -3,6 +3,7 @@
 // pixels within 1% plus 4 standard errors of the sample noise; the grid moved by 3 voxels fails it); rays through a corner of its box that holds no active voxel make
 // no tentative collision at all; corrupt buffers are refused by name before any kernel reads them.
 #include "core/scene/NanoVdbGrid.h"
+#include "tests/support/Refusal.h"
 #include "tests/support/RenderHelpers.h"
 
 #include <doctest/doctest.h>
@@ -35,36 +36,12 @@ core::Volume mediumOf(core::Volume v) {
     return v;
 }
 
-struct Mean {
-    double mean = 0.0, standardError = 0.0;
-};
-
-Mean blockMean(const test::Rendered& image, glm::uvec4 block) {
-    double sum = 0.0, squares = 0.0, n = 0.0;
-    for (uint32_t y = block.z; y < block.w; ++y)
-        for (uint32_t x = block.x; x < block.y; ++x) {
-            const double r = image.at(x, y).r;
-            sum += r;
-            squares += r * r;
-            n += 1.0;
-        }
-    const double mean = sum / n;
-    return {mean, std::sqrt(std::max(0.0, squares / n - mean * mean) / n)};
-}
-
 test::Rendered litImage(const core::Volume& volume, const core::Camera& camera, glm::uvec2 size) {
-    core::SceneDescription scene;
-    core::Light sun;
-    sun.kind = core::Light::Kind::Directional;
-    sun.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
-    sun.intensity = 3.0f;
-    scene.lights.push_back(sun);
-    scene.volumes.push_back(volume);
     core::RenderSettings settings;
     settings.background = glm::vec4(0.0f);
     settings.maxPathLength = 4;
     settings.pixelSamples = 256;
-    return test::render(scene, camera, settings, size);
+    return test::render(test::sunlitVolume(volume), camera, settings, size);
 }
 
 }  // namespace
@@ -98,7 +75,7 @@ TEST_CASE("NanoVDB: a fog sphere renders as the same values on a dense structure
     for (uint32_t by = 0; by < 8; ++by)
         for (uint32_t bx = 0; bx < 8; ++bx) {
             const glm::uvec4 block(bx * 4, bx * 4 + 4, by * 4, by * 4 + 4);
-            const Mean ma = blockMean(a, block), mb = blockMean(b, block);
+            const test::Mean ma = test::meanRed(a, block), mb = test::meanRed(b, block);
             const double tolerance = 0.01 * mb.mean + 4.0 * std::hypot(ma.standardError, mb.standardError);
             worst = std::max(worst, std::abs(ma.mean - mb.mean) / tolerance);
             CAPTURE(bx);
@@ -131,13 +108,8 @@ TEST_CASE("NanoVDB: rays through a corner of the box with no active voxel make n
 TEST_CASE("NanoVDB: corrupt buffers are refused by name") {
     const auto handle = fogSphere();
     const std::vector<uint8_t> good(handle.data(), handle.data() + handle.size());
-    const auto refusal = [](const std::vector<uint8_t>& blob) -> std::string {
-        try {
-            core::prepareNanoVdbGrid(blob);
-        } catch (const std::invalid_argument& e) {
-            return e.what();
-        }
-        return "";
+    const auto refusal = [](const std::vector<uint8_t>& blob) {
+        return test::refusalOf([&] { core::prepareNanoVdbGrid(blob); });
     };
     CHECK(refusal(good).empty());
     CHECK(refusal(std::vector<uint8_t>(good.begin(), good.begin() + 100)).find("too short") != std::string::npos);

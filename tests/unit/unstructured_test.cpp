@@ -10,6 +10,7 @@
 #include "core/vk/Buffer.h"
 #include "core/vk/ComputePipeline.h"
 #include "shaders/test_unstructured_probe.spv.h"
+#include "tests/support/Refusal.h"
 #include "tests/support/RenderHelpers.h"
 
 #include <doctest/doctest.h>
@@ -90,32 +91,9 @@ core::Volume meshVolume(const core::UnstructuredCells& mesh, float opacity0, flo
     return v;
 }
 
-struct Mean {
-    double mean = 0.0;
-    double standardError = 0.0;
-};
-
-// The red channel's mean over pixels [x0, x1) x [y0, y1) of a `width`-wide image (all of it by default).
-Mean meanRed(const test::Rendered& image, uint32_t width = 0, glm::uvec4 block = glm::uvec4(0)) {
-    double sum = 0.0, sumSquares = 0.0, n = 0.0;
-    for (size_t p = 0; p < image.color.size(); ++p) {
-        if (width) {
-            const uint32_t x = uint32_t(p % width), y = uint32_t(p / width);
-            if (x < block.x || x >= block.y || y < block.z || y >= block.w) continue;
-        }
-        const double r = image.color[p].r;
-        if (!std::isfinite(r)) return {NAN, NAN};
-        sum += r;
-        sumSquares += r * r;
-        n += 1.0;
-    }
-    const double mean = sum / n;
-    return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / n)};
-}
-
 // Camera rays straight down through the box against a white background: each pixel shows the box's
 // transmittance along the vertical (the medium is black).
-Mean transmittanceDown(core::Volume volume, float depth, test::Rendered* out = nullptr) {
+test::Mean transmittanceDown(core::Volume volume, float depth, test::Rendered* out = nullptr) {
     core::RenderSettings settings;
     settings.background = glm::vec4(1.0f);
     settings.maxPathLength = 1;
@@ -129,7 +107,7 @@ Mean transmittanceDown(core::Volume volume, float depth, test::Rendered* out = n
     for (const glm::vec4& c : image.color) blocked += (1.0 - double(c.r)) * settings.pixelSamples;
     CHECK(image.stats.realCollisions == uint64_t(std::llround(blocked)));
     if (out) *out = image;
-    return meanRed(image);
+    return test::meanRed(image);
 }
 
 }  // namespace
@@ -144,7 +122,7 @@ TEST_CASE("unstructured volumes: a constant field in each cell shape lets exp(-s
             const core::Volume volume = meshVolume(mesh, opacity, opacity, 1.0f / sigma, glm::vec3(0.0f));
             CHECK(volume.unstructured->invertedCells == 0);
             CHECK(volume.unstructured->degenerateCells == 0);
-            const Mean m = transmittanceDown(volume, depth);
+            const test::Mean m = transmittanceDown(volume, depth);
             const double expected = std::exp(-1.0);
             CAPTURE(nameOf(shape));
             CAPTURE(sigma);
@@ -165,7 +143,7 @@ TEST_CASE("unstructured volumes: a linear field is interpolated exactly by every
     const double expected = std::exp(-double(sigma) * depth * rampMean);
     for (const Shape shape : {Shape::Tetrahedra, Shape::Hexahedra, Shape::Wedges, Shape::Pyramids}) {
         const core::UnstructuredCells mesh = boxMesh(shape, 2, depth, [&](glm::vec3 p) { return p.z / depth; });
-        const Mean m = transmittanceDown(meshVolume(mesh, 0.0f, opacity, 1.0f / sigma, glm::vec3(0.0f)), depth);
+        const test::Mean m = transmittanceDown(meshVolume(mesh, 0.0f, opacity, 1.0f / sigma, glm::vec3(0.0f)), depth);
         CAPTURE(nameOf(shape));
         MESSAGE(std::string(nameOf(shape)) << " ramp: transmittance " << m.mean << " +- " << m.standardError << ", expected " << expected);
         CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
@@ -178,14 +156,7 @@ test::Rendered litImage(const core::Volume& volume, float depth) {
     settings.background = glm::vec4(0.2f);
     settings.maxPathLength = 4;
     settings.pixelSamples = 64;
-    core::SceneDescription scene;
-    core::Light sun;
-    sun.kind = core::Light::Kind::Directional;
-    sun.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
-    sun.intensity = 3.0f;
-    scene.lights.push_back(sun);
-    scene.volumes.push_back(volume);
-    const test::Rendered image = test::render(scene, test::lookingDown(depth + 2.0f, 2.2f), settings, {32, 32});
+    const test::Rendered image = test::render(test::sunlitVolume(volume), test::lookingDown(depth + 2.0f, 2.2f), settings, {32, 32});
     CHECK(image.stats.flaggedRays == 0);
     return image;
 }
@@ -206,7 +177,7 @@ void checkBlocksAgree(const test::Rendered& a, const test::Rendered& b) {
     for (uint32_t by = 0; by < 4; ++by)
         for (uint32_t bx = 0; bx < 4; ++bx) {
             const glm::uvec4 block(bx * 8, bx * 8 + 8, by * 8, by * 8 + 8);
-            const Mean ma = meanRed(a, 32, block), mb = meanRed(b, 32, block);
+            const test::Mean ma = test::meanRed(a, block), mb = test::meanRed(b, block);
             CAPTURE(bx);
             CAPTURE(by);
             CHECK(std::abs(ma.mean - mb.mean) <= 0.01 * mb.mean + 4.0 * std::hypot(ma.standardError, mb.standardError));
@@ -381,7 +352,7 @@ TEST_CASE("unstructured volumes: degenerate cells are dropped and inverted ones 
     CHECK(volume.unstructured->warnings[1].find("cell 5") != std::string::npos);
     // The needle overlaps the box's cells: where both hold a point the field is still 1, so the
     // transmittance is still exp(-1), and the inverted cell still counts.
-    const Mean m = transmittanceDown(volume, depth);
+    const test::Mean m = transmittanceDown(volume, depth);
     MESSAGE("with degenerate, inverted and needle cells: " << m.mean << " +- " << m.standardError);
     CHECK(std::isfinite(m.mean));
     CHECK(std::abs(m.mean - std::exp(-1.0)) <= 0.01 * std::exp(-1.0) + 4.0 * m.standardError);
@@ -389,13 +360,8 @@ TEST_CASE("unstructured volumes: degenerate cells are dropped and inverted ones 
 
 TEST_CASE("unstructured volumes: meshes that cannot be rendered are refused, naming the problem") {
     const core::UnstructuredCells good = boxMesh(Shape::Hexahedra, 1, 1.0f, [](glm::vec3) { return 0.5f; });
-    const auto refusal = [](const core::UnstructuredCells& mesh) -> std::string {
-        try {
-            core::prepareUnstructuredGrid(mesh);
-        } catch (const std::invalid_argument& e) {
-            return e.what();
-        }
-        return "";
+    const auto refusal = [](const core::UnstructuredCells& mesh) {
+        return test::refusalOf([&] { core::prepareUnstructuredGrid(mesh); });
     };
     CHECK(refusal(good).empty());
     core::UnstructuredCells bad = good;

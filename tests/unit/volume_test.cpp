@@ -34,22 +34,6 @@ core::Volume boxVolume(float depth, float opacity, float unitDistance, bool ramp
     return v;
 }
 
-struct Mean {
-    double mean = 0.0;
-    double standardError = 0.0;
-};
-
-Mean meanRed(const test::Rendered& image) {
-    double sum = 0.0, sumSquares = 0.0;
-    for (const glm::vec4& c : image.color) {
-        sum += c.r;
-        sumSquares += double(c.r) * c.r;
-    }
-    const double n = double(image.color.size());
-    const double mean = sum / n;
-    return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / n)};
-}
-
 // A white (0.8) matte floor at z = 0, 4 units wide, lit straight down by a directional light of irradiance
 // pi through `slab`, moved to start at z = 0.5: seen from below the slab, each pixel shows 0.8 times the
 // slab's transmittance along the vertical.
@@ -92,7 +76,7 @@ TEST_CASE("volumes: transmittance of a homogeneous slab and of a linear ramp, ex
             const double expected = std::exp(-double(sigma) * depth * (ramp ? rampMean : 1.0));
             // Above the box, every pixel looking through it.
             const test::Rendered image = test::render(scene, test::lookingDown(depth + 1.0f, 1.8f), settings, {32, 32});
-            const Mean m = meanRed(image);
+            const test::Mean m = test::meanRed(image);
             CAPTURE(sigma);
             CAPTURE(ramp);
             MESSAGE("sigma " << sigma << (ramp ? " ramp" : " slab") << ": transmittance " << m.mean << " +- "
@@ -123,7 +107,7 @@ TEST_CASE("volumes: volumetric furnace, a white non-absorbing medium under a uni
     core::SceneDescription scene;
     scene.volumes.push_back(boxVolume(2.0f, 1.0f - std::exp(-1.0f), 0.5f, false, glm::vec3(1.0f)));  // optical depth 4
     const test::Rendered image = test::render(scene, camera, settings, {24, 24});
-    const Mean m = meanRed(image);
+    const test::Mean m = test::meanRed(image);
     MESSAGE("furnace: " << m.mean << " +- " << m.standardError);
     CHECK(std::abs(m.mean - 1.0) <= 0.01 + 4.0 * m.standardError);
     CHECK(image.stats.flaggedRays == 0);
@@ -143,7 +127,7 @@ TEST_CASE("volumes: shadow rays carry the slab's transmittance (ratio tracking)"
         settings.maxPathLength = 1;
         settings.pixelSamples = 64;
         const test::Rendered image = test::render(scene, test::lookingDown(0.4f, 1.8f), settings, {24, 24});
-        const Mean m = meanRed(image);
+        const test::Mean m = test::meanRed(image);
         const double o = opacity, rampMean = 1.0 + (1.0 - o) * std::log(1.0 - o) / o;
         const double expected = 0.8 * std::exp(-double(sigma) * (ramp ? rampMean : 1.0));
         CAPTURE(ramp);
@@ -180,7 +164,7 @@ TEST_CASE("volumes: single scattering under the Henyey-Greenstein phase function
         settings.pixelSamples = 64;
         settings.phaseAnisotropy = g;
         const test::Rendered image = test::render(scene, test::lookingDown(3.0f, 1.8f), settings, {24, 24});
-        const Mean m = meanRed(image);
+        const test::Mean m = test::meanRed(image);
         const double phase = (1.0 - double(g) * g) / (4.0 * M_PI * std::pow(1.0 + g, 3.0));
         const double expected = irradiance * phase * (1.0 - std::exp(-2.0)) / 2.0;
         MESSAGE("g " << g << ": " << m.mean << " +- " << m.standardError << ", expected " << expected);
@@ -200,7 +184,7 @@ TEST_CASE("volumes: single scattering under the Henyey-Greenstein phase function
         core::SceneDescription scene;
         scene.volumes.push_back(boxVolume(2.0f, 1.0f - std::exp(-1.0f), 0.5f, false, glm::vec3(1.0f)));
         const test::Rendered image = test::render(scene, test::lookingDown(3.0f, 1.8f), settings, {24, 24});
-        const Mean m = meanRed(image);
+        const test::Mean m = test::meanRed(image);
         MESSAGE("furnace, g " << g << ": " << m.mean << " +- " << m.standardError);
         CHECK(std::abs(m.mean - 1.0) <= 0.01 + 4.0 * m.standardError);
     }
@@ -284,7 +268,7 @@ TEST_CASE("volumes: marches parked after every step and resumed give the analyti
         const double o = opacity, rampMean = 1.0 + (1.0 - o) * std::log(1.0 - o) / o;
         const double expected = std::exp(-double(sigma) * depth * (ramp ? rampMean : 1.0));
         const test::Rendered image = test::render(scene, test::lookingDown(depth + 1.0f, 1.8f), settings, {24, 24}, false, resumed);
-        const Mean m = meanRed(image);
+        const test::Mean m = test::meanRed(image);
         MESSAGE((ramp ? "ramp" : "slab") << ": transmittance " << m.mean << " +- " << m.standardError << ", expected "
                                          << expected << ", parked marches " << image.stats.parkedMarches);
         CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);
@@ -316,7 +300,7 @@ TEST_CASE("volumes: marches parked after every step and resumed give the analyti
         settings.maxPathLength = 1;
         settings.pixelSamples = 64;
         const test::Rendered image = test::render(scene, test::lookingDown(0.4f, 1.8f), settings, {24, 24}, false, resumed);
-        const Mean m = meanRed(image);
+        const test::Mean m = test::meanRed(image);
         const double expected = 0.8 * std::exp(-double(sigma));
         MESSAGE("shadow rays: " << m.mean << " +- " << m.standardError << ", expected " << expected << ", parked marches "
                                 << image.stats.parkedMarches);
@@ -365,7 +349,7 @@ TEST_CASE("volumes: Henyey-Greenstein sampling agrees with its evaluation: phase
             settings.lightSampling = mode == 0 ? core::RenderSettings::LightSampling::BsdfOnly
                                                : core::RenderSettings::LightSampling::LightsOnly;
             const test::Rendered image = test::render(scene, camera, settings, {16, 16});
-            const Mean m = meanRed(image);
+            const test::Mean m = test::meanRed(image);
             means[mode] = m.mean;
             errors[mode] = m.standardError;
             CHECK(image.stats.flaggedRays == 0);
@@ -491,7 +475,7 @@ TEST_CASE("volumes: a thin shell is tracked cell by cell, and its transmittance 
     settings.maxPathLength = 1;
     settings.pixelSamples = 64;
     const test::Rendered image = test::render(scene, test::lookingDown(2.0f, 1.8f), settings, {32, 32});
-    const Mean m = meanRed(image);
+    const test::Mean m = test::meanRed(image);
     MESSAGE("shell: transmittance " << m.mean << " +- " << m.standardError << ", expected " << expected << "; null "
                                     << image.stats.nullCollisions << ", real " << image.stats.realCollisions);
     CHECK(std::abs(m.mean - expected) <= 0.01 * expected + 4.0 * m.standardError);

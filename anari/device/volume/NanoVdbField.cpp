@@ -28,10 +28,7 @@ void NanoVdbField::commit() {
         invalidate(std::string("parameter 'data' is not a NanoVDB grid Ripple can render: ") + e.what());
         return;
     }
-    const std::string filter = getString("filter", "linear");
-    if (filter != "linear" && filter != "nearest")
-        reportWarning("parameter 'filter' has value '" + filter + "'; Ripple takes 'linear' and 'nearest'; using 'linear'");
-    linearFilter_ = filter != "nearest";
+    linearFilter_ = linearFilterParameter();
 }
 
 bvh::Aabb NanoVdbField::bounds() const {

@@ -16,6 +16,11 @@ public:
     virtual bvh::Aabb bounds() const = 0;
     // Sets the field's part of `volume` (its samples, or its mesh, and their identity).
     virtual void describe(core::Volume& volume) const = 0;
+
+protected:
+    // Parameter "filter": true for "linear" (the default), false for "nearest"; any other value is reported
+    // and read as "linear".
+    bool linearFilterParameter();
 };
 
 }  // namespace ripple::device

@@ -47,10 +47,7 @@ void StructuredRegularField::commit() {
         invalidate("parameter 'spacing' must be positive on every axis");
         return;
     }
-    const std::string filter = getString("filter", "linear");
-    if (filter != "linear" && filter != "nearest")
-        reportWarning("parameter 'filter' has unknown value '" + filter + "'; using 'linear'");
-    linearFilter_ = filter != "nearest";
+    linearFilter_ = linearFilterParameter();
 }
 
 bvh::Aabb StructuredRegularField::bounds() const {
