@@ -14,6 +14,7 @@
 #include "shared/volume.h"
 #include "unstructured.glsl"
 #include "nanovdb.glsl"
+#include "amr.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer VolumesRef { VolumeRecord volumes[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VolumeDataRef { float values[]; };
@@ -102,7 +103,7 @@ vec4 transferFunction(VolumeRecord v, VolumeDataRef data, float value) {
 }
 
 // (albedo rgb, extinction per world unit) at grid-space point g: the transfer function of the field there;
-// none outside an unstructured mesh's cells.
+// none outside an unstructured mesh's cells or an AMR hierarchy's blocks.
 // `mesh`: an unstructured mesh's header (read once per march).
 vec4 mediumAt(VolumeRecord v, VolumeDataRef data, vec3 g, UnstructuredHeader mesh) {
     if (hasFeature(FEATURE_UNSTRUCTURED_VOLUMES) && v.kind == VOLUME_KIND_UNSTRUCTURED) {
@@ -111,6 +112,10 @@ vec4 mediumAt(VolumeRecord v, VolumeDataRef data, vec3 g, UnstructuredHeader mes
     }
     if (hasFeature(FEATURE_NANOVDB_VOLUMES) && v.kind == VOLUME_KIND_NANOVDB)
         return transferFunction(v, data, nanovdbValue(v.voxels, g, v.filterMode));
+    if (hasFeature(FEATURE_AMR_VOLUMES) && v.kind == VOLUME_KIND_AMR) {
+        float value;
+        return amrValue(v.voxels, uvec3(v.macroX, v.macroY, v.macroZ), g, value) ? transferFunction(v, data, value) : vec4(0.0);
+    }
     return transferFunction(v, data, fieldValue(v, data, g));
 }
 

@@ -390,6 +390,15 @@ const std::vector<Entry>& table() {
              {"data", ANARI_ARRAY1D, "the NanoVDB grid buffer (UINT8)", nullptr, nullptr, true},
              {"filter", ANARI_STRING, "sample interpolation", "linear", kFilters},
          }})},
+        {ANARI_SPATIAL_FIELD, "amr", "a block-structured AMR hierarchy: the finest covering cell's value",
+         joined({kName, {
+             {"cellWidth", ANARI_ARRAY1D, "cell width per level, decreasing (FLOAT32)", nullptr, nullptr, true},
+             {"block.bounds", ANARI_ARRAY1D, "each block's cells in its level's index space, inclusive (INT32_BOX3)", nullptr, nullptr, true},
+             {"block.level", ANARI_ARRAY1D, "each block's level (INT32)", nullptr, nullptr, true},
+             {"block.data", ANARI_ARRAY1D, "each block's cell values (ARRAY3D)", nullptr, nullptr, true},
+             {"origin", ANARI_FLOAT32_VEC3, "object-space position of index (0, 0, 0)"},
+             {"spacing", ANARI_FLOAT32_VEC3, "object-space size of a cell of width 1"},
+         }})},
         {ANARI_VOLUME, "transferFunction1D", "a scalar field as a scattering medium: albedo and opacity from the value",
          joined({kName, {
              {"value", ANARI_SPATIAL_FIELD, "the field", nullptr, nullptr, true},
@@ -462,6 +471,7 @@ const char** deviceExtensions() {
         "ANARI_KHR_FRAME_CHANNEL_PRIMITIVE_ID", "ANARI_KHR_FRAME_CHANNEL_OBJECT_ID", "ANARI_KHR_FRAME_CHANNEL_INSTANCE_ID",
         "ANARI_KHR_DATA_PARALLEL_MPI",    "ANARI_KHR_FRAME_ACCUMULATION",     "ANARI_KHR_DEVICE_SYNCHRONIZATION",
         "ANARI_KHR_FRAME_COMPLETION_CALLBACK", "ANARI_KHR_SPATIAL_FIELD_STRUCTURED_REGULAR", "ANARI_KHR_SPATIAL_FIELD_UNSTRUCTURED", "ANARI_KHR_SPATIAL_FIELD_NANOVDB",
+        "ANARI_RIPPLE_SPATIAL_FIELD_AMR",
         "ANARI_KHR_VOLUME_TRANSFER_FUNCTION1D", "ANARI_KHR_GEOMETRY_ISOSURFACE",
         nullptr};
     return extensions;

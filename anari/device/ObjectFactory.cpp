@@ -12,6 +12,7 @@
 #include "anari/device/renderer/Renderer.h"
 #include "anari/device/sampler/Sampler.h"
 #include "anari/device/surface/Surface.h"
+#include "anari/device/volume/AmrField.h"
 #include "anari/device/volume/NanoVdbField.h"
 #include "anari/device/volume/StructuredRegularField.h"
 #include "anari/device/volume/UnstructuredField.h"
@@ -74,6 +75,7 @@ constexpr Subtype kSubtypes[] = {
     {ANARI_SPATIAL_FIELD, "structuredRegular", make<StructuredRegularField>},
     {ANARI_SPATIAL_FIELD, "unstructured", make<UnstructuredField>},
     {ANARI_SPATIAL_FIELD, "nanovdb", make<NanoVdbField>},
+    {ANARI_SPATIAL_FIELD, "amr", make<AmrField>},
     {ANARI_VOLUME, "transferFunction1D", make<Volume>},
     {ANARI_RENDERER, "default", [](DeviceState& s) -> Object* { return new Renderer(s, "default"); }},
     {ANARI_RENDERER, "eyeLight", [](DeviceState& s) -> Object* { return new Renderer(s, "eyeLight"); }},

@@ -24,6 +24,7 @@ std::string FeatureSet::describe() const {
         {gpu::FEATURE_MULTI_RANK, "ranks"},        {gpu::FEATURE_ISOSURFACES, "isosurfaces"},
         {gpu::FEATURE_MESH_ISOSURFACES, "meshIsosurfaces"},
         {gpu::FEATURE_UNSTRUCTURED_VOLUMES, "unstructuredVolumes"}, {gpu::FEATURE_NANOVDB_VOLUMES, "nanovdbVolumes"},
+        {gpu::FEATURE_AMR_VOLUMES, "amrVolumes"},
         {gpu::FEATURE_PHYSICALLY_BASED, "physicallyBased"}, {gpu::FEATURE_CLEARCOAT, "clearcoat"},
         {gpu::FEATURE_TRANSMISSION, "transmission"}};
     std::string text;

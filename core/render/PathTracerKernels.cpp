@@ -86,8 +86,9 @@ void PathTracer::Impl::selectKernels(uint32_t bits) {
                           gpu::FEATURE_GEOMETRY | gpu::FEATURE_TEXTURES | gpu::FEATURE_SURFACE_CHANNELS},
                          bits, surface);
         if (bits & gpu::FEATURE_VOLUMES) {
-            // Specialised on the kinds of volume the world has: meshes and NanoVDB grids bring code of their own.
-            const uint32_t volumeKinds = gpu::FEATURE_UNSTRUCTURED_VOLUMES | gpu::FEATURE_NANOVDB_VOLUMES;
+            // Specialised on the kinds of volume the world has: meshes, NanoVDB grids and AMR hierarchies bring code
+            // of their own.
+            const uint32_t volumeKinds = gpu::FEATURE_UNSTRUCTURED_VOLUMES | gpu::FEATURE_NANOVDB_VOLUMES | gpu::FEATURE_AMR_VOLUMES;
             const uint32_t stageBytes = static_cast<uint32_t>(sizeof(gpu::StageParams));
             pipelines.select({shaders::pt_volume, "pt_volume", stageBytes, options.workgroupSize, volumeKinds}, bits, volume);
             pipelines.select({shaders::pt_shadow_volume, "pt_shadow_volume", stageBytes, options.workgroupSize, volumeKinds},

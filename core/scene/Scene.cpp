@@ -421,6 +421,7 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
         for (const gpu::VolumeRecord& r : volumes.records) {
             if (r.kind == gpu::VOLUME_KIND_UNSTRUCTURED) features_ |= gpu::FEATURE_UNSTRUCTURED_VOLUMES;
             if (r.kind == gpu::VOLUME_KIND_NANOVDB) features_ |= gpu::FEATURE_NANOVDB_VOLUMES;
+            if (r.kind == gpu::VOLUME_KIND_AMR) features_ |= gpu::FEATURE_AMR_VOLUMES;
         }
     }
     std::vector<bvh::Aabb> occupied = instanceBoxes;
@@ -554,8 +555,12 @@ Scene::Scene(const vk::Context& context, const SceneDescription& description, co
     // scene: one field in several volumes) when the voxel identity matches, else uploaded.
     for (size_t r = 0; r < volumes.records.size(); ++r) {
         const Volume& v = description.volumes[volumes.sources[r]];
-        // The voxels, or an unstructured mesh's words (UnstructuredGrid.h), or a NanoVDB grid's (NanoVdbGrid.h).
-        const std::vector<uint32_t>* words = v.unstructured ? &v.unstructured->words : v.nanovdb ? &v.nanovdb->words : nullptr;
+        // The voxels, or an unstructured mesh's words (UnstructuredGrid.h), a NanoVDB grid's (NanoVdbGrid.h) or an
+        // AMR hierarchy's (AmrGrid.h).
+        const std::vector<uint32_t>* words = v.unstructured ? &v.unstructured->words
+                                             : v.nanovdb    ? &v.nanovdb->words
+                                             : v.amr        ? &v.amr->words
+                                                            : nullptr;
         const void* fieldData = words ? static_cast<const void*>(words->data()) : v.values->data();
         const size_t fieldBytes = words ? words->size() * sizeof(uint32_t) : v.values->size() * sizeof(float);
         const auto same = [&](const std::shared_ptr<const VolumeVoxels>& kept) {

@@ -4,6 +4,7 @@
 // space (the ANARI layer applies instance transforms to lights before they get here).
 #pragma once
 
+#include "core/scene/AmrGrid.h"
 #include "core/scene/NanoVdbGrid.h"
 #include "core/scene/UnstructuredGrid.h"
 #include "shaders/shared/material.h"
@@ -236,8 +237,8 @@ struct Light {
     int32_t texture = kNoTexture;         // hdri: an equirectangular Rgba32Float texture (its radiance)
 };
 
-// A structured-regular scalar field (or an unstructured mesh's) seen through a 1D transfer function (ANARI
-// spatialField "structuredRegular" or "unstructured" inside a volume "transferFunction1D"), placed in the world by `transform`. Values are
+// A structured-regular scalar field (or an unstructured mesh's, a NanoVDB grid's or an AMR hierarchy's) seen
+// through a 1D transfer function (ANARI spatialField "structuredRegular", "unstructured", "nanovdb" or "amr" inside a volume "transferFunction1D"), placed in the world by `transform`. Values are
 // cell-vertex samples: voxel (i, j, k) sits at origin + (i, j, k) * spacing in object space, so the field
 // spans origin .. origin + (dims - 1) * spacing. Opacity o means transmittance 1 - o over unitDistance
 // world units (extinction -ln(1 - o) / unitDistance); the colour is the single-scattering albedo.
@@ -251,6 +252,9 @@ struct Volume {
     // Set: the field is this NanoVDB grid instead (dims, values, origin and spacing unused; its own map places
     // it in object space; linearFilter applies).
     std::shared_ptr<const NanoVdbGrid> nanovdb;
+    // Set: the field is this AMR hierarchy instead (dims, values, origin, spacing and linearFilter unused; its
+    // own origin and spacing place it in object space; the finest covering cell's value is taken).
+    std::shared_ptr<const AmrGrid> amr;
     // Nonzero key: the same (key, version) as a volume of a Scene's `previous` means the same values, and
     // their device buffer is reused (a transfer-function edit uploads no voxels). Zero: always uploaded.
     GeometryIdentity voxelIdentity;

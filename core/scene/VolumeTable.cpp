@@ -26,7 +26,7 @@ T resampled(const std::vector<T>& values, float x) {
 
 // The field's problems (an unstructured mesh or a NanoVDB grid was checked when it was prepared).
 std::optional<std::string> fieldProblemOf(const Volume& v) {
-    if (v.unstructured || v.nanovdb) return std::nullopt;
+    if (v.unstructured || v.nanovdb || v.amr) return std::nullopt;
     const uint64_t voxels = uint64_t(v.dims.x) * v.dims.y * v.dims.z;
     if (v.dims.x == 0 || v.dims.y == 0 || v.dims.z == 0) return "a dimension is 0";
     const size_t count = v.values ? v.values->size() : 0;
@@ -112,10 +112,12 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         const size_t entries = transferTableSize(v);
         const glm::uvec3 macroCells = v.unstructured ? v.unstructured->macrocells
                                       : v.nanovdb    ? v.nanovdb->macrocells
+                                      : v.amr        ? v.amr->macrocells
                                                      : macrocellsPerAxis(v.dims);
         // The value ranges the host knows per macrocell (the device computes a structured grid's).
         const std::vector<glm::vec2>* hostRanges = v.unstructured ? &v.unstructured->macrocellRanges
                                                    : v.nanovdb    ? &v.nanovdb->macrocellRanges
+                                                   : v.amr        ? &v.amr->macrocellRanges
                                                                   : nullptr;
         const uint64_t floatsNeeded = 4 * uint64_t(entries) + uint64_t(entries) * extinctionMaxLevels(entries) +
                                       uint64_t(macroCells.x) * macroCells.y * macroCells.z;
@@ -136,6 +138,8 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
             objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / spacing) * glm::translate(glm::dmat4(1.0), -lo);
         } else if (v.nanovdb) {
             objectToGrid = glm::translate(glm::dmat4(1.0), -glm::dvec3(v.nanovdb->base)) * glm::inverse(v.nanovdb->indexToObject);
+        } else if (v.amr) {
+            objectToGrid = v.amr->objectToGrid;
         } else {
             objectToGrid = glm::scale(glm::dmat4(1.0), 1.0 / glm::dvec3(v.spacing)) * glm::translate(glm::dmat4(1.0), -glm::dvec3(v.origin));
         }
@@ -152,13 +156,14 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
         record.gridExtent = gpu::vec4(glm::vec3(extent), 0.0f);
         record.kind = v.unstructured ? gpu::VOLUME_KIND_UNSTRUCTURED
                       : v.nanovdb    ? gpu::VOLUME_KIND_NANOVDB
+                      : v.amr        ? gpu::VOLUME_KIND_AMR
                                      : gpu::VOLUME_KIND_STRUCTURED;
         const float lo = std::min(v.valueRange.x, v.valueRange.y), hi = std::max(v.valueRange.x, v.valueRange.y);
         record.valueRange = gpu::vec4(lo, hi > lo ? 1.0f / (hi - lo) : 0.0f, 0.0f, 0.0f);
         record.dimX = dims.x;
         record.dimY = dims.y;
         record.dimZ = dims.z;
-        record.filterMode = v.linearFilter && !v.unstructured ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
+        record.filterMode = v.linearFilter && !v.unstructured && !v.amr ? gpu::VOLUME_FILTER_LINEAR : gpu::VOLUME_FILTER_NEAREST;
         record.objectId = v.objectId;
         record.instanceId = v.instanceId;
         record.macroX = macroCells.x;

@@ -37,10 +37,11 @@ RIPPLE_CONST uint FEATURE_PHYSICALLY_BASED = 1u << 24;     // a physicallyBased 
 RIPPLE_CONST uint FEATURE_CLEARCOAT = 1u << 25;            // one with a clear coat
 RIPPLE_CONST uint FEATURE_TRANSMISSION = 1u << 26;         // one with transmission
 // Volume kinds besides structured grids (VOLUME_KIND_* in shared/volume.h): the volume kernels carry
-// point location in meshes and NanoVDB's tree walks only where a world has them.
+// point location in meshes, NanoVDB's tree walks and AMR block lists only where a world has them.
 RIPPLE_CONST uint FEATURE_UNSTRUCTURED_VOLUMES = 1u << 28;
 RIPPLE_CONST uint FEATURE_NANOVDB_VOLUMES = 1u << 29;
-RIPPLE_CONST uint FEATURE_ALL = 0x3FFFFFFFu;
+RIPPLE_CONST uint FEATURE_AMR_VOLUMES = 1u << 30;
+RIPPLE_CONST uint FEATURE_ALL = 0x7FFFFFFFu;
 
 RIPPLE_GPU_END
 #endif

@@ -57,6 +57,10 @@ RIPPLE_CONST uint VOLUME_KIND_UNSTRUCTURED = 1u;
 // PNanoVDB.h (shaders/nanovdb.glsl); the grid is a virtual one of macrocells over its active box, whose
 // majorants the host fills (core/scene/NanoVdbGrid.h); filterMode as for structured grids.
 RIPPLE_CONST uint VOLUME_KIND_NANOVDB = 2u;
+// A block-structured AMR hierarchy: `voxels` is the AmrHeader and what it indexes; the grid is a virtual one
+// of macrocells over the blocks' box, whose majorants the host fills (core/scene/AmrGrid.h); filterMode and
+// cellByCell are unused (0): the value is the finest covering cell's.
+RIPPLE_CONST uint VOLUME_KIND_AMR = 3u;
 
 // An unstructured mesh on the device: 32-bit words from the address VolumeRecord.voxels, this header first.
 // Vertices are in the volume's grid space (the record's worldToGrid applies to rays, not to vertices).
@@ -77,6 +81,30 @@ struct UnstructuredHeader {
     uint startX;           // start cells per axis: UNSTRUCTURED_START_CELLS per macrocell edge
     uint startY;
     uint startZ;
+};
+
+// An AMR hierarchy on the device: 32-bit words from the address VolumeRecord.voxels, this header first. Block
+// b is AmrBlockRecord b at blockOffset; macrocell m's blocks (those overlapping it, finest level first) are
+// the block indices entries[lists[2m] .. lists[2m] + lists[2m + 1]) with lists at listOffset and entries at
+// entryOffset.
+struct AmrHeader {
+    uint blockCount;
+    uint blockOffset;
+    uint listOffset;
+    uint entryOffset;
+};
+
+// A block in grid space: its cells are cubes of side cellSize from `lower`, dims per axis, their values the
+// floats at word firstValue (x fastest).
+struct AmrBlockRecord {
+    float lowerX;
+    float lowerY;
+    float lowerZ;
+    float cellSize;
+    uint dimX;
+    uint dimY;
+    uint dimZ;
+    uint firstValue;
 };
 
 // Start cells per macrocell edge: a point query starts from the start node of the finer grid of start

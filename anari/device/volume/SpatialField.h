@@ -1,5 +1,6 @@
 // ANARI spatial fields: what a volume (Volume.h) draws through its transfer function. Subtypes
-// "structuredRegular" (StructuredRegularField.h) and "unstructured" (UnstructuredField.h).
+// "structuredRegular" (StructuredRegularField.h), "unstructured" (UnstructuredField.h), "nanovdb"
+// (NanoVdbField.h) and "amr" (AmrField.h).
 #pragma once
 
 #include "anari/device/scene/SceneObject.h"
