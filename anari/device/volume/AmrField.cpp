@@ -14,6 +14,8 @@ void AmrField::commit() {
     forgetDependencies();
     grid_.reset();
     core::AmrHierarchy hierarchy;
+    hierarchy.origin = get<glm::vec3>("origin", glm::vec3(0.0f));
+    hierarchy.spacing = get<glm::vec3>("spacing", glm::vec3(1.0f));
     const auto required = [&](const char* name, const char* what) -> Array* {
         Array* array = getArray(name);
         if (!array) {
@@ -87,8 +89,6 @@ void AmrField::commit() {
         }
         block.values = std::move(*converted);
     }
-    hierarchy.origin = get<glm::vec3>("origin", glm::vec3(0.0f));
-    hierarchy.spacing = get<glm::vec3>("spacing", glm::vec3(1.0f));
     try {
         grid_ = core::prepareAmrGrid(hierarchy);
     } catch (const std::invalid_argument& e) {
