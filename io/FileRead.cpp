@@ -98,4 +98,31 @@ std::string readRegularFile(const std::filesystem::path& file, uint64_t maxBytes
     return bytes;
 }
 
+bool pathInside(const std::filesystem::path& root, const std::filesystem::path& p) {
+    auto r = root.begin(), q = p.begin();
+    for (; r != root.end(); ++r, ++q)
+        if (q == p.end() || *r != *q) return false;
+    return true;
+}
+
+std::filesystem::path resolveBeside(const std::filesystem::path& header, const std::string& relative, std::string& error) {
+    const std::filesystem::path named(relative);
+    if (named.is_absolute()) {
+        error = "is an absolute path; give one relative to the header's folder";
+        return {};
+    }
+    std::error_code ec;
+    const std::filesystem::path folder = std::filesystem::weakly_canonical(std::filesystem::absolute(header).parent_path(), ec);
+    if (ec) {
+        error = "cannot be resolved: " + ec.message();
+        return {};
+    }
+    std::filesystem::path resolved = std::filesystem::weakly_canonical(folder / named, ec);
+    if (ec || !pathInside(folder, resolved)) {
+        error = "resolves outside the header's folder " + folder.string();
+        return {};
+    }
+    return resolved;
+}
+
 }  // namespace ripple::apps

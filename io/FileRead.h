@@ -54,4 +54,13 @@ std::string readRegularFile(const std::filesystem::path& file, uint64_t maxBytes
 const char* fileKindName(unsigned mode);
 std::string tooLargeReason(uint64_t size, uint64_t maxBytes);
 
+// Whether path `p` lies inside folder `root` (both absolute and normal: weakly_canonical), by path components,
+// so "/a/bc" is not inside "/a/b".
+bool pathInside(const std::filesystem::path& root, const std::filesystem::path& p);
+
+// A file that `header` names by `relative` (NRRD's data file, a VTK AMR set's blocks): resolved against the
+// header's folder and confined to it. On failure returns an empty path and sets `error` ("is an absolute
+// path; ...", "resolves outside ...").
+std::filesystem::path resolveBeside(const std::filesystem::path& header, const std::string& relative, std::string& error);
+
 }  // namespace ripple::apps

@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -215,6 +216,36 @@ public:
     ANARISpatialField nanovdbField(const std::vector<uint8_t>& grid, glm::vec2 values) {
         ANARISpatialField field = handles_.keep(anariNewSpatialField(d_, "nanovdb"), "spatial field");
         setObject(d_, field, "data", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, grid, ANARI_UINT8), "array"));
+        anariCommitParameters(d_, field);
+        fieldRanges_[field] = values;
+        return field;
+    }
+
+    // An "amr" field holding `amr`'s blocks (each block's values an ARRAY3D).
+    ANARISpatialField amrField(const AmrData& amr, glm::vec2 values) {
+        ANARISpatialField field = handles_.keep(anariNewSpatialField(d_, "amr"), "spatial field");
+        std::vector<int32_t> levels;
+        std::vector<std::array<int32_t, 6>> bounds;
+        ANARIArray1D data = handles_.keep(anariNewArray1D(d_, nullptr, nullptr, nullptr, ANARI_ARRAY3D, amr.blocks.size()), "array");
+        auto* blockArrays = static_cast<ANARIArray3D*>(anariMapArray(d_, data));
+        for (size_t i = 0; i < amr.blocks.size(); ++i) {
+            const AmrData::Block& block = amr.blocks[i];
+            levels.push_back(int32_t(block.level));
+            bounds.push_back({block.lower.x, block.lower.y, block.lower.z, block.upper.x, block.upper.y, block.upper.z});
+            const glm::uvec3 dims(block.upper - block.lower + 1);
+            ANARIArray3D values3d =
+                handles_.keep(anariNewArray3D(d_, nullptr, nullptr, nullptr, ANARI_FLOAT32, dims.x, dims.y, dims.z), "array");
+            std::memcpy(anariMapArray(d_, values3d), block.values.data(), block.values.size() * sizeof(float));
+            anariUnmapArray(d_, values3d);
+            blockArrays[i] = values3d;
+        }
+        anariUnmapArray(d_, data);
+        setObject(d_, field, "block.data", ANARI_ARRAY1D, data);
+        setObject(d_, field, "block.level", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, levels, ANARI_INT32), "array"));
+        setObject(d_, field, "block.bounds", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, bounds, ANARI_INT32_BOX3), "array"));
+        setObject(d_, field, "cellWidth", ANARI_ARRAY1D, handles_.keep(anari::newArray1D(d_, amr.cellWidth, ANARI_FLOAT32), "array"));
+        set(d_, field, "origin", amr.origin);
+        set(d_, field, "spacing", amr.spacing);
         anariCommitParameters(d_, field);
         fieldRanges_[field] = values;
         return field;
@@ -531,6 +562,29 @@ AnariWorld buildNanoVdbScene(ANARIDevice device, const NanoVdbFile& grid, const 
     const auto makeField = [&](DemoBuilder& b) {
         b.placeVolumes(place);
         return b.nanovdbField(grid.grid, *at.values);
+    };
+    return fieldScene(device, makeField, at, extraLights, edits, drawField(options, *at.values));
+}
+
+AnariWorld buildAmrScene(ANARIDevice device, const AmrData& amr, const FieldSceneOptions& options,
+                         const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const AmrData::Block& block : amr.blocks) {
+        const double width = amr.cellWidth.at(block.level);
+        lo = glm::min(lo, glm::dvec3(amr.origin) + glm::dvec3(amr.spacing) * glm::dvec3(block.lower) * width);
+        hi = glm::max(hi, glm::dvec3(amr.origin) + glm::dvec3(amr.spacing) * (glm::dvec3(block.upper) + 1.0) * width);
+    }
+    const glm::vec3 extent(hi - lo);
+    const float scale = 2.0f / std::max({extent.x, extent.y, extent.z, 1e-30f});
+    const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z);
+    const FieldPlacement at{boxLo, boxLo + scale * extent, boxLo, boxLo + scale * extent, options.stage,
+                            glm::vec2(amr.minValue, amr.maxValue)};
+    const glm::mat4 place = glm::translate(glm::mat4(1.0f), boxLo) * glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
+                            glm::translate(glm::mat4(1.0f), -glm::vec3(lo));
+    const auto makeField = [&](DemoBuilder& b) {
+        b.placeVolumes(place);
+        return b.amrField(amr, *at.values);
     };
     return fieldScene(device, makeField, at, extraLights, edits, drawField(options, *at.values));
 }

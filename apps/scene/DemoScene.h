@@ -7,6 +7,7 @@
 #include "apps/scene/AnariScene.h"
 #include "io/volume/VolumeFile.h"
 #include "io/volume/NanoVdbFile.h"
+#include "io/vtk/VtkAmrFile.h"
 #include "io/vtk/VtkUnstructuredFile.h"
 
 #include <optional>
@@ -82,5 +83,11 @@ AnariWorld buildMeshScene(ANARIDevice device, const MeshPart& mesh, const FieldS
 // drawn: the device refuses them by name.
 AnariWorld buildNanoVdbScene(ANARIDevice device, const NanoVdbFile& grid, const FieldSceneOptions& options,
                              const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
+
+// An AMR hierarchy on the same stage, placed the same way (its blocks' box's longest side 2, centred, just
+// above the floor, by an instance transform), drawn as a volume of the finest covering cell's values.
+// Iso-surfaces of AMR fields are not drawn: the device refuses them by name.
+AnariWorld buildAmrScene(ANARIDevice device, const AmrData& amr, const FieldSceneOptions& options,
+                         const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
 
 }  // namespace ripple::apps

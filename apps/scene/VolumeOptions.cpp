@@ -51,8 +51,10 @@ void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
 }
 
 void printVolumeFields(const VolumeOptions& options) {
-    if (!isVtkImageFile(options.volume) && !isVtkUnstructuredFile(options.volume))
-        throw VolumeError("--list-fields reads VTK files (--volume FILE.vti, .vtu or .vtk); " + options.volume + " is not one");
+    const bool amr = isVtkAmrFile(options.volume);
+    if (!isVtkImageFile(options.volume) && !isVtkUnstructuredFile(options.volume) && !amr)
+        throw VolumeError("--list-fields reads VTK files (--volume FILE.vti, .vtu, .vtk, .vthb or .vtm); " + options.volume +
+                          " is not one");
     const bool unstructured = isVtkUnstructuredFile(options.volume);
     if (unstructured) {
         const UnstructuredMesh mesh = readVtkUnstructured(options.volume);
@@ -63,7 +65,11 @@ void printVolumeFields(const VolumeOptions& options) {
                     (unsigned long long)counts[13], (unsigned long long)counts[14]);
         for (const std::string& warning : mesh.warnings) std::printf("note: %s\n", warning.c_str());
     }
-    for (const VtkArrayInfo& a : unstructured ? listVtkUnstructuredArrays(options.volume) : listVtkArrays(options.volume))
+    if (amr) std::printf("the arrays of its first block:\n");
+    const std::vector<VtkArrayInfo> arrays = unstructured ? listVtkUnstructuredArrays(options.volume)
+                                             : amr        ? listVtkAmrArrays(options.volume)
+                                                          : listVtkArrays(options.volume);
+    for (const VtkArrayInfo& a : arrays)
         std::printf("%s array '%s': %u component%s of %s, %llu tuples\n", a.association.c_str(), a.name.c_str(),
                     a.components, a.components == 1 ? "" : "s", a.type.c_str(), (unsigned long long)a.tuples);
 }
@@ -116,15 +122,12 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
     field.stage = root;
     std::string extension = std::filesystem::path(options.volume).extension().string();
     for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (extension == ".vtm" || extension == ".vthb")
-        throw std::runtime_error("--volume " + options.volume + ": VTK multiblock and AMR sets are not rendered yet; "
-                                 "image data (.vti, legacy .vtk STRUCTURED_POINTS) and unstructured grids (.vtu, legacy "
-                                 ".vtk UNSTRUCTURED_GRID) are");
     const bool vtkOptions = !options.field.empty() || options.fieldComponent;
     const bool unstructured = isVtkUnstructuredFile(options.volume);
-    if (vtkOptions && !isVtkImageFile(options.volume) && !unstructured && !isNanoVdbFile(options.volume))
+    const bool amr = isVtkAmrFile(options.volume);
+    if (vtkOptions && !isVtkImageFile(options.volume) && !unstructured && !amr && !isNanoVdbFile(options.volume))
         throw std::runtime_error("--volume " + options.volume + ": --field and --field-component are for VTK files");
-    if ((isVtkImageFile(options.volume) || unstructured) && rawOptions)
+    if ((isVtkImageFile(options.volume) || unstructured || amr) && rawOptions)
         throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
                                  "the VTK file gives them");
     if (isNanoVdbFile(options.volume)) {
@@ -137,6 +140,13 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
         plan.nanovdb = readNanoVdbFile(options.volume);
         plan.data.minValue = plan.nanovdb->minValue;
         plan.data.maxValue = plan.nanovdb->maxValue;
+    } else if (amr) {
+        if (ranks.distributed())
+            throw std::runtime_error("--volume " + options.volume + ": AMR hierarchies are not split over ranks yet; "
+                                     "render it on one rank");
+        plan.amr = readVtkAmr(options.volume, {options.field, options.fieldComponent.value_or(-1)});
+        plan.data.minValue = plan.amr->minValue;
+        plan.data.maxValue = plan.amr->maxValue;
     } else if (unstructured) {
         // Every rank reads the whole file (its box frames the view, its values span the colour map) and keeps
         // only its part of the cells.
@@ -180,7 +190,7 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
                                      "(or give an NRRD file, .nrrd or .nhdr)");
         plan.data = readRawVolume(options.volume, {options.dims, options.type, options.spacing}, slab);
     }
-    if (ranks.distributed() && !plan.mesh && !plan.nanovdb) {  // the colour map spans every rank's values
+    if (ranks.distributed() && !plan.mesh && !plan.nanovdb && !plan.amr) {  // the colour map spans every rank's values
         float lowest = plan.data.minValue, highest = plan.data.maxValue;
         ranks.min(std::span<float>(&lowest, 1));
         ranks.max(std::span<float>(&highest, 1));
@@ -204,6 +214,7 @@ AnariWorld buildPlannedField(ANARIDevice device, const FieldPlan& plan, const st
                              SceneEdits* edits) {
     if (plan.mesh) return buildMeshScene(device, *plan.mesh, plan.scene, extraLights, edits);
     if (plan.nanovdb) return buildNanoVdbScene(device, *plan.nanovdb, plan.scene, extraLights, edits);
+    if (plan.amr) return buildAmrScene(device, *plan.amr, plan.scene, extraLights, edits);
     return buildFieldScene(device, plan.data, plan.scene, extraLights, edits);
 }
 

@@ -3,6 +3,8 @@
 // calls the file callbacks, so approved files are looked up by the path tinygltf will build, not re-derived.
 #include "io/gltf/GltfUris.h"
 
+#include "io/FileRead.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -50,13 +52,6 @@ bool startsWithNoCase(const std::string& s, const char* prefix) {
     return s.size() >= n && strncasecmp(s.c_str(), prefix, n) == 0;
 }
 
-// By path components, so "/a/bc" is not inside "/a/b".
-bool inside(const std::filesystem::path& root, const std::filesystem::path& p) {
-    auto q = p.begin();
-    for (auto r = root.begin(); r != root.end(); ++r, ++q)
-        if (q == p.end() || *r != *q) return false;
-    return true;
-}
 
 }  // namespace
 
@@ -112,7 +107,7 @@ void ConfinedUris::approve(const std::string& uri, const std::string& where) {
     std::error_code ec;
     const std::filesystem::path resolved = std::filesystem::weakly_canonical(folder_ / path, ec);
     if (ec) fail("cannot be resolved: " + ec.message());
-    if (!inside(root_, resolved))
+    if (!pathInside(root_, resolved))
         fail("resolves to " + resolved.string() + ", outside the folder " + root_.string() +
              " that URIs are confined to");
     struct stat st {};

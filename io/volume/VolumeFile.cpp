@@ -301,13 +301,6 @@ VolumeData readSamples(const std::filesystem::path& label, const std::filesystem
 }
 
 // By path components, so "/a/bc" is not inside "/a/b".
-bool inside(const std::filesystem::path& root, const std::filesystem::path& p) {
-    auto r = root.begin(), q = p.begin();
-    for (; r != root.end(); ++r, ++q)
-        if (q == p.end() || *r != *q) return false;
-    return true;
-}
-
 // "(a,b,c)" -> three numbers.
 std::optional<std::array<double, 3>> parseVector(const std::string& text) {
     const std::string t = trim(text);
@@ -374,7 +367,6 @@ VolumeData readNrrdVolume(const std::filesystem::path& file, VolumeSlab slab) {
     uint64_t headerFileSize = 0;
     std::string error;
     if (openRegularFile(file, false, headerFileSize, error).get() < 0) fail(file, error);
-    std::error_code ec;
     std::ifstream in(file, std::ios::binary);
     if (!in) fail(file, "cannot open it");
 
@@ -505,15 +497,8 @@ VolumeData readNrrdVolume(const std::filesystem::path& file, VolumeSlab slab) {
     if (detached) {
         if (detached->rfind("LIST", 0) == 0 || detached->find('%') != std::string::npos)
             fail(file, "data file '" + *detached + "': lists and patterns of data files are not supported, only one file");
-        const std::filesystem::path relative(*detached);
-        if (relative.is_absolute())
-            fail(file, "data file '" + *detached + "' is an absolute path; give one relative to the header's folder");
-        const std::filesystem::path folder =
-            std::filesystem::weakly_canonical(std::filesystem::absolute(file).parent_path(), ec);
-        if (ec) fail(file, "cannot resolve its folder: " + ec.message());
-        dataFile = std::filesystem::weakly_canonical(folder / relative, ec);
-        if (ec || !inside(folder, dataFile))
-            fail(file, "data file '" + *detached + "' resolves outside the header's folder " + folder.string());
+        dataFile = resolveBeside(file, *detached, error);
+        if (dataFile.empty()) fail(file, "data file '" + *detached + "' " + error);
         offset = 0;
     } else if (!blankLine) {
         fail(file, "the header names no 'data file' and no blank line ends it before attached data");

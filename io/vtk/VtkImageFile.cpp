@@ -121,31 +121,65 @@ std::vector<VtkArrayInfo> listVtkArrays(const std::filesystem::path& file) {
     return list;
 }
 
-VolumeData readVtkImageVolume(const std::filesystem::path& file, const VtkFieldChoice& choice, VolumeSlab slab) {
-    ImageGrid grid = readImage(file);
-    const uint64_t points = uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z;
-    if (points > kMaxVoxels) fail(file, std::to_string(points) + " samples is more than the 2^31 Ripple reads");
-    const std::string wanted = !choice.name.empty() ? choice.name : grid.activeScalars;
+namespace {
+
+// The array `choice` names among those of `association` ("point" or "cell"): by name, else the active
+// scalars (point arrays), else the first. Checks its tuple count and the component asked for.
+const StoredArray& chooseArray(const std::filesystem::path& file, const ImageGrid& grid, const VtkFieldChoice& choice,
+                               const std::string& association, uint64_t tuples) {
+    const std::string wanted = !choice.name.empty() ? choice.name : association == "point" ? grid.activeScalars : "";
     const StoredArray* chosen = nullptr;
     for (const StoredArray& a : grid.arrays)
-        if (a.info.association == "point" && (wanted.empty() || a.info.name == wanted)) {
+        if (a.info.association == association && (wanted.empty() || a.info.name == wanted)) {
             chosen = &a;
             break;
         }
     if (!chosen) {
         std::string names;
         for (const StoredArray& a : grid.arrays) names += (names.empty() ? "" : ", ") + a.info.association + " '" + a.info.name + "'";
-        fail(file, (wanted.empty() ? std::string("no point array") : "no point array '" + wanted + "'") +
+        fail(file, (wanted.empty() ? "no " + association + " array" : "no " + association + " array '" + wanted + "'") +
                        " (arrays: " + (names.empty() ? "none" : names) + ")");
     }
-    if (chosen->info.tuples != points)
+    if (chosen->info.tuples != tuples)
         fail(file, "array '" + chosen->info.name + "' has " + std::to_string(chosen->info.tuples) + " tuples for " +
-                       std::to_string(points) + " points");
+                       std::to_string(tuples) + " " + association + "s");
     if (choice.component >= int(chosen->info.components))
         fail(file, "array '" + chosen->info.name + "' has " + std::to_string(chosen->info.components) + " components; component " +
                        std::to_string(choice.component) + " asked for");
-    const std::vector<double> all = arrayValues(file, *chosen);
-    const uint32_t c = chosen->info.components;
+    return *chosen;
+}
+
+// Tuples first .. first + out.size() of `all` (`components` per tuple) as scalars: the chosen component, or
+// the magnitude. Values that are not finite or beyond float are refused.
+void scalarsOf(const std::filesystem::path& file, const StoredArray& array, const std::vector<double>& all, uint64_t first,
+               int component, std::vector<float>& out) {
+    const uint32_t c = array.info.components;
+    uint64_t nonFinite = 0;
+    for (uint64_t i = 0; i < out.size(); ++i) {
+        const double* tuple = all.data() + (first + i) * c;
+        double v = 0.0;
+        if (component >= 0) {
+            v = tuple[component];
+        } else if (c == 1) {
+            v = tuple[0];
+        } else {
+            for (uint32_t k = 0; k < c; ++k) v += tuple[k] * tuple[k];
+            v = std::sqrt(v);
+        }
+        if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max())) ++nonFinite;
+        out[i] = float(v);
+    }
+    if (nonFinite > 0) fail(file, "array '" + array.info.name + "' has " + std::to_string(nonFinite) + " values that are NaN, infinite or beyond float");
+}
+
+}  // namespace
+
+VolumeData readVtkImageVolume(const std::filesystem::path& file, const VtkFieldChoice& choice, VolumeSlab slab) {
+    ImageGrid grid = readImage(file);
+    const uint64_t points = uint64_t(grid.dims.x) * grid.dims.y * grid.dims.z;
+    if (points > kMaxVoxels) fail(file, std::to_string(points) + " samples is more than the 2^31 Ripple reads");
+    const StoredArray& chosen = chooseArray(file, grid, choice, "point", points);
+    const std::vector<double> all = arrayValues(file, chosen);
     // The slab's sample planes (the same split as the raw and NRRD readers: each slab keeps its cells' planes).
     const uint64_t cellsZ = grid.dims.z - 1;
     if (slab.count == 0 || slab.index >= slab.count || cellsZ < slab.count)
@@ -163,25 +197,27 @@ VolumeData readVtkImageVolume(const std::filesystem::path& file, const VtkFieldC
         if (!(out.spacing[a] > 0.0f && std::isfinite(out.spacing[a]))) fail(file, "its spacing must be positive and finite");
     const uint64_t plane = uint64_t(grid.dims.x) * grid.dims.y;
     out.values.resize(plane * out.dims.z);
-    uint64_t nonFinite = 0;
-    for (uint64_t i = 0; i < out.values.size(); ++i) {
-        const double* tuple = all.data() + (uint64_t(zFirst) * plane + i) * c;
-        double v = 0.0;
-        if (choice.component >= 0) {
-            v = tuple[choice.component];
-        } else if (c == 1) {
-            v = tuple[0];
-        } else {
-            for (uint32_t k = 0; k < c; ++k) v += tuple[k] * tuple[k];
-            v = std::sqrt(v);
-        }
-        if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max())) ++nonFinite;
-        out.values[i] = float(v);
-    }
-    if (nonFinite > 0) fail(file, "array '" + chosen->info.name + "' has " + std::to_string(nonFinite) + " values that are NaN, infinite or beyond float");
+    scalarsOf(file, chosen, all, uint64_t(zFirst) * plane, choice.component, out.values);
     const auto [lo, hi] = std::minmax_element(out.values.begin(), out.values.end());
     out.minValue = *lo;
     out.maxValue = *hi;
+    return out;
+}
+
+VtkImageCells readVtkImageCells(const std::filesystem::path& file, const VtkFieldChoice& choice) {
+    const ImageGrid grid = readImage(file);
+    VtkImageCells out;
+    out.cells = glm::max(grid.dims, 2u) - 1u;
+    const uint64_t count = uint64_t(out.cells.x) * out.cells.y * out.cells.z;
+    if (count > kMaxVoxels) fail(file, std::to_string(count) + " cells is more than the 2^31 Ripple reads");
+    const StoredArray& chosen = chooseArray(file, grid, choice, "cell", count);
+    out.name = chosen.info.name;
+    out.origin = grid.origin;
+    out.spacing = grid.spacing;
+    for (int a = 0; a < 3; ++a)
+        if (!(out.spacing[a] > 0.0f && std::isfinite(out.spacing[a]))) fail(file, "its spacing must be positive and finite");
+    out.values.resize(count);
+    scalarsOf(file, chosen, arrayValues(file, chosen), 0, choice.component, out.values);
     return out;
 }
 

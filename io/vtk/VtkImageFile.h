@@ -32,4 +32,16 @@ std::vector<VtkArrayInfo> listVtkArrays(const std::filesystem::path& file);
 VolumeData readVtkImageVolume(const std::filesystem::path& file, const VtkFieldChoice& choice = {},
                               VolumeSlab slab = {});
 
+// The cells of an image and the values of one of its cell arrays (an AMR block: io/vtk/VtkAmrFile.h).
+struct VtkImageCells {
+    glm::uvec3 cells{0};                // per axis (a flat axis of one sample counts one cell)
+    glm::vec3 origin{0.0f}, spacing{1.0f};
+    std::string name;                   // the array's
+    std::vector<float> values;          // cells.x * cells.y * cells.z, x fastest
+};
+
+// The chosen cell array of `file` (by name, else its first cell array; vectors by magnitude or one component).
+// Throws VolumeError.
+VtkImageCells readVtkImageCells(const std::filesystem::path& file, const VtkFieldChoice& choice = {});
+
 }  // namespace ripple::apps
