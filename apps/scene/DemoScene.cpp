@@ -566,25 +566,20 @@ AnariWorld buildNanoVdbScene(ANARIDevice device, const NanoVdbFile& grid, const 
     return fieldScene(device, makeField, at, extraLights, edits, drawField(options, *at.values));
 }
 
-AnariWorld buildAmrScene(ANARIDevice device, const AmrData& amr, const FieldSceneOptions& options,
+AnariWorld buildAmrScene(ANARIDevice device, const AmrPart& amr, const FieldSceneOptions& options,
                          const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
     if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
-    glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (const AmrData::Block& block : amr.blocks) {
-        const double width = amr.cellWidth.at(block.level);
-        lo = glm::min(lo, glm::dvec3(amr.origin) + glm::dvec3(amr.spacing) * glm::dvec3(block.lower) * width);
-        hi = glm::max(hi, glm::dvec3(amr.origin) + glm::dvec3(amr.spacing) * (glm::dvec3(block.upper) + 1.0) * width);
-    }
+    const glm::dvec3 lo = amr.wholeLo, hi = amr.wholeHi;
     const glm::vec3 extent(hi - lo);
     const float scale = 2.0f / std::max({extent.x, extent.y, extent.z, 1e-30f});
     const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z);
     const FieldPlacement at{boxLo, boxLo + scale * extent, boxLo, boxLo + scale * extent, options.stage,
-                            glm::vec2(amr.minValue, amr.maxValue)};
+                            glm::vec2(amr.blocks.minValue, amr.blocks.maxValue)};
     const glm::mat4 place = glm::translate(glm::mat4(1.0f), boxLo) * glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
                             glm::translate(glm::mat4(1.0f), -glm::vec3(lo));
     const auto makeField = [&](DemoBuilder& b) {
         b.placeVolumes(place);
-        return b.amrField(amr, *at.values);
+        return b.amrField(amr.blocks, *at.values);
     };
     return fieldScene(device, makeField, at, extraLights, edits, drawField(options, *at.values));
 }

@@ -84,10 +84,16 @@ AnariWorld buildMeshScene(ANARIDevice device, const MeshPart& mesh, const FieldS
 AnariWorld buildNanoVdbScene(ANARIDevice device, const NanoVdbFile& grid, const FieldSceneOptions& options,
                              const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
 
-// An AMR hierarchy on the same stage, placed the same way (its blocks' box's longest side 2, centred, just
+// One rank's part of an AMR hierarchy (the whole on one rank: AmrPartition.h), with the whole's object-space box.
+struct AmrPart {
+    AmrData blocks;                      // minValue, maxValue: the whole hierarchy's
+    glm::dvec3 wholeLo{0.0}, wholeHi{0.0};
+};
+
+// An AMR hierarchy on the same stage, placed the same way (the whole's box's longest side 2, centred, just
 // above the floor, by an instance transform), drawn as a volume of the finest covering cell's values.
 // Iso-surfaces of AMR fields are not drawn: the device refuses them by name.
-AnariWorld buildAmrScene(ANARIDevice device, const AmrData& amr, const FieldSceneOptions& options,
+AnariWorld buildAmrScene(ANARIDevice device, const AmrPart& amr, const FieldSceneOptions& options,
                          const std::vector<ANARILight>& extraLights = {}, SceneEdits* edits = nullptr);
 
 }  // namespace ripple::apps

@@ -1,13 +1,15 @@
 // Volume-file options (see VolumeOptions.h).
 #include "apps/scene/VolumeOptions.h"
 
+#include "apps/scene/AmrPartition.h"
+#include "apps/scene/MeshPartition.h"
 #include "io/vtk/VtkImageFile.h"
 #include "io/vtk/VtkUnstructuredFile.h"
-#include "apps/scene/MeshPartition.h"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <tuple>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -141,12 +143,19 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
         plan.data.minValue = plan.nanovdb->minValue;
         plan.data.maxValue = plan.nanovdb->maxValue;
     } else if (amr) {
-        if (ranks.distributed())
-            throw std::runtime_error("--volume " + options.volume + ": AMR hierarchies are not split over ranks yet; "
-                                     "render it on one rank");
-        plan.amr = readVtkAmr(options.volume, {options.field, options.fieldComponent.value_or(-1)});
-        plan.data.minValue = plan.amr->minValue;
-        plan.data.maxValue = plan.amr->maxValue;
+        // Every rank reads the whole set (its box frames the view, its values span the colour map) and keeps
+        // only its region's part of the blocks.
+        const AmrData whole = readVtkAmr(options.volume, {options.field, options.fieldComponent.value_or(-1)});
+        AmrPart part;
+        std::tie(part.wholeLo, part.wholeHi) = amrBounds(whole);
+        try {
+            part.blocks = amrPart(whole, slab.index, slab.count);
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error("--volume " + options.volume + ": " + e.what());
+        }
+        plan.data.minValue = whole.minValue;
+        plan.data.maxValue = whole.maxValue;
+        plan.amr = std::move(part);
     } else if (unstructured) {
         // Every rank reads the whole file (its box frames the view, its values span the colour map) and keeps
         // only its part of the cells.

@@ -40,7 +40,7 @@ struct FieldPlan {
     VolumeData data;                    // this rank's slab; minValue/maxValue span every rank's
     std::optional<MeshPart> mesh;       // an unstructured grid instead: this rank's part of it
     std::optional<NanoVdbFile> nanovdb; // a NanoVDB grid instead (one rank only)
-    std::optional<AmrData> amr;         // an AMR hierarchy instead (one rank only)
+    std::optional<AmrPart> amr;         // an AMR hierarchy instead: this rank's part of it
     FieldSceneOptions scene;
 };
 

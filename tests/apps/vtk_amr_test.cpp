@@ -3,7 +3,10 @@
 // block holds the block's id in 'BlockId' and its level in 'Depth'. A multiblock set written here (two
 // spacings) reads back level, placement and value for value. ripple-render draws the shared set. Hostile
 // sets (escaping or absolute block paths, boxes that disagree with their blocks, spacings of no common
-// ratio, blocks off their level's grid) are refused by name.
+// ratio, blocks off their level's grid) are refused by name. Split over 2 to 4 ranks (AmrPartition), every cell
+// lies on exactly one rank, and at random points the rank whose blocks hold the point finds the whole's finest
+// cell there.
+#include "apps/scene/AmrPartition.h"
 #include "io/vtk/VtkAmrFile.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
@@ -15,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <regex>
 #include <string>
 
@@ -39,6 +43,50 @@ std::string multiblock(const std::vector<std::string>& files) {
     std::string text = "<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\"><vtkMultiBlockDataSet><Block index=\"0\">";
     for (size_t i = 0; i < files.size(); ++i) text += "<DataSet index=\"" + std::to_string(i) + "\" file=\"" + files[i] + "\"/>";
     return text + "</Block></vtkMultiBlockDataSet></VTKFile>\n";
+}
+
+// The finest cell of `amr` holding object-space point p: (level, value); level -1 where no block does.
+std::pair<int, float> finestCell(const apps::AmrData& amr, glm::dvec3 p) {
+    std::pair<int, float> best{-1, 0.0f};
+    for (const apps::AmrData::Block& b : amr.blocks) {
+        const glm::dvec3 cellSize = glm::dvec3(amr.spacing) * double(amr.cellWidth[b.level]);
+        const glm::ivec3 c(glm::floor((p - glm::dvec3(amr.origin)) / cellSize));
+        if (glm::any(glm::lessThan(c, b.lower)) || glm::any(glm::greaterThan(c, b.upper)) || int(b.level) <= best.first) continue;
+        const glm::ivec3 d = b.upper - b.lower + 1, i = c - b.lower;
+        best = {int(b.level), b.values[size_t((i.z * d.y + i.y) * d.x + i.x)]};
+    }
+    return best;
+}
+
+void checkPartition(const apps::AmrData& whole) {
+    const auto [lo, hi] = apps::amrBounds(whole);
+    std::mt19937 random(17);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<glm::dvec3> points;
+    for (int i = 0; i < 2000; ++i) points.push_back(lo + (hi - lo) * glm::dvec3(unit(random), unit(random), unit(random)));
+    for (uint32_t ranks = 2; ranks <= 4; ++ranks) {
+        CAPTURE(ranks);
+        std::vector<apps::AmrData> parts;
+        uint64_t cells = 0;
+        for (uint32_t r = 0; r < ranks; ++r) {
+            parts.push_back(apps::amrPart(whole, r, ranks));
+            cells += parts.back().cells;
+        }
+        CHECK(cells == whole.cells);
+        uint32_t wrong = 0;
+        for (const glm::dvec3& p : points) {
+            const std::pair<int, float> expected = finestCell(whole, p);
+            uint32_t holders = 0;
+            for (const apps::AmrData& part : parts) {
+                const std::pair<int, float> found = finestCell(part, p);
+                if (found.first < 0) continue;
+                ++holders;
+                wrong += found != expected;
+            }
+            wrong += holders != (expected.first < 0 ? 0u : 1u);
+        }
+        CHECK(wrong == 0);
+    }
 }
 
 }  // namespace
@@ -84,6 +132,8 @@ TEST_CASE("VTK AMR: the shared hierarchical box data set reads as it declares; i
     CHECK(ids.blocks.back().level == 3);
 
     TempFolder dir;
+    checkPartition(ids);
+
     const ProgramRun run = runRender("--volume '" + file.string() + "' --field 'Fractal Volume Fraction' --size 32x32 --spp 2 -o '" +
                                      (dir / "amr.pfm").string() + "'");
     CHECK_MESSAGE(run.exitCode == 0, run.output);
@@ -114,6 +164,7 @@ TEST_CASE("VTK AMR: a multiblock set of image data at two spacings reads back") 
     CHECK(amr.blocks[1].values == coarse);
     CHECK(amr.minValue == 0.0f);
     CHECK(amr.maxValue == 107.0f);
+    checkPartition(amr);
 }
 
 TEST_CASE("VTK AMR: hostile sets are refused by name") {

@@ -201,6 +201,15 @@ TEST_CASE("ripple-render: an unstructured grid's cells over 2, 3 and 4 ranks ren
     if (std::filesystem::exists(imageFolder() / "view_mesh_2.pfm")) checkSameImage("view_mesh_2.pfm", "mesh_2.pfm");
 }
 
+// Each rank holds a k-d region of an AMR hierarchy's blocks, clipped to it (AmrPartition.h).
+TEST_CASE("ripple-render: an AMR set's blocks over 2, 3 and 4 ranks render as 1 rank holding all of them") {
+    if (!std::filesystem::exists(imageFolder() / "amr_1.pfm")) {
+        MESSAGE("skipped: no AMR images (the shared data's HierarchicalBoxDataset.v1.1.vthb was not found)");
+        return;
+    }
+    checkTilesAgree("amr_1.pfm", {"amr_2.pfm", "amr_3.pfm", "amr_4.pfm"});
+}
+
 TEST_CASE("ripple-dp-tutorial: rank 0's image shows the quad of each of 3 ranks, in rank order") {
     const std::filesystem::path file = imageFolder() / "tutorial_3.png";
     int width = 0, height = 0, channels = 0;
