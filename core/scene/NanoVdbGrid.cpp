@@ -76,41 +76,69 @@ std::shared_ptr<const NanoVdbGrid> prepareNanoVdbGrid(std::span<const uint8_t> b
     const float background = root.background();
     if (!std::isfinite(background)) throw std::invalid_argument("the background value is not finite");
     out->valueRange = glm::vec2(INFINITY, -INFINITY);
+    // The field spans the active box, from its lowest voxel to its highest, as a structuredRegular field spans
+    // its samples (at least one voxel's width along each axis). Macrocell m (per axis) reads voxels base + 8m
+    // to base + 8m + 8, the last through linear filtering's neighbour; its range holds every value among them:
+    // each leaf's voxels one by one, each tile's value over its box, and the background over each 8^3 block
+    // (aligned as NanoVDB's nodes are: each lies whole in one leaf, one tile or none) that no node covers.
+    glm::ivec3 alignedBase(0);
+    glm::uvec3 aligned(1u);
     if (box.empty()) {
         out->base = glm::ivec3(0);
-        out->macrocells = glm::uvec3(1u);
+        out->extent = glm::uvec3(8u);
     } else {
-        for (int a = 0; a < 3; ++a) out->base[a] = box.min()[a] & ~7;
-        // Up to one voxel past the box: linear filtering reads it.
-        for (int a = 0; a < 3; ++a)
-            out->macrocells[a] = uint32_t((int64_t(box.max()[a]) + 2 - out->base[a] + 7) / 8);
+        for (int a = 0; a < 3; ++a) {
+            out->base[a] = box.min()[a];
+            out->extent[a] = uint32_t(std::max<int64_t>(int64_t(box.max()[a]) - box.min()[a], 1));
+            alignedBase[a] = box.min()[a] & ~7;
+            aligned[a] = uint32_t((int64_t(box.max()[a]) + 1 - alignedBase[a]) / 8 + 1);
+        }
     }
-    if (uint64_t(out->macrocells.x) * out->macrocells.y * out->macrocells.z > (uint64_t(1) << 27))
+    out->macrocells = glm::max((out->extent + 7u) / 8u, glm::uvec3(1u));
+    if (uint64_t(aligned.x) * aligned.y * aligned.z > (uint64_t(1) << 27) ||
+        uint64_t(out->macrocells.x) * out->macrocells.y * out->macrocells.z > (uint64_t(1) << 27))
         throw std::invalid_argument("the grid's active box is too large for its macrocell grid");
-    const glm::uvec3 m = out->macrocells;
-    // Every macrocell lies whole in one leaf, one tile (of a lower node, an upper node or the root) or none
-    // of them (the background): their regions are aligned to multiples of 8.
-    std::vector<glm::vec2> ranges(size_t(m.x) * m.y * m.z, glm::vec2(INFINITY, -INFINITY));
-    // The value `v` over index box [lo, hi] (inclusive), where it meets the macrocell grid.
+    const glm::uvec3 mc = out->macrocells;
+    out->macrocellRanges.assign(size_t(mc.x) * mc.y * mc.z, glm::vec2(INFINITY, -INFINITY));
+    // The value `v` over index box [lo, hi] (inclusive), in every macrocell that reads a voxel of it.
     const auto cover = [&](const nanovdb::Coord& lo, const nanovdb::Coord& hi, float v) {
         if (!std::isfinite(v)) throw std::invalid_argument("a tile or voxel value is not finite");
         glm::ivec3 first, last;
         for (int a = 0; a < 3; ++a) {
-            const int64_t from = (int64_t(lo[a]) - out->base[a]) >> 3, to = (int64_t(hi[a]) - out->base[a]) >> 3;
-            if (to < 0 || from >= int64_t(m[a])) return;  // outside the grid's box
+            const int64_t from = (int64_t(lo[a]) - out->base[a] - 1) >> 3, to = (int64_t(hi[a]) - out->base[a]) >> 3;
+            if (to < 0 || from >= int64_t(mc[a])) return;  // outside the field's box
             first[a] = int(std::max<int64_t>(from, 0));
-            last[a] = int(std::min<int64_t>(to, int64_t(m[a]) - 1));
+            last[a] = int(std::min<int64_t>(to, int64_t(mc[a]) - 1));
         }
         widen(out->valueRange, v);
         for (int z = first.z; z <= last.z; ++z)
             for (int y = first.y; y <= last.y; ++y)
-                for (int x = first.x; x <= last.x; ++x) widen(ranges[(size_t(z) * m.y + y) * m.x + x], v);
+                for (int x = first.x; x <= last.x; ++x) widen(out->macrocellRanges[(size_t(z) * mc.y + y) * mc.x + x], v);
+    };
+    // The aligned blocks some node covers (the rest read the background).
+    const glm::uvec3 m = aligned;
+    std::vector<uint8_t> covered(size_t(m.x) * m.y * m.z, 0);
+    const auto markCovered = [&](const nanovdb::Coord& lo, const nanovdb::Coord& hi) {
+        glm::ivec3 first, last;
+        for (int a = 0; a < 3; ++a) {
+            const int64_t from = (int64_t(lo[a]) - alignedBase[a]) >> 3, to = (int64_t(hi[a]) - alignedBase[a]) >> 3;
+            if (to < 0 || from >= int64_t(m[a])) return;
+            first[a] = int(std::max<int64_t>(from, 0));
+            last[a] = int(std::min<int64_t>(to, int64_t(m[a]) - 1));
+        }
+        for (int z = first.z; z <= last.z; ++z)
+            for (int y = first.y; y <= last.y; ++y)
+                for (int x = first.x; x <= last.x; ++x) covered[(size_t(z) * m.y + y) * m.x + x] = 1;
+    };
+    const auto coverTile = [&](const nanovdb::Coord& lo, const nanovdb::Coord& hi, float v) {
+        cover(lo, hi, v);
+        markCovered(lo, hi);
     };
     for (uint32_t t = 0; t < tiles; ++t) {
         const auto* tile = root.data()->tile(t);
         const nanovdb::Coord origin = tile->origin();
         if (!tile->isChild()) {
-            cover(origin, origin + nanovdb::Coord(Upper::DIM - 1), tile->value);
+            coverTile(origin, origin + nanovdb::Coord(Upper::DIM - 1), tile->value);
             continue;
         }
         const Upper* upper = root.data()->getChild(tile);
@@ -118,7 +146,7 @@ std::shared_ptr<const NanoVdbGrid> prepareNanoVdbGrid(std::span<const uint8_t> b
         for (uint32_t n = 0; n < Upper::SIZE; ++n) {
             const nanovdb::Coord at = upper->offsetToGlobalCoord(n);
             if (!upper->data()->isChild(n)) {
-                cover(at, at + nanovdb::Coord(Lower::DIM - 1), upper->data()->getValue(n));
+                coverTile(at, at + nanovdb::Coord(Lower::DIM - 1), upper->data()->getValue(n));
                 continue;
             }
             const Lower* lower = upper->data()->getChild(n);
@@ -126,42 +154,29 @@ std::shared_ptr<const NanoVdbGrid> prepareNanoVdbGrid(std::span<const uint8_t> b
             for (uint32_t k = 0; k < Lower::SIZE; ++k) {
                 const nanovdb::Coord leafAt = lower->offsetToGlobalCoord(k);
                 if (!lower->data()->isChild(k)) {
-                    cover(leafAt, leafAt + nanovdb::Coord(Leaf::DIM - 1), lower->data()->getValue(k));
+                    coverTile(leafAt, leafAt + nanovdb::Coord(Leaf::DIM - 1), lower->data()->getValue(k));
                     continue;
                 }
                 const Leaf* leaf = lower->data()->getChild(k);
                 if (!inside(leaf, sizeof(Leaf), begin, bytes)) throw std::invalid_argument("a lower node's child lies outside the grid");
-                float lowest = INFINITY, highest = -INFINITY;
                 for (uint32_t v = 0; v < Leaf::SIZE; ++v) {
                     const float value = leaf->getValue(v);
                     if (!std::isfinite(value)) throw std::invalid_argument("a voxel value is not finite");
-                    lowest = std::min(lowest, value);
-                    highest = std::max(highest, value);
+                    const nanovdb::Coord voxel = leafAt + Leaf::OffsetToLocalCoord(v);
+                    cover(voxel, voxel, value);
                 }
-                cover(leafAt, leafAt + nanovdb::Coord(Leaf::DIM - 1), lowest);
-                cover(leafAt, leafAt + nanovdb::Coord(Leaf::DIM - 1), highest);
+                markCovered(leafAt, leafAt + nanovdb::Coord(Leaf::DIM - 1));
                 ++out->leaves;
             }
         }
     }
-    for (glm::vec2& range : ranges)
-        if (range.y < range.x) {
-            range = glm::vec2(background);
-            widen(out->valueRange, background);
-        }
-    // Linear filtering at a point of macrocell (x, y, z) also reads the voxels one further along each axis.
-    out->macrocellRanges.resize(ranges.size());
     for (uint32_t z = 0; z < m.z; ++z)
         for (uint32_t y = 0; y < m.y; ++y)
-            for (uint32_t x = 0; x < m.x; ++x) {
-                glm::vec2 r(INFINITY, -INFINITY);
-                for (uint32_t d = 0; d < 8; ++d) {
-                    const glm::uvec3 n = glm::min(glm::uvec3(x + (d & 1), y + ((d >> 1) & 1), z + (d >> 2)), m - 1u);
-                    const glm::vec2 o = ranges[(size_t(n.z) * m.y + n.y) * m.x + n.x];
-                    r = glm::vec2(std::min(r.x, o.x), std::max(r.y, o.y));
+            for (uint32_t x = 0; x < m.x; ++x)
+                if (!covered[(size_t(z) * m.y + y) * m.x + x]) {
+                    const nanovdb::Coord lo(alignedBase.x + 8 * int(x), alignedBase.y + 8 * int(y), alignedBase.z + 8 * int(z));
+                    cover(lo, lo + nanovdb::Coord(7), background);
                 }
-                out->macrocellRanges[(size_t(z) * m.y + y) * m.x + x] = r;
-            }
 
     // The grid's map (index to world, which is the field's object space): world = M index + v, M row-major.
     const nanovdb::Map& map = grid->map();

@@ -128,8 +128,9 @@ VolumeTable buildVolumeTable(const std::vector<Volume>& volumes) {
             continue;
         }
         gpu::VolumeRecord record{};
-        // An unstructured mesh's or a NanoVDB grid's grid is a virtual one over its box, of whole macrocells.
-        const glm::uvec3 dims = hostRanges ? macroCells * gpu::VOLUME_MACROCELL + 1u : v.dims;
+        // An unstructured mesh's or an AMR hierarchy's grid is a virtual one over its box, of whole macrocells; a
+        // NanoVDB grid's spans its active box.
+        const glm::uvec3 dims = v.nanovdb ? v.nanovdb->extent + 1u : hostRanges ? macroCells * gpu::VOLUME_MACROCELL + 1u : v.dims;
         // Object -> grid index space (voxel i at i); in double, as a mesh's box may be narrow or wide enough
         // that its spacing rounds in float.
         glm::dmat4 objectToGrid(1.0);

@@ -1,12 +1,14 @@
 // NanoVDB grids (core/scene/NanoVdbGrid, shaders/nanovdb.glsl): a fog sphere made with NanoVDB's own tools
 // renders as the same values copied into a dense structuredRegular grid (the means of 8x8 blocks of 4x4
-// pixels within 1% plus 4 standard errors of the sample noise; the grid moved by 3 voxels fails it); rays through a corner of its box that holds no active voxel make
-// no tentative collision at all; corrupt buffers are refused by name before any kernel reads them.
+// pixels within 1% plus 4 standard errors of the sample noise; the grid moved by 3 voxels fails it); rays
+// between two balls, through macrocells that hold no active voxel, make no tentative collision at all;
+// corrupt buffers are refused by name before any kernel reads them.
 #include "core/scene/NanoVdbGrid.h"
 #include "tests/support/Refusal.h"
 #include "tests/support/RenderHelpers.h"
 
 #include <doctest/doctest.h>
+#include <nanovdb/util/GridBuilder.h>
 #include <nanovdb/util/Primitives.h>
 
 #include <cmath>
@@ -86,23 +88,34 @@ TEST_CASE("NanoVDB: a fog sphere renders as the same values on a dense structure
                               << grid->macrocells.x << "x" << grid->macrocells.y << "x" << grid->macrocells.z);
 }
 
-TEST_CASE("NanoVDB: rays through a corner of the box with no active voxel make no tentative collision") {
-    // The sphere's box runs to 20 voxels (1.0) from its centre; the column over x, y in [0.85, 1.15] holds
-    // no voxel within 20 voxels of the centre, so its macrocells' majorants are 0 and no ray collides there.
-    // The dense copy of the whole box, whose macrocells span more, is no reference here: the count is exact.
+TEST_CASE("NanoVDB: rays between two spheres, through macrocells with no active voxel, make no tentative collision") {
+    // Two fog balls of radius 10 voxels (0.5) at x = -20 and x = +20 voxels (NanoVDB's GridBuilder): 1 deep
+    // inside, falling to 0 over the 3 voxels inside the surface; no voxel is active outside them. The field's
+    // box runs from voxel -30 to 30, so macrocell 3 along x reads voxels -6 to 2, all background (0): the
+    // column of rays over x in [-0.25, 0.05] crosses only macrocells whose majorant is 0, and collides nowhere.
     test::ValidationGuard guard;
-    const auto handle = fogSphere();
+    nanovdb::GridBuilder<float> builder(0.0f);
+    auto voxels = builder.getAccessor();
+    for (const int centre : {-20, 20})
+        for (int z = -10; z <= 10; ++z)
+            for (int y = -10; y <= 10; ++y)
+                for (int x = -10; x <= 10; ++x) {
+                    const float r = std::sqrt(float(x * x + y * y + z * z));
+                    if (r <= 10.0f) voxels.setValue(nanovdb::Coord(centre + x, y, z), std::min(1.0f, (10.0f - r) / 3.0f));
+                }
+    const auto handle = builder.getHandle(0.05);
     core::Volume sparse;
     sparse.nanovdb = core::prepareNanoVdbGrid(bytesOf(handle));
+    REQUIRE(sparse.nanovdb->base.x == -30);
     core::Camera camera = test::lookingDown(3.0f, 0.3f);
-    camera.position = glm::vec3(1.0f, 1.0f, 3.0f);
-    const test::Rendered corner = litImage(mediumOf(sparse), camera, {16, 16});
-    CHECK(corner.stats.nullCollisions == 0);
-    CHECK(corner.stats.realCollisions == 0);
-    // Over the centre the same volume does collide (the count can fail).
-    camera.position = glm::vec3(0.0f, 0.0f, 3.0f);
-    const test::Rendered centre = litImage(mediumOf(sparse), camera, {16, 16});
-    CHECK(centre.stats.realCollisions > 0);
+    camera.position = glm::vec3(-0.1f, 0.0f, 3.0f);
+    const test::Rendered between = litImage(mediumOf(sparse), camera, {16, 16});
+    CHECK(between.stats.nullCollisions == 0);
+    CHECK(between.stats.realCollisions == 0);
+    // Over a ball's centre the same volume does collide (the count can fail).
+    camera.position = glm::vec3(1.0f, 0.0f, 3.0f);
+    const test::Rendered ball = litImage(mediumOf(sparse), camera, {16, 16});
+    CHECK(ball.stats.realCollisions > 0);
 }
 
 TEST_CASE("NanoVDB: corrupt buffers are refused by name") {

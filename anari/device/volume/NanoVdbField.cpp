@@ -34,7 +34,7 @@ void NanoVdbField::commit() {
 bvh::Aabb NanoVdbField::bounds() const {
     bvh::Aabb box;
     if (!isValid() || !grid_) return box;
-    const glm::dvec3 lo(grid_->base), hi = lo + glm::dvec3(grid_->macrocells) * 8.0;
+    const glm::dvec3 lo(grid_->base), hi = lo + glm::dvec3(grid_->extent);
     for (int c = 0; c < 8; ++c) {
         const glm::dvec4 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0);
         box.extend(glm::vec3(grid_->indexToObject * corner));
