@@ -1,6 +1,7 @@
-// Checking a NanoVDB grid buffer and its macrocell value ranges (see NanoVdbGrid.h).
+// A NanoVDB grid buffer made ready for the kernels, and its macrocell value ranges (see NanoVdbGrid.h).
 #include "core/scene/NanoVdbGrid.h"
 
+#include "core/scene/NanoVdbTree.h"
 #include "shaders/shared/volume.h"
 
 #include <nanovdb/NanoVDB.h>
@@ -15,66 +16,19 @@ namespace ripple::core {
 
 namespace {
 
-using Grid = nanovdb::NanoGrid<float>;
-using Root = nanovdb::NanoRoot<float>;
-using Upper = nanovdb::NanoUpper<float>;
-using Lower = nanovdb::NanoLower<float>;
 using Leaf = nanovdb::NanoLeaf<float>;
-
-// The blob copied to memory aligned as NanoVDB's structures are (32 bytes).
-struct alignas(NANOVDB_DATA_ALIGNMENT) Block {
-    uint8_t bytes[NANOVDB_DATA_ALIGNMENT];
-};
-
-// Whether `size` bytes at `p` lie inside [begin, begin + bytes) on NanoVDB's alignment.
-bool inside(const void* p, size_t size, const uint8_t* begin, uint64_t bytes) {
-    const auto* q = static_cast<const uint8_t*>(p);
-    if (q < begin) return false;
-    const uint64_t offset = uint64_t(q - begin);
-    return offset % NANOVDB_DATA_ALIGNMENT == 0 && offset <= bytes && size <= bytes - offset;
-}
 
 void widen(glm::vec2& range, float value) { range = glm::vec2(std::min(range.x, value), std::max(range.y, value)); }
 
 }  // namespace
 
 std::shared_ptr<const NanoVdbGrid> prepareNanoVdbGrid(std::span<const uint8_t> blob) {
-    if (blob.size() < sizeof(nanovdb::GridData) + sizeof(nanovdb::TreeData<3>))
-        throw std::invalid_argument(std::to_string(blob.size()) + " bytes, too short for a NanoVDB grid");
-    if (blob.size() > size_t(UINT32_MAX) - 64)
-        throw std::invalid_argument("a buffer of " + std::to_string(blob.size()) + " bytes, larger than the kernels' 32-bit addressing");
-    const size_t size = blob.size();
-    std::vector<Block> copy((size + sizeof(Block) - 1) / sizeof(Block));
-    std::copy(blob.begin(), blob.begin() + std::ptrdiff_t(size), reinterpret_cast<uint8_t*>(copy.data()));
-    const auto* begin = reinterpret_cast<const uint8_t*>(copy.data());
-    const auto* data = reinterpret_cast<const nanovdb::GridData*>(begin);
-    if (data->mMagic != NANOVDB_MAGIC_NUMBER) throw std::invalid_argument("not a NanoVDB grid (its magic number is wrong)");
-    if (data->mVersion.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER)
-        throw std::invalid_argument("NanoVDB version " + std::to_string(data->mVersion.getMajor()) + "." +
-                                    std::to_string(data->mVersion.getMinor()) + "; Ripple reads major version " +
-                                    std::to_string(NANOVDB_MAJOR_VERSION_NUMBER));
-    if (data->mGridType != nanovdb::GridType::Float)
-        throw std::invalid_argument(std::string("a grid of ") + nanovdb::toStr(data->mGridType) + "; Ripple reads float grids");
-    const uint64_t bytes = data->mGridSize;
-    if (bytes > blob.size() || bytes < sizeof(nanovdb::GridData) + sizeof(nanovdb::TreeData<3>))
-        throw std::invalid_argument("the grid says it is " + std::to_string(bytes) + " bytes in a buffer of " +
-                                    std::to_string(blob.size()));
-    if (bytes > uint64_t(UINT32_MAX) - 64)
-        throw std::invalid_argument("the grid is larger than the kernels' 32-bit addressing");
-    const Grid* grid = reinterpret_cast<const Grid*>(begin);
-    const auto& treeData = *reinterpret_cast<const nanovdb::TreeData<3>*>(begin + sizeof(nanovdb::GridData));
-    const auto* rootBytes = begin + sizeof(nanovdb::GridData) + treeData.mNodeOffset[3];
-    if (treeData.mNodeOffset[3] > bytes || !inside(rootBytes, sizeof(Root), begin, bytes))
-        throw std::invalid_argument("the grid's root node lies outside it");
-    const Root& root = *reinterpret_cast<const Root*>(rootBytes);
-    const uint32_t tiles = root.tileCount();
-    if (!inside(rootBytes, sizeof(Root) + uint64_t(tiles) * sizeof(typename Root::Tile), begin, bytes))
-        throw std::invalid_argument("the root's " + std::to_string(tiles) + " tiles run past the grid");
-
+    const CheckedNanoVdbGrid checked(blob);
+    const nanovdb::NanoGrid<float>* grid = &checked.grid();
+    const nanovdb::NanoRoot<float>& root = grid->tree().root();
     auto out = std::make_shared<NanoVdbGrid>();
     const nanovdb::CoordBBox box = root.bbox();
-    const float background = root.background();
-    if (!std::isfinite(background)) throw std::invalid_argument("the background value is not finite");
+    const float background = root.background();  // finite: checked
     out->valueRange = glm::vec2(INFINITY, -INFINITY);
     // The field spans the active box, from its lowest voxel to its highest, as a structuredRegular field spans
     // its samples (at least one voxel's width along each axis). Macrocell m (per axis) reads voxels base + 8m
@@ -130,46 +84,19 @@ std::shared_ptr<const NanoVdbGrid> prepareNanoVdbGrid(std::span<const uint8_t> b
             for (int y = first.y; y <= last.y; ++y)
                 for (int x = first.x; x <= last.x; ++x) covered[(size_t(z) * m.y + y) * m.x + x] = 1;
     };
-    const auto coverTile = [&](const nanovdb::Coord& lo, const nanovdb::Coord& hi, float v) {
-        cover(lo, hi, v);
-        markCovered(lo, hi);
-    };
-    for (uint32_t t = 0; t < tiles; ++t) {
-        const auto* tile = root.data()->tile(t);
-        const nanovdb::Coord origin = tile->origin();
-        if (!tile->isChild()) {
-            coverTile(origin, origin + nanovdb::Coord(Upper::DIM - 1), tile->value);
-            continue;
-        }
-        const Upper* upper = root.data()->getChild(tile);
-        if (!inside(upper, sizeof(Upper), begin, bytes)) throw std::invalid_argument("root tile " + std::to_string(t) + "'s child lies outside the grid");
-        for (uint32_t n = 0; n < Upper::SIZE; ++n) {
-            const nanovdb::Coord at = upper->offsetToGlobalCoord(n);
-            if (!upper->data()->isChild(n)) {
-                coverTile(at, at + nanovdb::Coord(Lower::DIM - 1), upper->data()->getValue(n));
-                continue;
+    checked.walk(
+        [&](const nanovdb::Coord& lo, const nanovdb::Coord& hi, float v) {
+            cover(lo, hi, v);
+            markCovered(lo, hi);
+        },
+        [&](const Leaf& leaf) {
+            for (uint32_t v = 0; v < Leaf::SIZE; ++v) {
+                const nanovdb::Coord voxel = leaf.origin() + Leaf::OffsetToLocalCoord(v);
+                cover(voxel, voxel, leaf.getValue(v));
             }
-            const Lower* lower = upper->data()->getChild(n);
-            if (!inside(lower, sizeof(Lower), begin, bytes)) throw std::invalid_argument("an upper node's child lies outside the grid");
-            for (uint32_t k = 0; k < Lower::SIZE; ++k) {
-                const nanovdb::Coord leafAt = lower->offsetToGlobalCoord(k);
-                if (!lower->data()->isChild(k)) {
-                    coverTile(leafAt, leafAt + nanovdb::Coord(Leaf::DIM - 1), lower->data()->getValue(k));
-                    continue;
-                }
-                const Leaf* leaf = lower->data()->getChild(k);
-                if (!inside(leaf, sizeof(Leaf), begin, bytes)) throw std::invalid_argument("a lower node's child lies outside the grid");
-                for (uint32_t v = 0; v < Leaf::SIZE; ++v) {
-                    const float value = leaf->getValue(v);
-                    if (!std::isfinite(value)) throw std::invalid_argument("a voxel value is not finite");
-                    const nanovdb::Coord voxel = leafAt + Leaf::OffsetToLocalCoord(v);
-                    cover(voxel, voxel, value);
-                }
-                markCovered(leafAt, leafAt + nanovdb::Coord(Leaf::DIM - 1));
-                ++out->leaves;
-            }
-        }
-    }
+            markCovered(leaf.origin(), leaf.origin() + nanovdb::Coord(Leaf::DIM - 1));
+            ++out->leaves;
+        });
     for (uint32_t z = 0; z < m.z; ++z)
         for (uint32_t y = 0; y < m.y; ++y)
             for (uint32_t x = 0; x < m.x; ++x)
@@ -183,13 +110,12 @@ std::shared_ptr<const NanoVdbGrid> prepareNanoVdbGrid(std::span<const uint8_t> b
     for (int column = 0; column < 3; ++column)
         for (int row = 0; row < 3; ++row) out->indexToObject[column][row] = map.mMatD[row * 3 + column];
     out->indexToObject[3] = glm::dvec4(map.mVecD[0], map.mVecD[1], map.mVecD[2], 1.0);
-    const double determinant = glm::determinant(glm::dmat3(out->indexToObject));
-    if (!std::isfinite(determinant) || determinant == 0.0) throw std::invalid_argument("the grid's map is not invertible");
 
     out->words.assign(8, 0u);
     std::memcpy(out->words.data(), &out->base, sizeof(out->base));
-    out->words.resize(8 + (bytes + 3) / 4);
-    std::memcpy(out->words.data() + 8, begin, bytes);
+    const std::span<const uint8_t> bytes = checked.bytes();
+    out->words.resize(8 + (bytes.size() + 3) / 4);
+    std::memcpy(out->words.data() + 8, bytes.data(), bytes.size());
     return out;
 }
 
