@@ -3,6 +3,7 @@
 
 #include "apps/scene/AmrPartition.h"
 #include "apps/scene/MeshPartition.h"
+#include "apps/scene/NanoVdbPartition.h"
 #include "io/vtk/VtkImageFile.h"
 #include "io/vtk/VtkUnstructuredFile.h"
 
@@ -136,12 +137,16 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
         if (rawOptions || vtkOptions)
             throw std::runtime_error("--volume " + options.volume + ": --dims, --type, --spacing, --field and "
                                      "--field-component are not for NanoVDB files");
-        if (ranks.distributed())
-            throw std::runtime_error("--volume " + options.volume + ": NanoVDB grids are not split over ranks yet; "
-                                     "render it on one rank");
-        plan.nanovdb = readNanoVdbFile(options.volume);
-        plan.data.minValue = plan.nanovdb->minValue;
-        plan.data.maxValue = plan.nanovdb->maxValue;
+        // Every rank reads the whole grid (its box frames the view, its values span the colour map) and keeps
+        // only its region's voxels.
+        const NanoVdbFile whole = readNanoVdbFile(options.volume);
+        try {
+            plan.nanovdb = nanoVdbPart(whole, slab.index, slab.count);
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error("--volume " + options.volume + ": " + e.what());
+        }
+        plan.data.minValue = whole.minValue;
+        plan.data.maxValue = whole.maxValue;
     } else if (amr) {
         // Every rank reads the whole set (its box frames the view, its values span the colour map) and keeps
         // only its region's part of the blocks.

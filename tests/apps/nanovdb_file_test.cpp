@@ -1,5 +1,6 @@
 // NanoVDB files through ripple-render --volume: a fog sphere written with NanoVDB's own IO renders on the
 // stage; compressed, truncated, non-float and non-NanoVDB files are refused naming the file and the problem.
+#include "apps/scene/NanoVdbPartition.h"
 #include "io/volume/NanoVdbFile.h"
 #include "tests/apps/ProgramRun.h"
 #include "tests/apps/TestFiles.h"
@@ -61,5 +62,42 @@ TEST_CASE("NanoVDB files: a fog sphere renders through ripple-render --volume; b
         CHECK(refused.exitCode == 1);
         CHECK_MESSAGE(contains(refused.output, b.problem), refused.output);
         CHECK(contains(refused.output, b.name));
+    }
+}
+
+// Split over 2 to 4 ranks (apps/scene/NanoVdbPartition), the parts' active boxes tile the whole's, sharing only
+// boundary planes, and every voxel of a part's box holds the whole grid's value there (active or not), so each
+// rank's field is the whole's over its region.
+TEST_CASE("NanoVDB files: a grid split over ranks keeps the whole's values on regions that tile its box") {
+    TempFolder dir;
+    sphereFile(dir / "sphere.nvdb");
+    const apps::NanoVdbFile whole = apps::readNanoVdbFile(dir / "sphere.nvdb");
+    const auto* grid = reinterpret_cast<const nanovdb::NanoGrid<float>*>(whole.grid.data());
+    const nanovdb::CoordBBox wholeBox = grid->tree().root().bbox();
+    const auto wholeValues = grid->getAccessor();
+    const uint64_t wholeVolume = uint64_t(wholeBox.dim()[0]) * wholeBox.dim()[1] * wholeBox.dim()[2];
+    for (uint32_t ranks = 2; ranks <= 4; ++ranks) {
+        CAPTURE(ranks);
+        uint64_t volume = 0, wrong = 0, voxels = 0;
+        std::vector<nanovdb::CoordBBox> boxes;
+        for (uint32_t r = 0; r < ranks; ++r) {
+            const apps::NanoVdbFile part = apps::nanoVdbPart(whole, r, ranks);
+            CHECK(part.worldLo == whole.worldLo);
+            nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(part.grid.size());
+            std::memcpy(buffer.data(), part.grid.data(), part.grid.size());
+            const nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
+            const auto* partGrid = handle.grid<float>();
+            REQUIRE(partGrid != nullptr);
+            const nanovdb::CoordBBox box = partGrid->tree().root().bbox();
+            boxes.push_back(box);
+            // Cells (between voxel planes) of the box: the parts' cells add up to the whole's.
+            volume += uint64_t(box.dim()[0] - 1) * (box.dim()[1] - 1) * (box.dim()[2] - 1);
+            const auto values = partGrid->getAccessor();
+            for (auto it = box.begin(); it; ++it, ++voxels) wrong += values.getValue(*it) != wholeValues.getValue(*it);
+        }
+        CHECK(wrong == 0);
+        CHECK(voxels >= wholeVolume);
+        CHECK(volume == uint64_t(wholeBox.dim()[0] - 1) * (wholeBox.dim()[1] - 1) * (wholeBox.dim()[2] - 1));
+        for (const nanovdb::CoordBBox& b : boxes) CHECK(wholeBox.isInside(b));
     }
 }

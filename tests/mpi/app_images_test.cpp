@@ -210,6 +210,11 @@ TEST_CASE("ripple-render: an AMR set's blocks over 2, 3 and 4 ranks render as 1 
     checkTilesAgree("amr_1.pfm", {"amr_2.pfm", "amr_3.pfm", "amr_4.pfm"});
 }
 
+// Each rank holds a k-d region of a NanoVDB grid's voxels, neighbours sharing a voxel plane (NanoVdbPartition.h).
+TEST_CASE("ripple-render: a NanoVDB grid's voxels over 2, 3 and 4 ranks render as 1 rank holding all of them") {
+    checkTilesAgree("nanovdb_1.pfm", {"nanovdb_2.pfm", "nanovdb_3.pfm", "nanovdb_4.pfm"});
+}
+
 TEST_CASE("ripple-dp-tutorial: rank 0's image shows the quad of each of 3 ranks, in rank order") {
     const std::filesystem::path file = imageFolder() / "tutorial_3.png";
     int width = 0, height = 0, channels = 0;
