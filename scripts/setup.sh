@@ -12,6 +12,7 @@ packages=(
   zlib1g-dev                                                                   # gzip-encoded NRRD volumes
   libpugixml-dev                                                               # VTK XML files
   libnanovdb-dev                                                               # NanoVDB grids (PNanoVDB.h in the kernels)
+  libopenvdb-dev libblosc-dev libboost-iostreams-dev                           # OpenVDB files (.vdb), blosc-compressed .nvdb
   python3-meshio                                                               # an independent VTK reader for the tests
   libopenmpi-dev openmpi-bin                                                   # data-parallel rendering
   clang-14 libclang-rt-14-dev                                                  # libFuzzer (scripts/fuzz.sh)

@@ -4,6 +4,7 @@
 #include "apps/scene/AmrPartition.h"
 #include "apps/scene/MeshPartition.h"
 #include "apps/scene/NanoVdbPartition.h"
+#include "io/volume/OpenVdbFile.h"
 #include "io/vtk/VtkImageFile.h"
 #include "io/vtk/VtkUnstructuredFile.h"
 
@@ -23,12 +24,13 @@ void addVolumeOptions(CLI::App& app, VolumeOptions& options) {
     app.add_option("--volume", options.volume,
                    "scalar field file: NRRD (.nrrd, or .nhdr with a raw data file; encoding raw), VTK image data (.vti, "
                    "or legacy .vtk STRUCTURED_POINTS), a VTK unstructured grid of tetrahedra, hexahedra, wedges and "
-                   "pyramids (.vtu, or legacy .vtk UNSTRUCTURED_GRID), a NanoVDB float grid (.nvdb, uncompressed) or "
-                   "raw (needs --dims and --type); drawn as a "
-                   "volume, or as isosurfaces with --isovalue, on a floor");
+                   "pyramids (.vtu, or legacy .vtk UNSTRUCTURED_GRID), a VTK AMR set (.vthb, or .vtm of image data at "
+                   "several spacings), a NanoVDB float grid (.nvdb, uncompressed, zip or blosc), an OpenVDB float grid "
+                   "(.vdb) or raw (needs --dims and --type); drawn as a volume, or as isosurfaces with --isovalue, on a "
+                   "floor");
     app.add_option("--field", options.field,
-                   "VTK --volume: the array to draw (a point array, or an unstructured grid's cell array; default: the "
-                   "file's active scalars)");
+                   "VTK --volume: the array to draw (a point array, an unstructured grid's or AMR set's cell array; "
+                   "default: the file's active scalars); OpenVDB --volume: the grid (default: the first float grid)");
     app.add_option("--field-component", options.fieldComponent,
                    "VTK --volume: of a vector array, this component (from 0) instead of the magnitude")
         ->check(CLI::Range(0, 8));
@@ -128,18 +130,20 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
     const bool vtkOptions = !options.field.empty() || options.fieldComponent;
     const bool unstructured = isVtkUnstructuredFile(options.volume);
     const bool amr = isVtkAmrFile(options.volume);
-    if (vtkOptions && !isVtkImageFile(options.volume) && !unstructured && !amr && !isNanoVdbFile(options.volume))
+    if (vtkOptions && !isVtkImageFile(options.volume) && !unstructured && !amr && !isNanoVdbFile(options.volume) &&
+        !isOpenVdbFile(options.volume))
         throw std::runtime_error("--volume " + options.volume + ": --field and --field-component are for VTK files");
     if ((isVtkImageFile(options.volume) || unstructured || amr) && rawOptions)
         throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
                                  "the VTK file gives them");
-    if (isNanoVdbFile(options.volume)) {
-        if (rawOptions || vtkOptions)
-            throw std::runtime_error("--volume " + options.volume + ": --dims, --type, --spacing, --field and "
-                                     "--field-component are not for NanoVDB files");
+    const bool openvdb = isOpenVdbFile(options.volume);
+    if (isNanoVdbFile(options.volume) || openvdb) {
+        if (rawOptions || options.fieldComponent || (!openvdb && !options.field.empty()))
+            throw std::runtime_error("--volume " + options.volume + ": --dims, --type, --spacing and --field-component are "
+                                     "not for NanoVDB and OpenVDB files (--field names an OpenVDB file's grid)");
         // Every rank reads the whole grid (its box frames the view, its values span the colour map) and keeps
-        // only its region's voxels.
-        const NanoVdbFile whole = readNanoVdbFile(options.volume);
+        // only its region's voxels. An OpenVDB grid is converted to NanoVDB as it is read.
+        const NanoVdbFile whole = openvdb ? readOpenVdbFile(options.volume, options.field) : readNanoVdbFile(options.volume);
         try {
             plan.nanovdb = nanoVdbPart(whole, slab.index, slab.count);
         } catch (const std::runtime_error& e) {

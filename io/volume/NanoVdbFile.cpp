@@ -1,11 +1,14 @@
 // NanoVDB files (see NanoVdbFile.h). The layout, from NanoVDB's IO.h (its file format, version 32): a
 // 16-byte header (magic, version, grid count, codec), then per grid 176 bytes of metadata and its name,
-// then the grids' buffers in the same order.
+// then the grids' buffers in the same order. A zip-compressed buffer is its compressed size (8 bytes) and one
+// zlib stream; a blosc-compressed one is chunks of up to 1 GiB, each its compressed size and a blosc block.
 #include "io/volume/NanoVdbFile.h"
 
 #include "io/FileRead.h"
 
+#include <blosc.h>
 #include <nanovdb/NanoVDB.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cctype>
@@ -45,8 +48,7 @@ NanoVdbFile readNanoVdbFile(const std::filesystem::path& file) {
                    std::to_string(NANOVDB_MAJOR_VERSION_NUMBER));
     const uint16_t gridCount = readAt<uint16_t>(bytes, 12), codec = readAt<uint16_t>(bytes, 14);
     if (gridCount == 0) throw fail("the file holds no grid");
-    if (codec != 0) throw fail("its grids are compressed (" + std::string(codec == 1 ? "zip" : "blosc") +
-                               "); Ripple reads uncompressed .nvdb files (nanovdb_convert writes them without -z/-b)");
+    if (codec > 2) throw fail("unknown compression codec " + std::to_string(codec) + " (0 none, 1 zip and 2 blosc are read)");
     // The metadata and names of the segment's grids, then the first grid's buffer.
     size_t at = kHeaderBytes;
     NanoVdbFile out;
@@ -71,13 +73,44 @@ NanoVdbFile readNanoVdbFile(const std::filesystem::path& file) {
         if (g == 0) out.name.assign(bytes.data() + at, strnlen(bytes.data() + at, nameSize));
         at += nameSize;
     }
-    if (gridSize != fileSize) throw fail("its first grid's sizes disagree (" + std::to_string(gridSize) + " in memory, " +
-                                         std::to_string(fileSize) + " on disk) for an uncompressed file");
-    if (gridSize > bytes.size() - at) throw fail("its first grid (" + std::to_string(gridSize) + " bytes) runs past the file");
     for (int k = 0; k < 3; ++k)
         if (!std::isfinite(out.worldLo[k]) || !std::isfinite(out.worldHi[k]) || out.worldHi[k] < out.worldLo[k])
             throw fail("its first grid's world box is not finite and ordered");
-    out.grid.assign(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(at + gridSize));
+    if (gridSize == 0 || gridSize > kMaxFileBytes)
+        throw fail("its first grid says it is " + std::to_string(gridSize) + " bytes (Ripple reads 1 byte to 4 GiB)");
+    if (codec == 0) {
+        if (gridSize != fileSize) throw fail("its first grid's sizes disagree (" + std::to_string(gridSize) + " in memory, " +
+                                             std::to_string(fileSize) + " on disk) for an uncompressed file");
+        if (gridSize > bytes.size() - at) throw fail("its first grid (" + std::to_string(gridSize) + " bytes) runs past the file");
+        out.grid.assign(bytes.begin() + std::ptrdiff_t(at), bytes.begin() + std::ptrdiff_t(at + gridSize));
+    } else {
+        // Compressed chunks: zip, one chunk; blosc, one per GiB of the grid.
+        constexpr uint64_t kBloscChunk = uint64_t(1) << 30;
+        out.grid.resize(gridSize);
+        uint64_t done = 0;
+        while (done < gridSize) {
+            if (bytes.size() - at < 8) throw fail("its first grid's compressed data runs past the file");
+            const uint64_t packed = readAt<uint64_t>(bytes, at);
+            at += 8;
+            if (packed > bytes.size() - at) throw fail("its first grid's compressed data runs past the file");
+            const auto* source = reinterpret_cast<const uint8_t*>(bytes.data() + at);
+            if (codec == 1) {
+                uLongf unpacked = uLongf(gridSize);
+                if (uncompress(out.grid.data(), &unpacked, source, uLong(packed)) != Z_OK || unpacked != gridSize)
+                    throw fail("its first grid's zip data does not decompress to its " + std::to_string(gridSize) + " bytes");
+                done = gridSize;
+            } else {
+                const uint64_t chunk = std::min(gridSize - done, kBloscChunk);
+                size_t expected = 0, compressed = 0, block = 0;
+                if (packed >= BLOSC_MIN_HEADER_LENGTH) blosc_cbuffer_sizes(source, &expected, &compressed, &block);
+                if (packed < BLOSC_MIN_HEADER_LENGTH || expected != chunk || compressed != packed ||
+                    blosc_decompress_ctx(source, out.grid.data() + done, size_t(chunk), 1) != int(chunk))
+                    throw fail("its first grid's blosc data does not decompress to its " + std::to_string(gridSize) + " bytes");
+                done += chunk;
+            }
+            at += packed;
+        }
+    }
     // The root's statistics: the tree follows the 672-byte grid header, the root at its fourth node offset.
     const size_t treeAt = sizeof(nanovdb::GridData);
     if (out.grid.size() < treeAt + 32) throw fail("its first grid is too short for a tree");
