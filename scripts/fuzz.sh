@@ -3,7 +3,7 @@
 # the given time, one after the other, seeded from fuzz/seeds/<target>/ and, for glTF, the shared sample
 # scenes (RIPPLE_DATA_DIR/gltf). Findings land in <build>/fuzz/artifacts/<target>/; the corpus grows in
 # <build>/fuzz/corpus/<target>/ and is reused by the next run.
-#   scripts/fuzz.sh [seconds per target (60)] [target ...: gltf vtk anari]
+#   scripts/fuzz.sh [seconds per target (60)] [target ...: gltf vtk volume anari]
 #   RIPPLE_FUZZ_BUILD_DIR (build-fuzz), RIPPLE_FUZZ_CC / RIPPLE_FUZZ_CXX (clang-14 / clang++-14),
 #   RIPPLE_BUILD_JOBS (all cores), RIPPLE_FUZZ_ARGS (more libFuzzer flags, e.g. -jobs=2).
 set -euo pipefail
@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(gltf vtk anari)
+[ ${#targets[@]} -gt 0 ] || targets=(gltf vtk volume anari)
 build=${RIPPLE_FUZZ_BUILD_DIR:-build-fuzz}
 
 # Tests off: the fuzz tree builds only what the fuzzers link (its replay tests run in every other tree).
@@ -40,7 +40,9 @@ for target in "${targets[@]}"; do
           flags=(-max_len=65536 -timeout=20 -rss_limit_mb=3072) ;;
     anari) flags=(-max_len=4096 -timeout=20 -rss_limit_mb=3072) ;;
     vtk) flags=(-max_len=65536 -timeout=20 -rss_limit_mb=3072) ;;
-    *) echo "fuzz: unknown target '$target' (gltf, vtk, anari)"; exit 2 ;;
+    # NanoVDB buffers are large even for small grids (an upper node's tables): the seed sphere is 306 KiB.
+    volume) flags=(-max_len=400000 -timeout=20 -rss_limit_mb=3072) ;;
+    *) echo "fuzz: unknown target '$target' (gltf, vtk, volume, anari)"; exit 2 ;;
   esac
   echo "fuzz: $target for $seconds s, corpus $corpus"
   log="$build/fuzz/$target.log"
