@@ -1,6 +1,8 @@
 // Splitting an AMR hierarchy over ranks (see AmrPartition.h).
 #include "apps/scene/AmrPartition.h"
 
+#include "apps/scene/KdSplit.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -10,10 +12,8 @@ namespace ripple::apps {
 
 namespace {
 
-// Boxes in cells of the coarsest level (half-open, integer).
-struct Region {
-    glm::i64vec3 lo, hi;
-};
+// Boxes in cells of the coarsest level: [lo, hi), the cells between planes lo and hi.
+using Region = KdBox;
 
 // How many cells of one coarse cell's width a level's cell is: coarse / width, a whole number (checked).
 std::vector<int64_t> levelRatios(const AmrData& whole, uint32_t coarsest) {
@@ -48,41 +48,6 @@ uint64_t cellsIn(const AmrData& whole, const std::vector<int64_t>& ratios, const
     return cells;
 }
 
-// Splits `region` among ranks first .. first + count - 1 and returns `rank`'s.
-Region regionOf(const AmrData& whole, const std::vector<int64_t>& ratios, Region region, uint32_t first, uint32_t count,
-                uint32_t rank) {
-    while (count > 1) {
-        const glm::i64vec3 extent = region.hi - region.lo;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-        if (extent[axis] < 2)
-            throw std::runtime_error("a region of " + std::to_string(extent.x) + "x" + std::to_string(extent.y) + "x" +
-                                     std::to_string(extent.z) + " coarse cells cannot be split among " + std::to_string(count) +
-                                     " ranks");
-        const uint32_t lowRanks = count / 2;
-        const double target = double(cellsIn(whole, ratios, region)) * double(lowRanks) / double(count);
-        int64_t bestCut = region.lo[axis] + 1;
-        double bestMiss = INFINITY;
-        for (int64_t cut = region.lo[axis] + 1; cut < region.hi[axis]; ++cut) {
-            Region low = region;
-            low.hi[axis] = cut;
-            const double miss = std::abs(double(cellsIn(whole, ratios, low)) - target);
-            if (miss < bestMiss) {
-                bestMiss = miss;
-                bestCut = cut;
-            }
-        }
-        if (rank < first + lowRanks) {
-            region.hi[axis] = bestCut;
-            count = lowRanks;
-        } else {
-            region.lo[axis] = bestCut;
-            first += lowRanks;
-            count -= lowRanks;
-        }
-    }
-    return region;
-}
-
 }  // namespace
 
 AmrData amrPart(const AmrData& whole, uint32_t rank, uint32_t ranks) {
@@ -98,7 +63,7 @@ AmrData amrPart(const AmrData& whole, uint32_t rank, uint32_t ranks) {
         const glm::i64vec3 hi = glm::i64vec3(glm::ceil((glm::dvec3(block.upper) + 1.0) / double(r)));
         domain = {glm::min(domain.lo, lo), glm::max(domain.hi, hi)};
     }
-    const Region region = regionOf(whole, ratios, domain, 0, ranks, rank);
+    const Region region = kdRegion(domain, rank, ranks, [&](const Region& r) { return double(cellsIn(whole, ratios, r)); });
 
     AmrData part;
     part.origin = whole.origin;

@@ -1,6 +1,8 @@
 // Splitting a NanoVDB grid over ranks (see NanoVdbPartition.h).
 #include "apps/scene/NanoVdbPartition.h"
 
+#include "apps/scene/KdSplit.h"
+
 #include "core/scene/NanoVdbTree.h"
 
 #include <nanovdb/util/GridBuilder.h>
@@ -17,55 +19,10 @@ namespace {
 
 using Leaf = nanovdb::NanoLeaf<float>;
 
-// Index boxes, inclusive.
-struct Region {
-    glm::ivec3 lo, hi;
-};
-
 struct LeafCount {
     glm::ivec3 centre;  // of its 8^3 voxels (origin + 4)
     uint64_t active;
 };
-
-uint64_t activeIn(const std::vector<LeafCount>& leaves, const Region& r, int axis, int below) {
-    uint64_t n = 0;
-    for (const LeafCount& l : leaves)
-        if (glm::all(glm::greaterThanEqual(l.centre, r.lo)) && glm::all(glm::lessThanEqual(l.centre, r.hi)) && l.centre[axis] < below)
-            n += l.active;
-    return n;
-}
-
-Region regionOf(const std::vector<LeafCount>& leaves, Region region, uint32_t first, uint32_t count, uint32_t rank) {
-    while (count > 1) {
-        const glm::ivec3 extent = region.hi - region.lo;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-        if (extent[axis] < 2)
-            throw std::runtime_error("its active box cannot be split among " + std::to_string(count) + " more ranks");
-        const uint32_t lowRanks = count / 2;
-        const double target = double(activeIn(leaves, region, axis, INT32_MAX)) * double(lowRanks) / double(count);
-        // Cut planes strictly inside the region, at most 256 tried.
-        const int step = std::max(1, extent[axis] / 256);
-        int bestCut = region.lo[axis] + extent[axis] / 2;
-        double bestMiss = INFINITY;
-        for (int cut = region.lo[axis] + 1; cut < region.hi[axis]; cut += step) {
-            const double miss = std::abs(double(activeIn(leaves, region, axis, cut)) - target);
-            if (miss < bestMiss) {
-                bestMiss = miss;
-                bestCut = cut;
-            }
-        }
-        // Both sides keep the cut plane.
-        if (rank < first + lowRanks) {
-            region.hi[axis] = bestCut;
-            count = lowRanks;
-        } else {
-            region.lo[axis] = bestCut;
-            first += lowRanks;
-            count -= lowRanks;
-        }
-    }
-    return region;
-}
 
 }  // namespace
 
@@ -103,9 +60,16 @@ NanoVdbFile nanoVdbPart(const NanoVdbFile& whole, uint32_t rank, uint32_t ranks)
     } catch (const std::invalid_argument& e) {
         throw std::runtime_error(std::string("the grid cannot be split: ") + e.what());
     }
-    const Region wholeBox{glm::ivec3(box.min()[0], box.min()[1], box.min()[2]), glm::ivec3(box.max()[0], box.max()[1], box.max()[2])};
-    const Region region = regionOf(counts, wholeBox, 0, ranks, rank);
-    const nanovdb::Coord lo(region.lo.x, region.lo.y, region.lo.z), hi(region.hi.x, region.hi.y, region.hi.z);
+    // Voxel boxes [lo, hi], inclusive: the two sides of a cut share its plane of voxels.
+    const KdBox wholeBox{glm::i64vec3(box.min()[0], box.min()[1], box.min()[2]), glm::i64vec3(box.max()[0], box.max()[1], box.max()[2])};
+    const KdBox region = kdRegion(wholeBox, rank, ranks, [&](const KdBox& r) {
+        uint64_t n = 0;
+        for (const LeafCount& l : counts)
+            if (glm::all(glm::greaterThanEqual(glm::i64vec3(l.centre), r.lo)) && glm::all(glm::lessThanEqual(glm::i64vec3(l.centre), r.hi)))
+                n += l.active;
+        return double(n);
+    });
+    const nanovdb::Coord lo(int(region.lo.x), int(region.lo.y), int(region.lo.z)), hi(int(region.hi.x), int(region.hi.y), int(region.hi.z));
     const auto inRegion = [&](const nanovdb::Coord& c) {
         return c[0] >= lo[0] && c[1] >= lo[1] && c[2] >= lo[2] && c[0] <= hi[0] && c[1] <= hi[1] && c[2] <= hi[2];
     };

@@ -136,6 +136,14 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
     if ((isVtkImageFile(options.volume) || unstructured || amr) && rawOptions)
         throw std::runtime_error("--volume " + options.volume + ": --dims, --type and --spacing are for raw files; "
                                  "the VTK file gives them");
+    // A rank's share of a field (a data-parallel split), its problems named with the option and the file.
+    const auto rankShare = [&](const auto& split) {
+        try {
+            return split();
+        } catch (const std::runtime_error& e) {
+            throw std::runtime_error("--volume " + options.volume + ": " + e.what());
+        }
+    };
     const bool openvdb = isOpenVdbFile(options.volume);
     if (isNanoVdbFile(options.volume) || openvdb) {
         if (rawOptions || options.fieldComponent || (!openvdb && !options.field.empty()))
@@ -144,11 +152,7 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
         // Every rank reads the whole grid (its box frames the view, its values span the colour map) and keeps
         // only its region's voxels. An OpenVDB grid is converted to NanoVDB as it is read.
         const NanoVdbFile whole = openvdb ? readOpenVdbFile(options.volume, options.field) : readNanoVdbFile(options.volume);
-        try {
-            plan.nanovdb = nanoVdbPart(whole, slab.index, slab.count);
-        } catch (const std::runtime_error& e) {
-            throw std::runtime_error("--volume " + options.volume + ": " + e.what());
-        }
+        plan.nanovdb = rankShare([&] { return nanoVdbPart(whole, slab.index, slab.count); });
         plan.data.minValue = whole.minValue;
         plan.data.maxValue = whole.maxValue;
     } else if (amr) {
@@ -157,11 +161,7 @@ std::optional<FieldPlan> planField(const VolumeOptions& options, const mpi::Comm
         const AmrData whole = readVtkAmr(options.volume, {options.field, options.fieldComponent.value_or(-1)});
         AmrPart part;
         std::tie(part.wholeLo, part.wholeHi) = amrBounds(whole);
-        try {
-            part.blocks = amrPart(whole, slab.index, slab.count);
-        } catch (const std::runtime_error& e) {
-            throw std::runtime_error("--volume " + options.volume + ": " + e.what());
-        }
+        part.blocks = rankShare([&] { return amrPart(whole, slab.index, slab.count); });
         plan.data.minValue = whole.minValue;
         plan.data.maxValue = whole.maxValue;
         plan.amr = std::move(part);

@@ -10,6 +10,16 @@
 
 namespace ripple::device {
 
+namespace {
+
+// An element of an INT32_BOX3 array: the lower corner, then the upper.
+struct Box3i {
+    glm::ivec3 lower, upper;
+};
+static_assert(sizeof(Box3i) == 24);
+
+}  // namespace
+
 void AmrField::commit() {
     forgetDependencies();
     grid_.reset();
@@ -56,7 +66,7 @@ void AmrField::commit() {
                    std::to_string(level->size()) + " and " + std::to_string(blocks) + " elements; they must agree");
         return;
     }
-    const std::span<const glm::ivec3> corners = bounds->as<glm::ivec3>();  // lower, upper per block
+    const std::span<const Box3i> boxes = bounds->as<Box3i>();
     const std::span<const int32_t> levels = level->as<int32_t>();
     hierarchy.blocks.resize(blocks);
     for (size_t b = 0; b < blocks; ++b) {
@@ -66,8 +76,8 @@ void AmrField::commit() {
             return;
         }
         block.level = uint32_t(levels[b]);
-        block.lower = corners[2 * b];
-        block.upper = corners[2 * b + 1];
+        block.lower = boxes[b].lower;
+        block.upper = boxes[b].upper;
         auto* values = dynamic_cast<Array*>(data->objects()[b]);
         if (!values) {
             invalidate("'block.data' element " + std::to_string(b) + " is not an array");
