@@ -11,5 +11,5 @@ ctest --test-dir "$build" --output-on-failure --timeout 900 --parallel "$(nproc)
 # (docs/fuzzing.md), in a build folder of their own and without the Vulkan validation layer (the Release
 # run above has it; tests/CMakeLists.txt): the whole suite under the sanitizers would not fit CI's time.
 RIPPLE_SANITIZE_BUILD_DIR="$build-asan" \
-  RIPPLE_SANITIZE_TARGETS="ripple_unit_tests ripple_light_transport_tests ripple_robustness_tests ripple_fuzz_gltf_replay ripple_fuzz_vtk_replay ripple_fuzz_anari_replay" \
+  RIPPLE_SANITIZE_TARGETS="ripple_unit_tests ripple_light_transport_tests ripple_robustness_tests ripple_fuzz_gltf_replay ripple_fuzz_vtk_replay ripple_fuzz_volume_replay ripple_fuzz_anari_replay" \
   scripts/sanitize.sh -R '^(unit|light_transport|robustness|fuzz_regressions_.*)$'

@@ -20,7 +20,7 @@ std::vector<int64_t> levelRatios(const AmrData& whole, uint32_t coarsest) {
     std::vector<int64_t> ratios(whole.cellWidth.size(), 0);
     for (size_t l = coarsest; l < whole.cellWidth.size(); ++l) {
         const double ratio = double(whole.cellWidth[coarsest]) / double(whole.cellWidth[l]);
-        ratios[l] = std::llround(ratio);
+        ratios[l] = ratio >= 1.0 && ratio <= double(1 << 24) ? std::llround(ratio) : 0;
         if (ratios[l] < 1 || std::abs(ratio - double(ratios[l])) > 1e-4 * ratio)
             throw std::runtime_error("level " + std::to_string(l) + "'s cell width does not divide level " +
                                      std::to_string(coarsest) + "'s a whole number of times, so the hierarchy cannot be split "

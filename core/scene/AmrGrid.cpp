@@ -120,10 +120,9 @@ std::shared_ptr<const AmrGrid> prepareAmrGrid(const AmrHierarchy& h) {
     // (VOLUME_MACROCELL units a side) number at most kMaxMacrocells.
     const dvec3 extent = domain.hi - domain.lo;
     double unit = h.cellWidth[finest];
-    const auto macrocellsFor = [&](double u) {
-        return glm::max(glm::u64vec3(glm::ceil(extent / (u * double(gpu::VOLUME_MACROCELL)))), glm::u64vec3(1u));
-    };
-    for (glm::u64vec3 m = macrocellsFor(unit); m.x * m.y * m.z > kMaxMacrocells; m = macrocellsFor(unit)) unit *= 2.0;
+    // In double until they fit: a hostile ratio of cell widths could overflow any integer.
+    const auto macrocellsFor = [&](double u) { return glm::max(glm::ceil(extent / (u * double(gpu::VOLUME_MACROCELL))), dvec3(1.0)); };
+    for (dvec3 n = macrocellsFor(unit); n.x * n.y * n.z > double(kMaxMacrocells); n = macrocellsFor(unit)) unit *= 2.0;
     grid->macrocells = glm::uvec3(macrocellsFor(unit));
     const glm::uvec3 m = grid->macrocells;
     const dvec3 objectLo = dvec3(h.origin) + dvec3(h.spacing) * domain.lo;

@@ -287,4 +287,10 @@ TEST_CASE("AMR: inconsistent hierarchies are refused by name") {
           "block 4 (level 2)'s box [30 0 0 .. 33 3 3] lies outside the box of level 0's blocks");
     CHECK(edited([](core::AmrHierarchy& h) { h.blocks[0].upper.x = 1 << 25; }) == "block 0 (level 0)'s box [0 0 0 .. 33554432 3 3] reaches past +-2^24");
     CHECK(edited([](core::AmrHierarchy& h) { h.spacing.y = 0.0f; }) == "the origin must be finite and the spacing finite and positive");
+    // Stiff, not wrong: cell widths 10^40 apart are prepared (the macrocells coarsen in double until they fit).
+    core::AmrHierarchy extreme;
+    extreme.cellWidth = {1e20f, 1e-20f};
+    extreme.blocks.push_back(block(extreme, 0, {0, 0, 0}, {1, 1, 1}, one));
+    extreme.blocks.push_back(block(extreme, 1, {0, 0, 0}, {1, 1, 1}, one));
+    CHECK(refusal(extreme).empty());
 }
