@@ -27,6 +27,11 @@ bool inside(const void* p, size_t size, const uint8_t* begin, uint64_t bytes) {
 
 }  // namespace
 
+std::string gridTypeName(uint32_t type) {
+    // nanovdb::toStr indexes its table with the type unchecked.
+    return type < uint32_t(nanovdb::GridType::End) ? nanovdb::toStr(nanovdb::GridType(type)) : "unknown type " + std::to_string(type);
+}
+
 CheckedNanoVdbGrid::CheckedNanoVdbGrid(std::span<const uint8_t> blob) {
     if (blob.size() < sizeof(nanovdb::GridData) + sizeof(nanovdb::TreeData<3>))
         throw std::invalid_argument(std::to_string(blob.size()) + " bytes, too short for a NanoVDB grid");
@@ -42,7 +47,7 @@ CheckedNanoVdbGrid::CheckedNanoVdbGrid(std::span<const uint8_t> blob) {
                                     std::to_string(data->mVersion.getMinor()) + "; Ripple reads major version " +
                                     std::to_string(NANOVDB_MAJOR_VERSION_NUMBER));
     if (data->mGridType != nanovdb::GridType::Float)
-        throw std::invalid_argument(std::string("a grid of ") + nanovdb::toStr(data->mGridType) + "; Ripple reads float grids");
+        throw std::invalid_argument("a grid of " + gridTypeName(uint32_t(data->mGridType)) + "; Ripple reads float grids");
     bytes_ = data->mGridSize;
     if (bytes_ > blob.size() || bytes_ < sizeof(nanovdb::GridData) + sizeof(nanovdb::TreeData<3>))
         throw std::invalid_argument("the grid says it is " + std::to_string(bytes_) + " bytes in a buffer of " +

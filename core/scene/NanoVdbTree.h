@@ -9,9 +9,13 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace ripple::core {
+
+// NanoVDB's name of a grid type ("float", "double", ...), or "unknown type N" past the types it knows.
+std::string gridTypeName(uint32_t type);
 
 class CheckedNanoVdbGrid {
 public:

@@ -4,6 +4,7 @@
 // zlib stream; a blosc-compressed one is chunks of up to 1 GiB, each its compressed size and a blosc block.
 #include "io/volume/NanoVdbFile.h"
 
+#include "core/scene/NanoVdbTree.h"
 #include "io/FileRead.h"
 
 #include <blosc.h>
@@ -61,8 +62,7 @@ NanoVdbFile readNanoVdbFile(const std::filesystem::path& file) {
             fileSize = readAt<uint64_t>(bytes, at + 8);
             const uint32_t gridType = readAt<uint32_t>(bytes, at + 32);
             if (gridType != uint32_t(nanovdb::GridType::Float))
-                throw fail(std::string("its first grid holds ") + nanovdb::toStr(nanovdb::GridType(std::min(gridType, 25u))) +
-                           "; Ripple reads float grids");
+                throw fail("its first grid holds " + core::gridTypeName(gridType) + "; Ripple reads float grids");
             for (int k = 0; k < 3; ++k) {
                 out.worldLo[k] = readAt<double>(bytes, at + 40 + 8 * k);
                 out.worldHi[k] = readAt<double>(bytes, at + 64 + 8 * k);
