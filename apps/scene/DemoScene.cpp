@@ -549,39 +549,40 @@ AnariWorld buildFieldScene(ANARIDevice device, const VolumeData& data, const Fie
     return fieldScene(device, makeField, at, extraLights, edits, drawField(options, glm::vec2(data.minValue, data.maxValue)));
 }
 
-AnariWorld buildNanoVdbScene(ANARIDevice device, const NanoVdbFile& grid, const FieldSceneOptions& options,
-                             const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+namespace {
+
+// A field in an object space of its own (box lo..hi), on the stage by an instance transform: its longest side 2,
+// centred, just above the floor. `makeField` makes it with the builder.
+template <class MakeField>
+AnariWorld placedFieldScene(ANARIDevice device, const glm::dvec3& lo, const glm::dvec3& hi, glm::vec2 values,
+                            const FieldSceneOptions& options, const std::vector<ANARILight>& extraLights, SceneEdits* edits,
+                            MakeField makeField) {
     if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
-    const glm::vec3 lo(grid.worldLo), extent = glm::vec3(grid.worldHi - grid.worldLo);
+    const glm::vec3 extent(hi - lo);
     const float scale = 2.0f / std::max({extent.x, extent.y, extent.z, 1e-30f});
     const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z);
-    const FieldPlacement at{boxLo, boxLo + scale * extent, boxLo, boxLo + scale * extent, options.stage,
-                            glm::vec2(grid.minValue, grid.maxValue)};
+    const FieldPlacement at{boxLo, boxLo + scale * extent, boxLo, boxLo + scale * extent, options.stage, values};
     const glm::mat4 place = glm::translate(glm::mat4(1.0f), boxLo) * glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
-                            glm::translate(glm::mat4(1.0f), -lo);
-    const auto makeField = [&](DemoBuilder& b) {
+                            glm::translate(glm::mat4(1.0f), -glm::vec3(lo));
+    const auto make = [&](DemoBuilder& b) {
         b.placeVolumes(place);
-        return b.nanovdbField(grid.grid, *at.values);
+        return makeField(b, values);
     };
-    return fieldScene(device, makeField, at, extraLights, edits, drawField(options, *at.values));
+    return fieldScene(device, make, at, extraLights, edits, drawField(options, values));
+}
+
+}  // namespace
+
+AnariWorld buildNanoVdbScene(ANARIDevice device, const NanoVdbFile& grid, const FieldSceneOptions& options,
+                             const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
+    return placedFieldScene(device, grid.worldLo, grid.worldHi, glm::vec2(grid.minValue, grid.maxValue), options, extraLights,
+                            edits, [&](DemoBuilder& b, glm::vec2 values) { return b.nanovdbField(grid.grid, values); });
 }
 
 AnariWorld buildAmrScene(ANARIDevice device, const AmrPart& amr, const FieldSceneOptions& options,
                          const std::vector<ANARILight>& extraLights, SceneEdits* edits) {
-    if (!options.transferFunction.empty()) checkTransferFunctionName(options.transferFunction);
-    const glm::dvec3 lo = amr.wholeLo, hi = amr.wholeHi;
-    const glm::vec3 extent(hi - lo);
-    const float scale = 2.0f / std::max({extent.x, extent.y, extent.z, 1e-30f});
-    const glm::vec3 boxLo(-0.5f * scale * extent.x, 0.05f, -0.5f * scale * extent.z);
-    const FieldPlacement at{boxLo, boxLo + scale * extent, boxLo, boxLo + scale * extent, options.stage,
-                            glm::vec2(amr.blocks.minValue, amr.blocks.maxValue)};
-    const glm::mat4 place = glm::translate(glm::mat4(1.0f), boxLo) * glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
-                            glm::translate(glm::mat4(1.0f), -glm::vec3(lo));
-    const auto makeField = [&](DemoBuilder& b) {
-        b.placeVolumes(place);
-        return b.amrField(amr.blocks, *at.values);
-    };
-    return fieldScene(device, makeField, at, extraLights, edits, drawField(options, *at.values));
+    return placedFieldScene(device, amr.wholeLo, amr.wholeHi, glm::vec2(amr.blocks.minValue, amr.blocks.maxValue), options,
+                            extraLights, edits, [&](DemoBuilder& b, glm::vec2 values) { return b.amrField(amr.blocks, values); });
 }
 
 AnariWorld buildMeshScene(ANARIDevice device, const MeshPart& mesh, const FieldSceneOptions& options,

@@ -111,14 +111,14 @@ NanoVdbFile readNanoVdbFile(const std::filesystem::path& file) {
             at += packed;
         }
     }
-    // The root's statistics: the tree follows the 672-byte grid header, the root at its fourth node offset.
-    const size_t treeAt = sizeof(nanovdb::GridData);
-    if (out.grid.size() < treeAt + 32) throw fail("its first grid is too short for a tree");
-    std::string grid(out.grid.begin(), out.grid.end());
-    const uint64_t rootAt = treeAt + readAt<uint64_t>(grid, treeAt + 24);
-    if (rootAt < treeAt || rootAt > grid.size() || grid.size() - rootAt < 40) throw fail("its first grid's root lies outside it");
-    out.minValue = readAt<float>(grid, rootAt + 32);
-    out.maxValue = readAt<float>(grid, rootAt + 36);
+    // The root's value range, read through the device's own checks of the grid (core/scene/NanoVdbTree.h).
+    try {
+        const core::CheckedNanoVdbGrid checked(out.grid);
+        out.minValue = checked.grid().tree().root().minimum();
+        out.maxValue = checked.grid().tree().root().maximum();
+    } catch (const std::invalid_argument& e) {
+        throw fail(std::string("its first grid: ") + e.what());
+    }
     if (!std::isfinite(out.minValue) || !std::isfinite(out.maxValue)) throw fail("its first grid's value range is not finite");
     return out;
 }

@@ -714,6 +714,32 @@ ANARIVolume blackVolume(RenderSession& s, ANARISpatialField field) {
     s.commit(volume);
     return volume;
 }
+
+// The mean red of a slab frame's pixels: the slab's transmittance against the white background.
+double meanRed(const Image& image) {
+    double sum = 0.0;
+    for (const glm::vec4& p : image.linear) sum += p.r;
+    return sum / double(image.linear.size());
+}
+
+// An edit that breaks a slab's field before its commit, and what the one error it gives must say.
+struct BrokenField {
+    const char* problem;
+    std::function<void(RenderSession&, ANARISpatialField)> edit;
+};
+using SlabField = std::function<ANARISpatialField(RenderSession&, const std::function<void(RenderSession&, ANARISpatialField)>&)>;
+
+// Each broken field makes exactly one error naming its problem, and the volume renders nothing: the white
+// background shows in every pixel.
+void checkRefused(const SlabField& slabField, const std::vector<BrokenField>& broken) {
+    for (const BrokenField& b : broken) {
+        CAPTURE(b.problem);
+        RenderSession s;
+        const Image image = s.render(slabFrame(s, blackVolume(s, slabField(s, b.edit))));
+        CHECK_MESSAGE(s.log.count({b.problem}) == 1, s.log.dump());
+        for (const glm::vec4& p : image.linear) CHECK(p.r == 1.0f);
+    }
+}
 }  // namespace
 
 // KHR_SPATIAL_FIELD_UNSTRUCTURED through the API: the slab as one hexahedron with a cell value and as five
@@ -726,16 +752,10 @@ TEST_CASE("volume over an unstructured field: transmittance through the API; bro
         RenderSession s;
         const Image image = s.render(slabFrame(s, blackVolume(s, unstructuredSlab(s, tetrahedra))));
         CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
-        double sum = 0.0;
-        for (const glm::vec4& p : image.linear) sum += p.r;
         // 64 pixels x 256 samples of a Bernoulli(e^-1): standard error 0.0038.
-        CHECK(sum / double(image.linear.size()) == doctest::Approx(std::exp(-1.0)).epsilon(0.05));
+        CHECK(meanRed(image) == doctest::Approx(std::exp(-1.0)).epsilon(0.05));
     }
-    struct Broken {
-        const char* problem;  // what the error must say
-        std::function<void(RenderSession&, ANARISpatialField)> edit;
-    };
-    const std::vector<Broken> broken = {
+    checkRefused([](RenderSession& s, const auto& edit) { return unstructuredSlab(s, false, edit); }, {
         {"index 3 is 9, past the 8 vertices",
          [](RenderSession& s, ANARISpatialField f) {
              s.setObject(f, "index", ANARI_ARRAY1D, s.array(ANARI_UINT32, std::vector<uint32_t>{0, 1, 2, 9, 4, 5, 6, 7}));
@@ -758,14 +778,7 @@ TEST_CASE("volume over an unstructured field: transmittance through the API; bro
          [](RenderSession& s, ANARISpatialField f) {
              s.setObject(f, "vertex.position", ANARI_ARRAY1D, s.array(ANARI_FLOAT32_VEC4, std::vector<glm::vec4>(8)));
          }},
-    };
-    for (const Broken& b : broken) {
-        CAPTURE(b.problem);
-        RenderSession s;
-        const Image image = s.render(slabFrame(s, blackVolume(s, unstructuredSlab(s, false, b.edit))));
-        CHECK_MESSAGE(s.log.count({b.problem}) == 1, s.log.dump());
-        for (const glm::vec4& p : image.linear) CHECK(p.r == 1.0f);
-    }
+    });
 }
 
 // KHR_SPATIAL_FIELD_NANOVDB through the API: a fog sphere made with NanoVDB's own tools, passed as an
@@ -851,16 +864,10 @@ TEST_CASE("volume over an amr field: transmittance through the API; inconsistent
         RenderSession s;
         const Image image = s.render(slabFrame(s, blackVolume(s, amrSlab(s))));
         CHECK_MESSAGE(s.log.problems() == 0, s.log.dump());
-        double sum = 0.0;
-        for (const glm::vec4& p : image.linear) sum += p.r;
         // 64 pixels x 256 samples of a Bernoulli(e^-1): standard error 0.0038.
-        CHECK(sum / double(image.linear.size()) == doctest::Approx(std::exp(-1.0)).epsilon(0.05));
+        CHECK(meanRed(image) == doctest::Approx(std::exp(-1.0)).epsilon(0.05));
     }
-    struct Broken {
-        const char* problem;  // what the error must say
-        std::function<void(RenderSession&, ANARISpatialField)> edit;
-    };
-    const std::vector<Broken> broken = {
+    checkRefused(amrSlab, {
         {"block 0 (level 1) [0 0 0 .. 1 1 1] and block 2 [1 1 1 .. 2 2 2] overlap",
          [](RenderSession& s, ANARISpatialField f) {
              ANARIArray3D extra = s.keep(anariNewArray3D(s.device, nullptr, nullptr, nullptr, ANARI_FLOAT32, 2, 2, 2));
@@ -890,14 +897,7 @@ TEST_CASE("volume over an amr field: transmittance through the API; inconsistent
              s.setObject(f, "cellWidth", ANARI_ARRAY1D, s.array(ANARI_FLOAT32, std::vector<float>{1.0f, 2.0f}));
          }},
         {"missing required parameter 'cellWidth'", [](RenderSession& s, ANARISpatialField f) { anariUnsetParameter(s.device, f, "cellWidth"); }},
-    };
-    for (const Broken& b : broken) {
-        CAPTURE(b.problem);
-        RenderSession s;
-        const Image image = s.render(slabFrame(s, blackVolume(s, amrSlab(s, b.edit))));
-        CHECK_MESSAGE(s.log.count({b.problem}) == 1, s.log.dump());
-        for (const glm::vec4& p : image.linear) CHECK(p.r == 1.0f);
-    }
+    });
 }
 
 // A transfer-function edit (the volume's opacity set and committed) rebuilds the scene without uploading the

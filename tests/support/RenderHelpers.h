@@ -90,6 +90,22 @@ inline Mean meanRed(const Rendered& image, glm::uvec4 block = glm::uvec4(0u, ~0u
     return {mean, std::sqrt(std::max(0.0, sumSquares / n - mean * mean) / n)};
 }
 
+// `image` against `reference` in square blocks of `side` pixels: per block, the difference of their red means
+// over its tolerance, 1% of the reference's mean plus 4 standard errors of the difference. Returns the largest
+// such ratio (NaN for a NaN mean): every block agrees when it is at most 1.
+inline double worstBlock(const Rendered& image, const Rendered& reference, uint32_t side) {
+    double worst = 0.0;
+    for (uint32_t y = 0; y < reference.size.y; y += side)
+        for (uint32_t x = 0; x < reference.size.x; x += side) {
+            const glm::uvec4 block(x, x + side, y, y + side);
+            const Mean a = meanRed(image, block), b = meanRed(reference, block);
+            if (std::isnan(a.mean) || std::isnan(b.mean)) return NAN;
+            const double difference = std::abs(a.mean - b.mean);
+            if (difference > 0.0) worst = std::max(worst, difference / (0.01 * b.mean + 4.0 * std::hypot(a.standardError, b.standardError)));
+        }
+    return worst;
+}
+
 // `volume` alone under a sun of irradiance 3 from (0.3, -0.2, -1): the lit scenes of the volume tests.
 inline core::SceneDescription sunlitVolume(const core::Volume& volume) {
     core::SceneDescription scene;
