@@ -21,6 +21,8 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Me
 // Newton iterations a hexahedron, wedge or pyramid may take.
 const float UNSTRUCTURED_INSIDE_EPSILON = 1e-5;
 const uint UNSTRUCTURED_NEWTON_STEPS = 16u;
+// Cells a walk from a known cell may test before the point query falls back to the BVH.
+const uint UNSTRUCTURED_WALK_STEPS = 8u;
 
 // Vertex `vertex`: its grid-space position and its value.
 vec4 meshVertex(uint64_t mesh, UnstructuredHeader h, uint vertex) {
@@ -65,32 +67,42 @@ bool insideReference(uint shape, vec3 q) {
     return shape == UNSTRUCTURED_WEDGE ? box && q.x + q.y <= 1.0 + e : box;
 }
 
+// The barycentric coordinates of grid-space point p in the tetrahedron whose corners are indices[first ..]
+// (lambda[k]: corner k's), its corners' values and its edges from corner 0; false where they are not finite (a
+// cell of no volume was dropped on the host; a nearly flat one gives huge or NaN coordinates).
+// p = x0 + edges * lambda.yzw, solved by Cramer's rule.
+bool tetrahedronCoordinates(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint first, vec3 p, out vec4 lambda,
+                            out vec4 corner, out mat3 edges) {
+    vec4 x0 = meshVertex(mesh, h, m.words[first]), x1 = meshVertex(mesh, h, m.words[first + 1u]);
+    vec4 x2 = meshVertex(mesh, h, m.words[first + 2u]), x3 = meshVertex(mesh, h, m.words[first + 3u]);
+    vec3 e1 = x1.xyz - x0.xyz, e2 = x2.xyz - x0.xyz, e3 = x3.xyz - x0.xyz, r = p - x0.xyz;
+    vec3 c23 = cross(e2, e3);
+    vec3 b = vec3(dot(r, c23), dot(e1, cross(r, e3)), dot(e1, cross(e2, r))) / dot(e1, c23);
+    lambda = vec4(1.0 - b.x - b.y - b.z, b);
+    corner = vec4(x0.w, x1.w, x2.w, x3.w);
+    edges = mat3(e1, e2, e3);
+    return !any(isnan(b)) && !any(isinf(b));
+}
+
 // The field of the cell at grid-space point p as its interpolant gives it, also a little outside the cell
 // (extrapolated, for the iso-surface's root finding): `inside` whether p is in the cell, and with
 // `wantGradient` (a constant at each call) the interpolant's gradient in grid space. False where the
 // interpolant cannot be evaluated at p (a singular map, or a point its Newton iteration does not reach).
-//
-// Tetrahedron: barycentric coordinates b, p = x0 + mat3(x1 - x0, x2 - x0, x3 - x0) b. A cell of no volume
-// was dropped on the host; a nearly flat one gives a huge or NaN b, which fails.
 bool tetrahedronField(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint first, uint cell, vec3 p, bool wantGradient,
                       out float value, out bool inside, out vec3 gradient) {
     value = 0.0;
     inside = false;
     gradient = vec3(0.0);
-    vec4 x0 = meshVertex(mesh, h, m.words[first]), x1 = meshVertex(mesh, h, m.words[first + 1u]);
-    vec4 x2 = meshVertex(mesh, h, m.words[first + 2u]), x3 = meshVertex(mesh, h, m.words[first + 3u]);
-    vec3 e1 = x1.xyz - x0.xyz, e2 = x2.xyz - x0.xyz, e3 = x3.xyz - x0.xyz, r = p - x0.xyz;
-    vec3 c23 = cross(e2, e3);
-    vec3 b = vec3(dot(r, c23), dot(e1, cross(r, e3)), dot(e1, cross(e2, r))) / dot(e1, c23);  // Cramer's rule
-    if (any(isnan(b)) || any(isinf(b))) return false;
-    const float e = UNSTRUCTURED_INSIDE_EPSILON;
-    inside = all(greaterThanEqual(b, vec3(-e))) && b.x + b.y + b.z <= 1.0 + e;
+    vec4 lambda, corner;
+    mat3 edges;
+    if (!tetrahedronCoordinates(mesh, m, h, first, p, lambda, corner, edges)) return false;
+    inside = all(greaterThanEqual(lambda, vec4(-UNSTRUCTURED_INSIDE_EPSILON)));
     if (h.cellCentered != 0u) {
         value = uintBitsToFloat(m.words[h.cellValueOffset + cell]);
     } else {
-        value = dot(vec4(1.0 - b.x - b.y - b.z, b), vec4(x0.w, x1.w, x2.w, x3.w));
+        value = dot(lambda, corner);
         // f = f0 + (f1 - f0, f2 - f0, f3 - f0) . b with b = E^-1 (p - x0): its gradient is E^-T times that.
-        if (wantGradient) gradient = transpose(inverse(mat3(e1, e2, e3))) * vec3(x1.w - x0.w, x2.w - x0.w, x3.w - x0.w);
+        if (wantGradient) gradient = transpose(inverse(edges)) * (corner.yzw - corner.x);
     }
     return true;
 }
@@ -180,19 +192,54 @@ bool boxHolds(vec4 lo, vec4 hi, vec3 p) {
 UnstructuredHeader unstructuredHeader(uint64_t mesh) {
     MeshWordsRef m = MeshWordsRef(mesh);
     return UnstructuredHeader(m.words[0], m.words[1], m.words[2], m.words[3], m.words[4], m.words[5], m.words[6],
-                              m.words[7], m.words[8], m.words[9], m.words[10], m.words[11]);
+                              m.words[7], m.words[8], m.words[9], m.words[10], m.words[11], m.words[12],
+                              m.words[13], m.words[14]);
+}
+
+// The walk to grid-space point p from its start cell's tetrahedron (UnstructuredHeader.startCellOffset),
+// across the face opposite the corner of most negative barycentric coordinate at each step, through at most
+// UNSTRUCTURED_WALK_STEPS cells: true with `value` the field in the tetrahedron holding p; false where the
+// mesh has no tetrahedra or the start cell none, or the walk leaves the tetrahedra (the mesh's boundary, a
+// cell of another shape, a flat cell) or runs out of steps. Start cells are half a cell wide, so a walk
+// takes one to three cell tests, where the BVH's descent tests every cell whose box holds p.
+bool unstructuredWalk(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, vec3 p, uint startIndex, out float value) {
+    value = 0.0;
+    if (h.neighbourOffset == 0u) return false;
+    uint cell = m.words[h.startCellOffset + startIndex];
+    for (uint step = 0u; step < UNSTRUCTURED_WALK_STEPS && cell != UNSTRUCTURED_NO_CELL; ++step) {
+        uint word = m.words[h.cellOffset + cell];
+        if ((word & 3u) != UNSTRUCTURED_TETRAHEDRON) return false;
+        vec4 lambda, corner;
+        mat3 edges;
+        if (!tetrahedronCoordinates(mesh, m, h, h.indexOffset + (word >> 2u), p, lambda, corner, edges)) return false;
+        float lowest = min(min(lambda.x, lambda.y), min(lambda.z, lambda.w));
+        if (lowest >= -UNSTRUCTURED_INSIDE_EPSILON) {
+            value = h.cellCentered != 0u ? uintBitsToFloat(m.words[h.cellValueOffset + cell]) : dot(lambda, corner);
+            return true;
+        }
+        uint across = lambda.x == lowest ? 0u : lambda.y == lowest ? 1u : lambda.z == lowest ? 2u : 3u;
+        cell = m.words[h.neighbourOffset + 4u * cell + across];
+    }
+    return false;
+}
+
+// The start cell holding grid-space point p, clamped to the grid of them (x fastest).
+uint unstructuredStartIndex(UnstructuredHeader h, vec3 p) {
+    float startSize = float(VOLUME_MACROCELL) / float(h.startPerMacrocell);  // as the host divides
+    uvec3 at = uvec3(clamp(ivec3(floor(p / startSize)), ivec3(0), ivec3(h.startX, h.startY, h.startZ) - 1));
+    return (at.z * h.startY + at.y) * h.startX + at.x;
 }
 
 // The field of the mesh at `mesh` (a device address; `h` its header) at grid-space point p: false where no
-// cell holds p.
+// cell holds p. The query walks from its start cell's tetrahedron; where that walk does not end in a cell
+// (and in meshes without tetrahedra) it descends the BVH from its start cell's node.
 bool unstructuredValue(uint64_t mesh, UnstructuredHeader h, vec3 p, out float value) {
     value = 0.0;
     MeshWordsRef m = MeshWordsRef(mesh);
     if (h.nodeCount == 0u) return false;
-    // The walk starts at the start cell's node (none: no cell overlaps it).
-    const float startCell = float(VOLUME_MACROCELL) / float(UNSTRUCTURED_START_CELLS);
-    uvec3 at = uvec3(clamp(ivec3(floor(p / startCell)), ivec3(0), ivec3(h.startX, h.startY, h.startZ) - 1));
-    uint node = m.words[h.startOffset + (at.z * h.startY + at.y) * h.startX + at.x];
+    uint startIndex = unstructuredStartIndex(h, p);
+    if (unstructuredWalk(mesh, m, h, p, startIndex, value)) return true;
+    uint node = m.words[h.startOffset + startIndex];
     if (node == UNSTRUCTURED_NO_NODE) return false;
     MeshNodesRef nodes = MeshNodesRef(mesh + 4ul * uint64_t(h.nodeOffset));
     uint stack[BVH_MAX_DEPTH];

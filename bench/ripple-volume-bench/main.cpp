@@ -262,13 +262,18 @@ int main(int argc, char** argv) {
             const core::Volume* mesh = !c.scene.volumes.empty() && c.scene.volumes[0].unstructured ? &c.scene.volumes[0] : nullptr;
             const double voxels = mesh ? double(mesh->unstructured->cellsKept) : double(n) * n * n;
             const double bytesPerVoxel = double(scene.report().gpuBytes) / voxels;
-            double halfShare = 0.0;  // one of 2 ranks' mesh bytes over 1 rank's
+            double halfShare = 0.0;     // one of 2 ranks' mesh bytes over 1 rank's
+            double prepareSeconds = 0.0;  // checking and packing the mesh on the host (prepareUnstructuredGrid)
             if (mesh) {
                 const apps::UnstructuredMesh whole = tetrahedralField(uint32_t(std::lround(double(n) / std::cbrt(6.0))) + 1);
+                prepareSeconds = bench::wallSeconds();
+                prepared(whole);
+                prepareSeconds = bench::wallSeconds() - prepareSeconds;
                 halfShare = double(prepared(apps::meshPart(whole, 0, 2))->words.size()) / double(mesh->unstructured->words.size());
-                std::printf("  %.0f tetrahedra (macrocells %ux%ux%u, BVH depth %u); one of 2 ranks holds %.3f of the mesh's bytes\n",
+                std::printf("  %.0f tetrahedra (macrocells %ux%ux%u, BVH depth %u), packed in %.2f s; one of 2 ranks holds %.3f of the "
+                            "mesh's bytes\n",
                             voxels, mesh->unstructured->macrocells.x, mesh->unstructured->macrocells.y,
-                            mesh->unstructured->macrocells.z, mesh->unstructured->bvhDepth, halfShare);
+                            mesh->unstructured->macrocells.z, mesh->unstructured->bvhDepth, prepareSeconds, halfShare);
             }
             core::PathTracer tracer(context);
             tracer.resize({size, size}, false);
@@ -330,6 +335,7 @@ int main(int argc, char** argv) {
                                {"sceneBuildSeconds", buildSeconds}, {"majorantBuildSeconds", majorantSeconds},
                                {mesh ? "gpuBytesPerTetrahedron" : "gpuBytesPerVoxel", bytesPerVoxel},
                                {"tetrahedra", mesh ? voxels : 0.0}, {"oneOfTwoRanksMeshShare", halfShare},
+                               {"meshPrepareSeconds", prepareSeconds},
                                {"gpuBytes", double(scene.report().gpuBytes)},
                                {"renderSeconds", first + wall},
                                {"firstFrameSeconds", first}, {"cpuSecondsAfterFirst", cpu},

@@ -5,6 +5,7 @@
 #include "shaders/shared/volume.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -18,6 +19,9 @@ using glm::dvec3;
 
 constexpr uint32_t kMaxIndices = uint32_t(1) << 30;  // a cell's word keeps its first index in 30 bits
 constexpr uint32_t kLeafCells = 8;                    // point location tests every cell of a leaf
+// A start cell's side in median cells, as near as a whole number of them per macrocell edge allows: a walk
+// from its tetrahedron to a point in it seldom crosses more than a face or two.
+constexpr double kStartCellSide = 0.5;
 
 uint32_t shapeOf(uint8_t type) {
     switch (type) {
@@ -58,14 +62,14 @@ void pushFloat(std::vector<uint32_t>& words, float f) {
     words.push_back(bits);
 }
 
-// Macrocells per axis over a box of `extent`: cubes as far as the box allows, their side the median of the
-// cells' longest box edges (so that a thin shell of cells in a large box still gets macrocells about as
-// small as its cells, and majorants that follow it), at most 2^21 of them and 256 per axis.
-glm::uvec3 macrocellCounts(glm::dvec3 extent, std::vector<double> cellSizes) {
+// Macrocells per axis over a box of `extent`: cubes as far as the box allows, their side `cellSize` (the
+// median of the cells' longest box edges: a thin shell of cells in a large box still gets macrocells about as
+// small as its cells, and majorants that follow it), at most 2^21 of them and 256 per axis. Larger macrocells
+// are crossed faster but give looser majorants (docs/unstructured.md has the measurements).
+glm::uvec3 macrocellCounts(glm::dvec3 extent, double cellSize) {
     const double longest = std::max({extent.x, extent.y, extent.z});
     const dvec3 e = glm::max(extent, dvec3(longest * 1e-3));
-    std::nth_element(cellSizes.begin(), cellSizes.begin() + std::ptrdiff_t(cellSizes.size() / 2), cellSizes.end());
-    double side = std::max(cellSizes[cellSizes.size() / 2], longest / 256.0);
+    double side = std::max(cellSize, longest / 256.0);
     side = std::max(side, std::cbrt(e.x * e.y * e.z / double(1 << 21)));
     glm::uvec3 counts;
     for (int a = 0; a < 3; ++a) counts[a] = uint32_t(std::clamp(std::round(e[a] / side), 1.0, 256.0));
@@ -73,6 +77,126 @@ glm::uvec3 macrocellCounts(glm::dvec3 extent, std::vector<double> cellSizes) {
 }
 
 std::string cellName(uint64_t c) { return "cell " + std::to_string(c); }
+
+// A tetrahedron's face planes, normals outward: a box wholly outside one of them misses the tetrahedron. The
+// planes are moved out by 1e-4 of the cell's size, more than the kernels' inside tolerance reaches.
+struct FacePlanes {
+    std::array<dvec3, 4> normal;
+    std::array<double, 4> offset;
+    bool miss(const dvec3& lo, const dvec3& hi) const {
+        for (int f = 0; f < 4; ++f) {
+            const dvec3 nearest = glm::mix(hi, lo, glm::greaterThan(normal[f], dvec3(0.0)));  // the corner deepest inside
+            if (glm::dot(normal[f], nearest) > offset[f]) return true;
+        }
+        return false;
+    }
+};
+
+template <class ToGrid>
+FacePlanes facePlanes(const UnstructuredCells& cells, uint32_t c, const ToGrid& toGrid) {
+    dvec3 x[4];
+    for (uint32_t k = 0; k < 4; ++k) x[k] = dvec3(toGrid(cells.positions[cells.index[cells.cellIndex[c] + k]]));
+    const dvec3 extent = glm::max(glm::max(x[0], x[1]), glm::max(x[2], x[3])) - glm::min(glm::min(x[0], x[1]), glm::min(x[2], x[3]));
+    const double slack = 1e-4 * std::max({extent.x, extent.y, extent.z});
+    FacePlanes planes;
+    for (int k = 0; k < 4; ++k) {  // the face opposite corner k
+        const dvec3 a = x[(k + 1) % 4], b = x[(k + 2) % 4], d = x[(k + 3) % 4];
+        dvec3 n = glm::normalize(glm::cross(b - a, d - a));
+        if (glm::dot(n, x[k] - a) > 0.0) n = -n;
+        planes.normal[k] = n;
+        planes.offset[k] = glm::dot(n, a) + slack;
+    }
+    return planes;
+}
+
+// For the walk from tetrahedron to tetrahedron (shaders/unstructured.glsl): per cell in leaf order, the
+// leaf-order cells across the faces opposite its corners 0..3, UNSTRUCTURED_NO_CELL where no other
+// tetrahedron shares the face (the boundary, a cell of another shape, or a face whose corners are other vertices
+// at the same positions). Faces are matched by their sorted vertex indices; empty without tetrahedra.
+std::vector<uint32_t> tetrahedronNeighbours(const UnstructuredCells& cells, const std::vector<uint32_t>& kept,
+                                            const std::vector<uint32_t>& leafOrder) {
+    struct Face {
+        std::array<uint32_t, 3> corners;  // sorted
+        uint32_t slot;                    // 4 * leaf-order cell + the corner the face is opposite
+    };
+    std::vector<Face> faces;
+    for (uint32_t leaf = 0; leaf < leafOrder.size(); ++leaf) {
+        const uint32_t c = kept[leafOrder[leaf]];
+        if (cells.cellType[c] != 10) continue;
+        const uint32_t* corner = cells.index.data() + cells.cellIndex[c];
+        for (uint32_t k = 0; k < 4; ++k) {
+            Face face{{corner[(k + 1) % 4], corner[(k + 2) % 4], corner[(k + 3) % 4]}, 4 * leaf + k};
+            std::sort(face.corners.begin(), face.corners.end());
+            faces.push_back(face);
+        }
+    }
+    if (faces.empty()) return {};
+    std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.corners < b.corners; });
+    std::vector<uint32_t> neighbours(4 * leafOrder.size(), gpu::UNSTRUCTURED_NO_CELL);
+    // A face shared by exactly two tetrahedra links them; one held by three or more (overlapping cells) links
+    // none, so that every link is mutual.
+    for (size_t first = 0, last = 0; first < faces.size(); first = last) {
+        while (last < faces.size() && faces[last].corners == faces[first].corners) ++last;
+        if (last - first != 2) continue;
+        neighbours[faces[first].slot] = faces[first + 1].slot / 4;
+        neighbours[faces[first + 1].slot] = faces[first].slot / 4;
+    }
+    return neighbours;
+}
+
+// Each start cell's tetrahedron (leaf order), where walks to its points begin (shaders/unstructured.glsl):
+// one that holds the start cell's centre; else, of those whose centroid lies in the start cell, the one whose
+// centroid is nearest the centre; else a neighbouring start cell's (two rounds); else none. `boxes`: the kept
+// cells' grid-space boxes.
+template <class ToGrid>
+std::vector<uint32_t> startTetrahedra(const UnstructuredCells& cells, const std::vector<uint32_t>& kept, const std::vector<uint32_t>& leafOrder,
+                                      const std::vector<bvh::Aabb>& boxes, const ToGrid& toGrid, glm::uvec3 startCells, float startSize) {
+    const auto indexOf = [&](glm::uvec3 at) { return (size_t(at.z) * startCells.y + at.y) * startCells.x + at.x; };
+    std::vector<uint32_t> start(size_t(startCells.x) * startCells.y * startCells.z, gpu::UNSTRUCTURED_NO_CELL);
+    std::vector<double> distance(start.size(), INFINITY);  // of the chosen centroid from the centre; -1: holds it
+    for (uint32_t leaf = 0; leaf < leafOrder.size(); ++leaf) {
+        const uint32_t c = kept[leafOrder[leaf]];
+        if (cells.cellType[c] != 10) continue;
+        const FacePlanes planes = facePlanes(cells, c, toGrid);
+        const bvh::Aabb& box = boxes[leafOrder[leaf]];
+        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo / startSize, 0.0f)), startCells - 1u);
+        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi / startSize, 0.0f)), startCells - 1u);
+        for (uint32_t z = first.z; z <= last.z; ++z)
+            for (uint32_t y = first.y; y <= last.y; ++y)
+                for (uint32_t x = first.x; x <= last.x; ++x) {
+                    const dvec3 centre = (dvec3(x, y, z) + 0.5) * double(startSize);
+                    const size_t i = indexOf({x, y, z});
+                    if (distance[i] >= 0.0 && !planes.miss(centre, centre)) {
+                        distance[i] = -1.0;
+                        start[i] = leaf;
+                    }
+                }
+        dvec3 centroid(0.0);
+        for (uint32_t k = 0; k < 4; ++k) centroid += 0.25 * dvec3(toGrid(cells.positions[cells.index[cells.cellIndex[c] + k]]));
+        const glm::uvec3 at = glm::min(glm::uvec3(glm::max(centroid / double(startSize), 0.0)), startCells - 1u);
+        const double d = glm::length(centroid - (dvec3(at) + 0.5) * double(startSize));
+        if (distance[indexOf(at)] >= 0.0 && d < distance[indexOf(at)]) {
+            distance[indexOf(at)] = d;
+            start[indexOf(at)] = leaf;
+        }
+    }
+    for (int round = 0; round < 2; ++round) {
+        std::vector<uint32_t> grown = start;
+        for (uint32_t z = 0; z < startCells.z; ++z)
+            for (uint32_t y = 0; y < startCells.y; ++y)
+                for (uint32_t x = 0; x < startCells.x; ++x) {
+                    uint32_t& s = grown[indexOf({x, y, z})];
+                    for (int k = 0; k < 6 && s == gpu::UNSTRUCTURED_NO_CELL; ++k) {
+                        glm::ivec3 there(x, y, z);
+                        there[k / 2] += k % 2 ? 1 : -1;
+                        if (glm::all(glm::greaterThanEqual(there, glm::ivec3(0))) && glm::all(glm::lessThan(there, glm::ivec3(startCells))))
+                            s = start[indexOf(glm::uvec3(there))];
+                    }
+                }
+        start = std::move(grown);
+    }
+    return start;
+}
 
 }  // namespace
 
@@ -168,7 +292,9 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     // The kernels map rays into grid space in float: the box and its scale must stay finite there.
     if (!std::isfinite(float(extent.x)) || !std::isfinite(float(extent.y)) || !std::isfinite(float(extent.z)))
         throw std::invalid_argument("the mesh's box is wider than a float can hold");
-    grid->macrocells = macrocellCounts(extent, std::move(cellSizes));
+    std::nth_element(cellSizes.begin(), cellSizes.begin() + std::ptrdiff_t(cellSizes.size() / 2), cellSizes.end());
+    const double medianCell = cellSizes[cellSizes.size() / 2];
+    grid->macrocells = macrocellCounts(extent, medianCell);
     // Every (cell, macrocell it overlaps) pair is visited below: macrocells are coarsened until there are at
     // most 64 per cell or macrocell (overlapping cells of very different sizes would otherwise multiply them).
     const auto overlaps = [&](glm::uvec3 counts) {
@@ -198,8 +324,10 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     const bvh::Bvh tree = bvh::buildBinnedSah(boxes, options);
     grid->bvhDepth = tree.depth;
 
-    // The value range of each macrocell, over the cells whose boxes overlap it: an interpolated value lies
-    // between its cell's lowest and highest corner values (every shape function is non-negative inside).
+    // The value range of each macrocell, over the cells that overlap it: an interpolated value lies between
+    // its cell's lowest and highest corner values (every shape function is non-negative inside). A cell
+    // overlaps the macrocells its box does, less, for a tetrahedron, those wholly outside one of its faces'
+    // planes (a sliver's box holds many macrocells the sliver misses).
     const glm::uvec3 m = grid->macrocells;
     grid->macrocellRanges.assign(size_t(m.x) * m.y * m.z, glm::vec2(INFINITY, -INFINITY));
     std::vector<glm::vec2> cellRanges(kept.size());
@@ -218,9 +346,12 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
         const float size = float(gpu::VOLUME_MACROCELL);
         const glm::uvec3 first = glm::min(glm::uvec3(glm::max(boxes[k].lo / size, 0.0f)), m - 1u);
         const glm::uvec3 last = glm::min(glm::uvec3(glm::max(boxes[k].hi / size, 0.0f)), m - 1u);
+        const bool tetrahedron = cells.cellType[c] == 10 && first != last;
+        const FacePlanes planes = tetrahedron ? facePlanes(cells, c, toGrid) : FacePlanes{};
         for (uint32_t z = first.z; z <= last.z; ++z)
             for (uint32_t y = first.y; y <= last.y; ++y)
                 for (uint32_t x = first.x; x <= last.x; ++x) {
+                    if (tetrahedron && planes.miss(dvec3(x, y, z) * double(size), dvec3(x + 1, y + 1, z + 1) * double(size))) continue;
                     glm::vec2& r = grid->macrocellRanges[(size_t(z) * m.y + y) * m.x + x];
                     r = glm::vec2(std::min(r.x, range.x), std::max(r.y, range.y));
                 }
@@ -255,13 +386,20 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
         }
         return a;
     };
-    const glm::uvec3 startCells = m * gpu::UNSTRUCTURED_START_CELLS;
+    // Start cells per macrocell edge, at most 8, and at most 2 per cell in all (or 2^15).
+    const dvec3 macrocellSide = extent / dvec3(m);
+    uint32_t startPerMacrocell = uint32_t(std::clamp(
+        std::round(std::max({macrocellSide.x, macrocellSide.y, macrocellSide.z}) / (kStartCellSide * medianCell)), 1.0, 8.0));
+    while (startPerMacrocell > 1 &&
+           double(m.x) * m.y * m.z * std::pow(double(startPerMacrocell), 3.0) > std::max(2.0 * double(kept.size()), double(1 << 15)))
+        --startPerMacrocell;
+    const glm::uvec3 startCells = m * startPerMacrocell;
+    const float startSize = float(gpu::VOLUME_MACROCELL) / float(startPerMacrocell);
     std::vector<uint32_t> start(size_t(startCells.x) * startCells.y * startCells.z, gpu::UNSTRUCTURED_NO_NODE);
     for (size_t slot = 0; slot < kept.size(); ++slot) {
         const bvh::Aabb& box = boxes[tree.primOrder[slot]];
-        const float size = float(gpu::VOLUME_MACROCELL) / float(gpu::UNSTRUCTURED_START_CELLS);
-        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo / size, 0.0f)), startCells - 1u);
-        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi / size, 0.0f)), startCells - 1u);
+        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo / startSize, 0.0f)), startCells - 1u);
+        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi / startSize, 0.0f)), startCells - 1u);
         for (uint32_t z = first.z; z <= last.z; ++z)
             for (uint32_t y = first.y; y <= last.y; ++y)
                 for (uint32_t x = first.x; x <= last.x; ++x) {
@@ -271,7 +409,7 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     }
 
     // The words: header, vertices (grid space, with their values), cell values, cells in leaf order,
-    // indices, nodes, start nodes.
+    // indices, nodes, start nodes, tetrahedra's neighbours.
     std::vector<uint32_t>& words = grid->words;
     gpu::UnstructuredHeader header{};
     header.cellCount = uint32_t(kept.size());
@@ -280,6 +418,7 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     header.startX = startCells.x;
     header.startY = startCells.y;
     header.startZ = startCells.z;
+    header.startPerMacrocell = startPerMacrocell;
     const auto align4 = [&] { words.resize((words.size() + 3) / 4 * 4); };
     words.resize(sizeof(header) / sizeof(uint32_t));
     align4();
@@ -310,6 +449,16 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     std::memcpy(words.data() + header.nodeOffset, tree.nodes.data(), nodeWords * sizeof(uint32_t));
     header.startOffset = uint32_t(words.size());
     words.insert(words.end(), start.begin(), start.end());
+    const std::vector<uint32_t> neighbours = tetrahedronNeighbours(cells, kept, tree.primOrder);
+    if (!neighbours.empty()) {
+        const std::vector<uint32_t> startCell = startTetrahedra(cells, kept, tree.primOrder, boxes, toGrid, startCells, startSize);
+        if (uint64_t(words.size()) + neighbours.size() + startCell.size() > uint64_t(UINT32_MAX))
+            throw std::invalid_argument("the mesh needs more than 2^32 words on the device");
+        header.neighbourOffset = uint32_t(words.size());
+        words.insert(words.end(), neighbours.begin(), neighbours.end());
+        header.startCellOffset = uint32_t(words.size());
+        words.insert(words.end(), startCell.begin(), startCell.end());
+    }
     std::memcpy(words.data(), &header, sizeof(header));
     return grid;
 }

@@ -67,7 +67,10 @@ RIPPLE_CONST uint VOLUME_KIND_AMR = 3u;
 // Cells are in the order of the BVH's leaves; a cell's word is its first index << 2 | its shape
 // (UNSTRUCTURED_TETRAHEDRON..), whose corners are indices[first ..] in VTK's vertex order. A point query
 // starts at its start cell's node: the lowest node whose subtree holds every cell overlapping the start
-// cell (UNSTRUCTURED_NO_NODE: no cell does).
+// cell (UNSTRUCTURED_NO_NODE: no cell does). A query that knows a cell near the point (the march's previous
+// collision's) walks there instead, from tetrahedron to tetrahedron across their shared faces: the 4 words
+// per cell at neighbourOffset are the leaf-order cells across the faces opposite its corners 0..3
+// (UNSTRUCTURED_NO_CELL: none, a boundary face, or a cell that is not a tetrahedron).
 struct UnstructuredHeader {
     uint cellCount;
     uint nodeCount;        // BvhNodes (shared/bvh.h) at nodeOffset; 0: no cell
@@ -78,9 +81,12 @@ struct UnstructuredHeader {
     uint nodeOffset;       // a multiple of 4 (the nodes are read as vec4s)
     uint cellCentered;
     uint startOffset;      // a word per start cell (x fastest)
-    uint startX;           // start cells per axis: UNSTRUCTURED_START_CELLS per macrocell edge
+    uint startX;           // start cells per axis: startPerMacrocell per macrocell edge
     uint startY;
     uint startZ;
+    uint startPerMacrocell;
+    uint neighbourOffset;  // 0: no table (the mesh has no tetrahedron)
+    uint startCellOffset;  // with the table: a word per start cell, the tetrahedron its walks begin at
 };
 
 // An AMR hierarchy on the device: 32-bit words from the address VolumeRecord.voxels, this header first. Block
@@ -107,11 +113,8 @@ struct AmrBlockRecord {
     uint firstValue;
 };
 
-// Start cells per macrocell edge: a point query starts from the start node of the finer grid of start
-// cells, whose lowest common ancestors lie deeper in the BVH than a macrocell's would.
-RIPPLE_CONST uint UNSTRUCTURED_START_CELLS = 2u;
-
 RIPPLE_CONST uint UNSTRUCTURED_NO_NODE = 0xFFFFFFFFu;
+RIPPLE_CONST uint UNSTRUCTURED_NO_CELL = 0xFFFFFFFFu;
 RIPPLE_CONST uint UNSTRUCTURED_TETRAHEDRON = 0u;  // VTK 10
 RIPPLE_CONST uint UNSTRUCTURED_HEXAHEDRON = 1u;   // VTK 12
 RIPPLE_CONST uint UNSTRUCTURED_WEDGE = 2u;        // VTK 13
