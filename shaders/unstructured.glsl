@@ -204,21 +204,22 @@ UnstructuredHeader unstructuredHeader(uint64_t mesh) {
 // takes one to three cell tests, where the BVH's descent tests every cell whose box holds p.
 bool unstructuredWalk(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, vec3 p, uint startIndex, out float value) {
     value = 0.0;
-    if (h.neighbourOffset == 0u) return false;
+    if (h.neighbours == 0u) return false;
     uint cell = m.words[h.startCellOffset + startIndex];
     for (uint step = 0u; step < UNSTRUCTURED_WALK_STEPS && cell != UNSTRUCTURED_NO_CELL; ++step) {
         uint word = m.words[h.cellOffset + cell];
         if ((word & 3u) != UNSTRUCTURED_TETRAHEDRON) return false;
         vec4 lambda, corner;
         mat3 edges;
-        if (!tetrahedronCoordinates(mesh, m, h, h.indexOffset + (word >> 2u), p, lambda, corner, edges)) return false;
+        uint first = h.indexOffset + (word >> 2u);
+        if (!tetrahedronCoordinates(mesh, m, h, first, p, lambda, corner, edges)) return false;
         float lowest = min(min(lambda.x, lambda.y), min(lambda.z, lambda.w));
         if (lowest >= -UNSTRUCTURED_INSIDE_EPSILON) {
             value = h.cellCentered != 0u ? uintBitsToFloat(m.words[h.cellValueOffset + cell]) : dot(lambda, corner);
             return true;
         }
         uint across = lambda.x == lowest ? 0u : lambda.y == lowest ? 1u : lambda.z == lowest ? 2u : 3u;
-        cell = m.words[h.neighbourOffset + 4u * cell + across];
+        cell = m.words[first + 4u + across];
     }
     return false;
 }

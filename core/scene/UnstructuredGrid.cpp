@@ -409,7 +409,7 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     }
 
     // The words: header, vertices (grid space, with their values), cell values, cells in leaf order,
-    // indices, nodes, start nodes, tetrahedra's neighbours.
+    // indices (and tetrahedra's neighbours), nodes, start nodes, start tetrahedra.
     std::vector<uint32_t>& words = grid->words;
     gpu::UnstructuredHeader header{};
     header.cellCount = uint32_t(kept.size());
@@ -422,8 +422,21 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     const auto align4 = [&] { words.resize((words.size() + 3) / 4 * 4); };
     words.resize(sizeof(header) / sizeof(uint32_t));
     align4();
+    // Vertices in the order the leaf-order cells first use them (those no kept cell uses are left out), so
+    // that cells near each other in the BVH find their corners near each other in memory.
+    std::vector<uint32_t> renumbered(vertexCount, gpu::UNSTRUCTURED_NO_CELL), usedVertices;
+    for (uint32_t slot : tree.primOrder) {
+        const uint32_t c = kept[slot];
+        for (uint32_t k = 0; k < unstructuredCorners(cells.cellType[c]); ++k) {
+            const uint32_t v = cells.index[cells.cellIndex[c] + k];
+            if (renumbered[v] == gpu::UNSTRUCTURED_NO_CELL) {
+                renumbered[v] = uint32_t(usedVertices.size());
+                usedVertices.push_back(v);
+            }
+        }
+    }
     header.vertexOffset = uint32_t(words.size());
-    for (size_t v = 0; v < vertexCount; ++v) {
+    for (uint32_t v : usedVertices) {
         const glm::vec3 g = toGrid(cells.positions[v]);
         pushFloat(words, g.x);
         pushFloat(words, g.y);
@@ -433,32 +446,37 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     header.cellValueOffset = uint32_t(words.size());
     if (cells.cellCentered)
         for (uint32_t slot : tree.primOrder) pushFloat(words, cells.values[kept[slot]]);
-    header.cellOffset = uint32_t(words.size());
-    for (uint32_t slot : tree.primOrder) {
-        const uint32_t c = kept[slot];
-        words.push_back(cells.cellIndex[c] << 2 | shapeOf(cells.cellType[c]));
+    // Each cell's corners in leaf order, a tetrahedron's followed by its neighbours when the mesh has them:
+    // a step of the walk reads one cell's 8 words together.
+    const std::vector<uint32_t> neighbours = tetrahedronNeighbours(cells, kept, tree.primOrder);
+    header.neighbours = neighbours.empty() ? 0u : 1u;
+    std::vector<uint32_t> index, cellWords;
+    for (uint32_t leaf = 0; leaf < tree.primOrder.size(); ++leaf) {
+        const uint32_t c = kept[tree.primOrder[leaf]];
+        if (index.size() >= kMaxIndices) throw std::invalid_argument("the mesh's cells need more than 2^30 index words on the device");
+        cellWords.push_back(uint32_t(index.size()) << 2 | shapeOf(cells.cellType[c]));
+        for (uint32_t k = 0; k < unstructuredCorners(cells.cellType[c]); ++k) index.push_back(renumbered[cells.index[cells.cellIndex[c] + k]]);
+        if (header.neighbours && cells.cellType[c] == 10) index.insert(index.end(), &neighbours[4 * leaf], &neighbours[4 * leaf] + 4);
     }
+    header.cellOffset = uint32_t(words.size());
+    words.insert(words.end(), cellWords.begin(), cellWords.end());
     header.indexOffset = uint32_t(words.size());
-    words.insert(words.end(), cells.index.begin(), cells.index.end());
+    if (uint64_t(words.size()) + index.size() > uint64_t(UINT32_MAX))
+        throw std::invalid_argument("the mesh needs more than 2^32 words on the device");
+    words.insert(words.end(), index.begin(), index.end());
     align4();
     header.nodeOffset = uint32_t(words.size());
     const size_t nodeWords = nodeCount * sizeof(gpu::BvhNode) / sizeof(uint32_t);
-    if (uint64_t(words.size()) + nodeWords + start.size() > uint64_t(UINT32_MAX))
+    const std::vector<uint32_t> startCell =
+        header.neighbours ? startTetrahedra(cells, kept, tree.primOrder, boxes, toGrid, startCells, startSize) : std::vector<uint32_t>();
+    if (uint64_t(words.size()) + nodeWords + start.size() + startCell.size() > uint64_t(UINT32_MAX))
         throw std::invalid_argument("the mesh needs more than 2^32 words on the device");
     words.resize(words.size() + nodeWords);
     std::memcpy(words.data() + header.nodeOffset, tree.nodes.data(), nodeWords * sizeof(uint32_t));
     header.startOffset = uint32_t(words.size());
     words.insert(words.end(), start.begin(), start.end());
-    const std::vector<uint32_t> neighbours = tetrahedronNeighbours(cells, kept, tree.primOrder);
-    if (!neighbours.empty()) {
-        const std::vector<uint32_t> startCell = startTetrahedra(cells, kept, tree.primOrder, boxes, toGrid, startCells, startSize);
-        if (uint64_t(words.size()) + neighbours.size() + startCell.size() > uint64_t(UINT32_MAX))
-            throw std::invalid_argument("the mesh needs more than 2^32 words on the device");
-        header.neighbourOffset = uint32_t(words.size());
-        words.insert(words.end(), neighbours.begin(), neighbours.end());
-        header.startCellOffset = uint32_t(words.size());
-        words.insert(words.end(), startCell.begin(), startCell.end());
-    }
+    header.startCellOffset = uint32_t(words.size());
+    words.insert(words.end(), startCell.begin(), startCell.end());
     std::memcpy(words.data(), &header, sizeof(header));
     return grid;
 }

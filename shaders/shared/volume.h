@@ -67,10 +67,10 @@ RIPPLE_CONST uint VOLUME_KIND_AMR = 3u;
 // Cells are in the order of the BVH's leaves; a cell's word is its first index << 2 | its shape
 // (UNSTRUCTURED_TETRAHEDRON..), whose corners are indices[first ..] in VTK's vertex order. A point query
 // starts at its start cell's node: the lowest node whose subtree holds every cell overlapping the start
-// cell (UNSTRUCTURED_NO_NODE: no cell does). A query that knows a cell near the point (the march's previous
-// collision's) walks there instead, from tetrahedron to tetrahedron across their shared faces: the 4 words
-// per cell at neighbourOffset are the leaf-order cells across the faces opposite its corners 0..3
-// (UNSTRUCTURED_NO_CELL: none, a boundary face, or a cell that is not a tetrahedron).
+// cell (UNSTRUCTURED_NO_NODE: no cell does). In a mesh with tetrahedra it first walks from its start cell's
+// tetrahedron across shared faces: with `neighbours`, a tetrahedron's 4 indices are followed by the leaf-order
+// cells across the faces opposite its corners 0..3 (UNSTRUCTURED_NO_CELL: none, a boundary face, or a cell
+// that is not a tetrahedron).
 struct UnstructuredHeader {
     uint cellCount;
     uint nodeCount;        // BvhNodes (shared/bvh.h) at nodeOffset; 0: no cell
@@ -85,8 +85,8 @@ struct UnstructuredHeader {
     uint startY;
     uint startZ;
     uint startPerMacrocell;
-    uint neighbourOffset;  // 0: no table (the mesh has no tetrahedron)
-    uint startCellOffset;  // with the table: a word per start cell, the tetrahedron its walks begin at
+    uint neighbours;       // 1: tetrahedra's indices are followed by their neighbours; 0: the mesh has no tetrahedron
+    uint startCellOffset;  // with neighbours: a word per start cell, the tetrahedron its walks begin at
 };
 
 // An AMR hierarchy on the device: 32-bit words from the address VolumeRecord.voxels, this header first. Block
