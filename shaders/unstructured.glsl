@@ -200,18 +200,22 @@ UnstructuredHeader unstructuredHeader(uint64_t mesh) {
 // across the face opposite the corner of most negative barycentric coordinate at each step, through at most
 // UNSTRUCTURED_WALK_STEPS cells: true with `value` the field in the tetrahedron holding p; false where the
 // mesh has no tetrahedra or the start cell none, or the walk leaves the tetrahedra (the mesh's boundary, a
-// cell of another shape, a flat cell) or runs out of steps. Start cells are half a cell wide, so a walk
-// takes one to three cell tests, where the BVH's descent tests every cell whose box holds p.
+// cell of another shape, a flat cell) or runs out of steps. Start cells are about half the median cell wide,
+// so a walk mostly takes a few cell tests, where the BVH's descent tests every cell whose box holds p.
 bool unstructuredWalk(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, vec3 p, uint startIndex, out float value) {
     value = 0.0;
     if (h.neighbours == 0u) return false;
     uint cell = m.words[h.startCellOffset + startIndex];
     for (uint step = 0u; step < UNSTRUCTURED_WALK_STEPS && cell != UNSTRUCTURED_NO_CELL; ++step) {
-        uint word = m.words[h.cellOffset + cell];
-        if ((word & 3u) != UNSTRUCTURED_TETRAHEDRON) return false;
+        // Every cell a tetrahedron: cell c's 8 words are at 8c.
+        uint first = h.indexOffset + 8u * cell;
+        if (h.neighbours != UNSTRUCTURED_NEIGHBOURS_ALL_TETRAHEDRA) {
+            uint word = m.words[h.cellOffset + cell];
+            if ((word & 3u) != UNSTRUCTURED_TETRAHEDRON) return false;
+            first = h.indexOffset + (word >> 2u);
+        }
         vec4 lambda, corner;
         mat3 edges;
-        uint first = h.indexOffset + (word >> 2u);
         if (!tetrahedronCoordinates(mesh, m, h, first, p, lambda, corner, edges)) return false;
         float lowest = min(min(lambda.x, lambda.y), min(lambda.z, lambda.w));
         if (lowest >= -UNSTRUCTURED_INSIDE_EPSILON) {
@@ -224,16 +228,17 @@ bool unstructuredWalk(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, vec3 
     return false;
 }
 
-// The start cell holding grid-space point p, clamped to the grid of them (x fastest).
+// The start cell holding grid-space point p, clamped to the grid of them (x fastest). A start cell spans
+// startPerMacrocell / 8 grid units: the scale is exact, so the host's float product gives the same cell.
 uint unstructuredStartIndex(UnstructuredHeader h, vec3 p) {
-    float startSize = float(VOLUME_MACROCELL) / float(h.startPerMacrocell);  // as the host divides
-    uvec3 at = uvec3(clamp(ivec3(floor(p / startSize)), ivec3(0), ivec3(h.startX, h.startY, h.startZ) - 1));
+    uvec3 at = uvec3(clamp(ivec3(floor(p * (float(h.startPerMacrocell) * 0.125))), ivec3(0), ivec3(h.startX, h.startY, h.startZ) - 1));
     return (at.z * h.startY + at.y) * h.startX + at.x;
 }
 
 // The field of the mesh at `mesh` (a device address; `h` its header) at grid-space point p: false where no
-// cell holds p. The query walks from its start cell's tetrahedron; where that walk does not end in a cell
-// (and in meshes without tetrahedra) it descends the BVH from its start cell's node.
+// cell holds p. The query walks from the start cell's tetrahedron; where that walk does not end in a cell (and
+// in meshes without tetrahedra) it descends the BVH from the start cell's node. A start cell that no cell
+// overlaps has neither, and returns at once.
 bool unstructuredValue(uint64_t mesh, UnstructuredHeader h, vec3 p, out float value) {
     value = 0.0;
     MeshWordsRef m = MeshWordsRef(mesh);
@@ -246,7 +251,7 @@ bool unstructuredValue(uint64_t mesh, UnstructuredHeader h, vec3 p, out float va
     uint stack[BVH_MAX_DEPTH];
     uint top = 0u;
     // Nodes visited, bounded (the tree has nodeCount of them); lavapipe ends any one loop after 65,535
-    // iterations, so the walk is two nested loops.
+    // iterations, so the descent is two nested loops.
     for (uint chunk = 0u; chunk < 64u; ++chunk) {
         for (uint visit = 0u; visit < 32768u; ++visit) {
             BvhNode n = nodes.nodes[node];

@@ -78,11 +78,20 @@ glm::uvec3 macrocellCounts(glm::dvec3 extent, double cellSize) {
 
 std::string cellName(uint64_t c) { return "cell " + std::to_string(c); }
 
-// A tetrahedron's face planes, normals outward: a box wholly outside one of them misses the tetrahedron. The
-// planes are moved out by 1e-4 of the cell's size, more than the kernels' inside tolerance reaches.
+// A tetrahedron's face planes, normals outward: a box wholly outside one of them misses the tetrahedron. Each
+// plane is moved out by 1e-4 of the cell's size, more than the kernels' inside tolerance (1e-5 of a barycentric
+// coordinate) reaches, plus the float rounding of those coordinates, which grows as the face's area shrinks
+// against the cell's size (needles).
 struct FacePlanes {
     std::array<dvec3, 4> normal;
     std::array<double, 4> offset;
+    bool finite() const {
+        for (int f = 0; f < 4; ++f)
+            if (!std::isfinite(offset[f]) || !std::isfinite(normal[f].x) || !std::isfinite(normal[f].y) || !std::isfinite(normal[f].z))
+                return false;
+        return true;
+    }
+    // NaN planes (a face flat in grid space) miss nothing.
     bool miss(const dvec3& lo, const dvec3& hi) const {
         for (int f = 0; f < 4; ++f) {
             const dvec3 nearest = glm::mix(hi, lo, glm::greaterThan(normal[f], dvec3(0.0)));  // the corner deepest inside
@@ -97,14 +106,15 @@ FacePlanes facePlanes(const UnstructuredCells& cells, uint32_t c, const ToGrid& 
     dvec3 x[4];
     for (uint32_t k = 0; k < 4; ++k) x[k] = dvec3(toGrid(cells.positions[cells.index[cells.cellIndex[c] + k]]));
     const dvec3 extent = glm::max(glm::max(x[0], x[1]), glm::max(x[2], x[3])) - glm::min(glm::min(x[0], x[1]), glm::min(x[2], x[3]));
-    const double slack = 1e-4 * std::max({extent.x, extent.y, extent.z});
+    const double size = std::max({extent.x, extent.y, extent.z});
     FacePlanes planes;
     for (int k = 0; k < 4; ++k) {  // the face opposite corner k
         const dvec3 a = x[(k + 1) % 4], b = x[(k + 2) % 4], d = x[(k + 3) % 4];
-        dvec3 n = glm::normalize(glm::cross(b - a, d - a));
+        const dvec3 cross = glm::cross(b - a, d - a);
+        dvec3 n = cross / glm::length(cross);
         if (glm::dot(n, x[k] - a) > 0.0) n = -n;
         planes.normal[k] = n;
-        planes.offset[k] = glm::dot(n, a) + slack;
+        planes.offset[k] = glm::dot(n, a) + 1e-4 * size + 16.0 * std::ldexp(1.0, -24) * size * size * size / glm::length(cross);
     }
     return planes;
 }
@@ -146,11 +156,12 @@ std::vector<uint32_t> tetrahedronNeighbours(const UnstructuredCells& cells, cons
 
 // Each start cell's tetrahedron (leaf order), where walks to its points begin (shaders/unstructured.glsl):
 // one that holds the start cell's centre; else, of those whose centroid lies in the start cell, the one whose
-// centroid is nearest the centre; else a neighbouring start cell's (two rounds); else none. `boxes`: the kept
-// cells' grid-space boxes.
+// centroid is nearest the centre; else, where some cell overlaps the start cell (`startNodes`), a neighbouring
+// start cell's (two rounds); else none. `boxes`: the kept cells' grid-space boxes.
 template <class ToGrid>
 std::vector<uint32_t> startTetrahedra(const UnstructuredCells& cells, const std::vector<uint32_t>& kept, const std::vector<uint32_t>& leafOrder,
-                                      const std::vector<bvh::Aabb>& boxes, const ToGrid& toGrid, glm::uvec3 startCells, float startSize) {
+                                      const std::vector<bvh::Aabb>& boxes, const ToGrid& toGrid, glm::uvec3 startCells, float startScale,
+                                      const std::vector<uint32_t>& startNodes) {
     const auto indexOf = [&](glm::uvec3 at) { return (size_t(at.z) * startCells.y + at.y) * startCells.x + at.x; };
     std::vector<uint32_t> start(size_t(startCells.x) * startCells.y * startCells.z, gpu::UNSTRUCTURED_NO_CELL);
     std::vector<double> distance(start.size(), INFINITY);  // of the chosen centroid from the centre; -1: holds it
@@ -158,13 +169,14 @@ std::vector<uint32_t> startTetrahedra(const UnstructuredCells& cells, const std:
         const uint32_t c = kept[leafOrder[leaf]];
         if (cells.cellType[c] != 10) continue;
         const FacePlanes planes = facePlanes(cells, c, toGrid);
+        if (!planes.finite()) continue;  // flat in grid space: no walk should start there
         const bvh::Aabb& box = boxes[leafOrder[leaf]];
-        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo / startSize, 0.0f)), startCells - 1u);
-        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi / startSize, 0.0f)), startCells - 1u);
+        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo * startScale, 0.0f)), startCells - 1u);
+        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi * startScale, 0.0f)), startCells - 1u);
         for (uint32_t z = first.z; z <= last.z; ++z)
             for (uint32_t y = first.y; y <= last.y; ++y)
                 for (uint32_t x = first.x; x <= last.x; ++x) {
-                    const dvec3 centre = (dvec3(x, y, z) + 0.5) * double(startSize);
+                    const dvec3 centre = (dvec3(x, y, z) + 0.5) / double(startScale);
                     const size_t i = indexOf({x, y, z});
                     if (distance[i] >= 0.0 && !planes.miss(centre, centre)) {
                         distance[i] = -1.0;
@@ -173,8 +185,8 @@ std::vector<uint32_t> startTetrahedra(const UnstructuredCells& cells, const std:
                 }
         dvec3 centroid(0.0);
         for (uint32_t k = 0; k < 4; ++k) centroid += 0.25 * dvec3(toGrid(cells.positions[cells.index[cells.cellIndex[c] + k]]));
-        const glm::uvec3 at = glm::min(glm::uvec3(glm::max(centroid / double(startSize), 0.0)), startCells - 1u);
-        const double d = glm::length(centroid - (dvec3(at) + 0.5) * double(startSize));
+        const glm::uvec3 at = glm::min(glm::uvec3(glm::max(centroid * double(startScale), 0.0)), startCells - 1u);
+        const double d = glm::length(centroid - (dvec3(at) + 0.5) / double(startScale));
         if (distance[indexOf(at)] >= 0.0 && d < distance[indexOf(at)]) {
             distance[indexOf(at)] = d;
             start[indexOf(at)] = leaf;
@@ -186,6 +198,7 @@ std::vector<uint32_t> startTetrahedra(const UnstructuredCells& cells, const std:
             for (uint32_t y = 0; y < startCells.y; ++y)
                 for (uint32_t x = 0; x < startCells.x; ++x) {
                     uint32_t& s = grown[indexOf({x, y, z})];
+                    if (startNodes[indexOf({x, y, z})] == gpu::UNSTRUCTURED_NO_NODE) continue;  // the query returns at once
                     for (int k = 0; k < 6 && s == gpu::UNSTRUCTURED_NO_CELL; ++k) {
                         glm::ivec3 there(x, y, z);
                         there[k / 2] += k % 2 ? 1 : -1;
@@ -343,9 +356,16 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
             }
         }
         cellRanges[k] = range;
+        // The walk (shaders/unstructured.glsl) takes points up to 1e-5 of a barycentric coordinate outside a
+        // tetrahedron as inside, also past its box where a face lies in the box's side. With values on the
+        // vertices the field there is the neighbour's, to rounding; with a value per cell it may jump, so
+        // the box is grown by 1e-4 of its size. (Growing every box cost the million-tetrahedra benchmark, whose
+        // cubes' faces lie on macrocell planes, 0.53 -> 0.58 null/real.)
         const float size = float(gpu::VOLUME_MACROCELL);
-        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(boxes[k].lo / size, 0.0f)), m - 1u);
-        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(boxes[k].hi / size, 0.0f)), m - 1u);
+        const glm::vec3 extentK = boxes[k].hi - boxes[k].lo;
+        const glm::vec3 grow(cells.cellCentered ? 1e-4f * std::max({extentK.x, extentK.y, extentK.z}) : 0.0f);
+        const glm::uvec3 first = glm::min(glm::uvec3(glm::max((boxes[k].lo - grow) / size, 0.0f)), m - 1u);
+        const glm::uvec3 last = glm::min(glm::uvec3(glm::max((boxes[k].hi + grow) / size, 0.0f)), m - 1u);
         const bool tetrahedron = cells.cellType[c] == 10 && first != last;
         const FacePlanes planes = tetrahedron ? facePlanes(cells, c, toGrid) : FacePlanes{};
         for (uint32_t z = first.z; z <= last.z; ++z)
@@ -386,20 +406,34 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
         }
         return a;
     };
-    // Start cells per macrocell edge, at most 8, and at most 2 per cell in all (or 2^15).
+    // Start cells per macrocell edge, at most 8; fewer while there are more than 2 per cell in all (or 2^15), or
+    // more than 64 (cell, start cell it overlaps) pairs, visited below, per cell or start cell. A start cell
+    // spans startPerMacrocell / 8 grid units (exact in float, and the kernels scale by the same product).
     const dvec3 macrocellSide = extent / dvec3(m);
     uint32_t startPerMacrocell = uint32_t(std::clamp(
         std::round(std::max({macrocellSide.x, macrocellSide.y, macrocellSide.z}) / (kStartCellSide * medianCell)), 1.0, 8.0));
-    while (startPerMacrocell > 1 &&
-           double(m.x) * m.y * m.z * std::pow(double(startPerMacrocell), 3.0) > std::max(2.0 * double(kept.size()), double(1 << 15)))
+    const auto startPairs = [&](float perUnit) {
+        double pairs = 0.0;
+        for (const bvh::Aabb& box : boxes) {
+            const glm::vec3 first = glm::floor(box.lo * perUnit), last = glm::floor(box.hi * perUnit);
+            pairs += (double(last.x) - first.x + 1.0) * (double(last.y) - first.y + 1.0) * (double(last.z) - first.z + 1.0);
+        }
+        return pairs;
+    };
+    while (startPerMacrocell > 1) {
+        const double count = double(m.x) * m.y * m.z * std::pow(double(startPerMacrocell), 3.0);
+        if (count <= std::max(2.0 * double(kept.size()), double(1 << 15)) &&
+            startPairs(float(startPerMacrocell) * 0.125f) <= 64.0 * (double(kept.size()) + count))
+            break;
         --startPerMacrocell;
+    }
     const glm::uvec3 startCells = m * startPerMacrocell;
-    const float startSize = float(gpu::VOLUME_MACROCELL) / float(startPerMacrocell);
+    const float startScale = float(startPerMacrocell) * 0.125f;  // start cells per grid unit
     std::vector<uint32_t> start(size_t(startCells.x) * startCells.y * startCells.z, gpu::UNSTRUCTURED_NO_NODE);
     for (size_t slot = 0; slot < kept.size(); ++slot) {
         const bvh::Aabb& box = boxes[tree.primOrder[slot]];
-        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo / startSize, 0.0f)), startCells - 1u);
-        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi / startSize, 0.0f)), startCells - 1u);
+        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo * startScale, 0.0f)), startCells - 1u);
+        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi * startScale, 0.0f)), startCells - 1u);
         for (uint32_t z = first.z; z <= last.z; ++z)
             for (uint32_t y = first.y; y <= last.y; ++y)
                 for (uint32_t x = first.x; x <= last.x; ++x) {
@@ -448,12 +482,17 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
         for (uint32_t slot : tree.primOrder) pushFloat(words, cells.values[kept[slot]]);
     // Each cell's corners in leaf order, a tetrahedron's followed by its neighbours when the mesh has them:
     // a step of the walk reads one cell's 8 words together.
+    uint64_t indexWords = 0;
+    for (uint32_t c : kept) indexWords += unstructuredCorners(cells.cellType[c]) + (cells.cellType[c] == 10 ? 4 : 0);
+    if (indexWords >= kMaxIndices) throw std::invalid_argument("the mesh's cells need more than 2^30 index words on the device");
     const std::vector<uint32_t> neighbours = tetrahedronNeighbours(cells, kept, tree.primOrder);
-    header.neighbours = neighbours.empty() ? 0u : 1u;
+    const bool allTetrahedra = std::all_of(kept.begin(), kept.end(), [&](uint32_t c) { return cells.cellType[c] == 10; });
+    header.neighbours = neighbours.empty() ? gpu::UNSTRUCTURED_NEIGHBOURS_NONE
+                        : allTetrahedra    ? gpu::UNSTRUCTURED_NEIGHBOURS_ALL_TETRAHEDRA
+                                           : gpu::UNSTRUCTURED_NEIGHBOURS_SOME_TETRAHEDRA;
     std::vector<uint32_t> index, cellWords;
     for (uint32_t leaf = 0; leaf < tree.primOrder.size(); ++leaf) {
         const uint32_t c = kept[tree.primOrder[leaf]];
-        if (index.size() >= kMaxIndices) throw std::invalid_argument("the mesh's cells need more than 2^30 index words on the device");
         cellWords.push_back(uint32_t(index.size()) << 2 | shapeOf(cells.cellType[c]));
         for (uint32_t k = 0; k < unstructuredCorners(cells.cellType[c]); ++k) index.push_back(renumbered[cells.index[cells.cellIndex[c] + k]]);
         if (header.neighbours && cells.cellType[c] == 10) index.insert(index.end(), &neighbours[4 * leaf], &neighbours[4 * leaf] + 4);
@@ -468,7 +507,7 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     header.nodeOffset = uint32_t(words.size());
     const size_t nodeWords = nodeCount * sizeof(gpu::BvhNode) / sizeof(uint32_t);
     const std::vector<uint32_t> startCell =
-        header.neighbours ? startTetrahedra(cells, kept, tree.primOrder, boxes, toGrid, startCells, startSize) : std::vector<uint32_t>();
+        header.neighbours ? startTetrahedra(cells, kept, tree.primOrder, boxes, toGrid, startCells, startScale, start) : std::vector<uint32_t>();
     if (uint64_t(words.size()) + nodeWords + start.size() + startCell.size() > uint64_t(UINT32_MAX))
         throw std::invalid_argument("the mesh needs more than 2^32 words on the device");
     words.resize(words.size() + nodeWords);

@@ -85,7 +85,7 @@ struct UnstructuredHeader {
     uint startY;
     uint startZ;
     uint startPerMacrocell;
-    uint neighbours;       // 1: tetrahedra's indices are followed by their neighbours; 0: the mesh has no tetrahedron
+    uint neighbours;       // UNSTRUCTURED_NEIGHBOURS_*
     uint startCellOffset;  // with neighbours: a word per start cell, the tetrahedron its walks begin at
 };
 
@@ -115,6 +115,11 @@ struct AmrBlockRecord {
 
 RIPPLE_CONST uint UNSTRUCTURED_NO_NODE = 0xFFFFFFFFu;
 RIPPLE_CONST uint UNSTRUCTURED_NO_CELL = 0xFFFFFFFFu;
+// UnstructuredHeader.neighbours: none (no tetrahedron); tetrahedra's indices followed by their neighbours;
+// the same in a mesh of tetrahedra only, whose cell c's 8 words then start at index word 8c.
+RIPPLE_CONST uint UNSTRUCTURED_NEIGHBOURS_NONE = 0u;
+RIPPLE_CONST uint UNSTRUCTURED_NEIGHBOURS_SOME_TETRAHEDRA = 1u;
+RIPPLE_CONST uint UNSTRUCTURED_NEIGHBOURS_ALL_TETRAHEDRA = 2u;
 RIPPLE_CONST uint UNSTRUCTURED_TETRAHEDRON = 0u;  // VTK 10
 RIPPLE_CONST uint UNSTRUCTURED_HEXAHEDRON = 1u;   // VTK 12
 RIPPLE_CONST uint UNSTRUCTURED_WEDGE = 2u;        // VTK 13

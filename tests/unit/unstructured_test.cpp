@@ -283,23 +283,34 @@ TEST_CASE("unstructured volumes: the walk across tetrahedra's shared faces finds
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     std::vector<glm::vec3> points;
     for (int i = 0; i < 2000; ++i) points.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), 2.0f * unit(random)});
-    for (const Shape shape : {Shape::Tetrahedra, Shape::Hexahedra}) {
+    // The tetrahedra alone, and with one hexahedron above the box (the walk then reads each cell's word).
+    for (const auto& [shape, mixed] : {std::pair{Shape::Tetrahedra, false}, std::pair{Shape::Tetrahedra, true}, std::pair{Shape::Hexahedra, false}}) {
         core::UnstructuredCells mesh = boxMesh(shape, n, 2.0f, field);
         jiggle(mesh, n, random);
-        for (size_t v = 0; v < mesh.positions.size(); ++v) mesh.values[v] = field(mesh.positions[v]);
+        if (mixed) {
+            const core::UnstructuredCells hexahedron = boxMesh(Shape::Hexahedra, 1, 0.5f, field);
+            mesh.cellIndex.push_back(uint32_t(mesh.index.size()));
+            mesh.cellType.push_back(12);
+            for (uint32_t i : hexahedron.index) mesh.index.push_back(uint32_t(mesh.positions.size()) + i);
+            for (const glm::vec3& p : hexahedron.positions) mesh.positions.push_back(p + glm::vec3(0.0f, 0.0f, 2.5f));
+        }
+        mesh.values.clear();
+        for (const glm::vec3& p : mesh.positions) mesh.values.push_back(field(p));
         const auto grid = core::prepareUnstructuredGrid(mesh);
         gpu::UnstructuredHeader header;
         std::memcpy(&header, grid->words.data(), sizeof header);
         CAPTURE(std::string(nameOf(shape)));
+        CAPTURE(mixed);
         if (shape == Shape::Tetrahedra) {
-            REQUIRE(header.neighbours == 1u);
+            REQUIRE(header.neighbours ==
+                    (mixed ? gpu::UNSTRUCTURED_NEIGHBOURS_SOME_TETRAHEDRA : gpu::UNSTRUCTURED_NEIGHBOURS_ALL_TETRAHEDRA));
             // A tetrahedron's neighbours follow its 4 indices.
             const auto neighbour = [&](uint32_t c, uint32_t k) {
                 return grid->words[header.indexOffset + (grid->words[header.cellOffset + c] >> 2) + 4 + k];
             };
             size_t boundary = 0, mutual = 0;
             for (uint32_t c = 0; c < header.cellCount; ++c)
-                for (uint32_t k = 0; k < 4; ++k) {
+                for (uint32_t k = 0; k < 4 && (grid->words[header.cellOffset + c] & 3u) == gpu::UNSTRUCTURED_TETRAHEDRON; ++k) {
                     const uint32_t other = neighbour(c, k);
                     if (other == gpu::UNSTRUCTURED_NO_CELL) {
                         ++boundary;
@@ -308,9 +319,9 @@ TEST_CASE("unstructured volumes: the walk across tetrahedra's shared faces finds
                     for (uint32_t j = 0; j < 4; ++j) mutual += neighbour(other, j) == c ? 1 : 0;
                 }
             CHECK(boundary == 12 * n * n);
-            CHECK(mutual + boundary == 4 * header.cellCount);
+            CHECK(mutual + boundary == 4 * (header.cellCount - (mixed ? 1 : 0)));
         } else {
-            CHECK(header.neighbours == 0u);
+            CHECK(header.neighbours == gpu::UNSTRUCTURED_NEIGHBOURS_NONE);
         }
         const std::vector<glm::vec2> results = probe(*grid, points);
         size_t found = 0, walked = 0, exact = 0;
@@ -319,13 +330,55 @@ TEST_CASE("unstructured volumes: the walk across tetrahedra's shared faces finds
             walked += results[i].x == 2.0f ? 1 : 0;
             exact += results[i].x >= 1.0f && std::abs(results[i].y - field(points[i])) <= 2e-5f ? 1 : 0;
         }
-        MESSAGE(std::string(nameOf(shape)) << ": " << found << " of " << points.size() << " found, " << walked << " by the walk, "
-                                           << exact << " exact");
+        MESSAGE(std::string(nameOf(shape)) << std::string(mixed ? " and a hexahedron" : "") << ": " << found << " of " << points.size()
+                                           << " found, " << walked << " by the walk, " << exact << " exact");
         CHECK(found == points.size());
         CHECK(exact == points.size());
         if (shape == Shape::Tetrahedra) CHECK(walked >= points.size() * 95 / 100);
         else CHECK(walked == 0);
     }
+}
+
+TEST_CASE("unstructured volumes: the walk through inverted tetrahedra with cell values finds the containing cell's value") {
+    // The jiggled box of tetrahedra with every other cell's corners 1 and 2 swapped (inverted, which is kept)
+    // and a value per cell, different in every cell: each of 2000 random points must be found, mostly by the
+    // walk, with the value of a cell that holds it (found on the host by barycentric coordinates in double,
+    // with the kernels' tolerance; a point on a shared face may take either cell's).
+    test::ValidationGuard guard;
+    const uint32_t n = 5;
+    std::mt19937 random(9);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    core::UnstructuredCells mesh = boxMesh(Shape::Tetrahedra, n, 2.0f, [](glm::vec3) { return 0.0f; });
+    jiggle(mesh, n, random);
+    mesh.cellCentered = true;
+    mesh.values.clear();
+    for (size_t c = 0; c < mesh.cellType.size(); ++c) {
+        if (c % 2 == 1) std::swap(mesh.index[mesh.cellIndex[c] + 1], mesh.index[mesh.cellIndex[c] + 2]);
+        mesh.values.push_back(float(c) / float(mesh.cellType.size()));
+    }
+    const auto grid = core::prepareUnstructuredGrid(mesh);
+    CHECK(grid->invertedCells == mesh.cellType.size() / 2);
+    std::vector<glm::vec3> points;
+    for (int i = 0; i < 2000; ++i) points.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), 2.0f * unit(random)});
+    const std::vector<glm::vec2> results = probe(*grid, points);
+    size_t found = 0, walked = 0, right = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        found += results[i].x >= 1.0f ? 1 : 0;
+        walked += results[i].x == 2.0f ? 1 : 0;
+        bool matches = false;
+        for (size_t c = 0; c < mesh.cellType.size() && !matches; ++c) {
+            glm::dvec3 x[4];
+            for (int k = 0; k < 4; ++k) x[k] = glm::dvec3(mesh.positions[mesh.index[mesh.cellIndex[c] + k]]);
+            const glm::dvec3 b = glm::inverse(glm::dmat3(x[1] - x[0], x[2] - x[0], x[3] - x[0])) * (glm::dvec3(points[i]) - x[0]);
+            const bool holds = b.x >= -1e-4 && b.y >= -1e-4 && b.z >= -1e-4 && b.x + b.y + b.z <= 1.0 + 1e-4;
+            matches = holds && results[i].y == mesh.values[c];
+        }
+        right += results[i].x >= 1.0f && matches ? 1 : 0;
+    }
+    MESSAGE(found << " of " << points.size() << " found, " << walked << " by the walk, " << right << " with a holding cell's value");
+    CHECK(found == points.size());
+    CHECK(right == points.size());
+    CHECK(walked >= points.size() * 95 / 100);
 }
 
 TEST_CASE("unstructured volumes: small hexahedra far from the grid's origin are still found") {
