@@ -5,6 +5,7 @@
 // (Ray Tracing Gems, ch. 7).
 #ifndef RIPPLE_INTERSECT_GLSL
 #define RIPPLE_INTERSECT_GLSL
+#include "cubic.glsl"
 #include "features.glsl"
 #include "unstructured.glsl"
 
@@ -311,22 +312,7 @@ bool intersectIsoCell(vec3 origin, vec3 direction, IsoCellPrim cell, float tmin,
 
     // Extrema of the cubic inside (0, len): roots of 3 k.x s^2 + 2 k.y s + k.z, in order.
     float pieces[4] = float[4](0.0, len, len, len);
-    uint count = 1u;
-    float A = 3.0 * k.x, B = 2.0 * k.y, C = k.z;
-    float e0 = -1.0, e1 = -1.0;
-    if (A != 0.0) {
-        float disc = B * B - 4.0 * A * C;
-        if (disc > 0.0) {
-            float h = -0.5 * (B + (B < 0.0 ? -sqrt(disc) : sqrt(disc)));
-            e0 = h / A;
-            e1 = h != 0.0 ? C / h : -1.0;
-            if (e0 > e1) { float t = e0; e0 = e1; e1 = t; }
-        }
-    } else if (B != 0.0) {
-        e0 = -C / B;
-    }
-    if (e0 > 0.0 && e0 < len) pieces[count++] = e0;
-    if (e1 > 0.0 && e1 < len && e1 != e0) pieces[count++] = e1;
+    uint count = 1u + cubicExtrema(3.0 * k.x, 2.0 * k.y, k.z, len, pieces[1], pieces[2]);
     pieces[count] = len;
 
     float ga = isoCubic(k, 0.0);

@@ -9,6 +9,7 @@
 #ifndef RIPPLE_UNSTRUCTURED_GLSL
 #define RIPPLE_UNSTRUCTURED_GLSL
 
+#include "cubic.glsl"
 #include "shared/bvh.h"
 #include "shared/scene.h"
 #include "shared/volume.h"
@@ -282,12 +283,48 @@ bool unstructuredValue(uint64_t mesh, UnstructuredHeader h, vec3 p, out float va
 
 // Iso-surfaces in mesh cells (shared/scene.h IsoCellPrim with a mesh address): where the cell's own
 // interpolant equals the isovalue along the ray. The ray's segment in the cell's box (grown by 1e-4 of it)
-// is sampled at 16 even steps of the interpolant, extrapolated past the cell where its map reaches; the
-// nearest pair of samples whose values straddle the isovalue is bisected to float precision, and the root
-// counts where it lies inside the cell. In a tetrahedron the field is linear along the ray and the root is
-// exact; in the other shapes a surface crossing twice between two samples (1/16 of the cell apart) is missed.
+// is cut into 16 even steps; at each step's ends the interpolant and its derivative along the ray are
+// evaluated (extrapolated past the cell where its map reaches). The nearest step whose ends straddle the
+// isovalue is bisected to float precision, and the root counts where it lies inside the cell. A step whose
+// ends do not straddle it is split, as structured cells split theirs (intersect.glsl), at a turning point of
+// the cubic the ends' values and derivatives define (Hermite) where that cubic turns back across the
+// isovalue. In a tetrahedron the field is linear along the ray and in a hexahedron of parallel faces a cubic,
+// so there the cubic is exact and a double crossing within a step is found; in a curved cell one the cubic
+// does not show is missed, and of three crossings within one step the one bisection finds is taken.
 vec3 isoMeshPoint(IsoCellPrim prim, vec3 objectPoint) {
     return (objectPoint - prim.values1.xyz) * prim.values0.xyz;
+}
+
+// The cell's interpolant at go + t gd and, with `derivative` (a constant at each call), its derivative in t
+// (else 0); false where it cannot be evaluated.
+bool meshIsoSample(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint cell, vec3 go, vec3 gd, float t, bool derivative,
+                   out float f, out float df) {
+    bool inside;
+    vec3 gradient;
+    bool ok = cellField(mesh, m, h, cell, go + t * gd, derivative, f, inside, gradient);
+    df = dot(gradient, gd);
+    return ok && !isnan(df) && !isinf(df);
+}
+
+// The crossing in [a, b], whose values fa, fb straddle the isovalue, bisected to float precision: true and
+// tBest set where it lies inside the cell and in (tmin, tBest).
+bool meshIsoBisect(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, uint cell, vec3 go, vec3 gd, float iso, float a, float b,
+                   bool below, float tmin, inout float tBest) {
+    vec3 unused;
+    bool inside;
+    for (int it = 0; it < 40; ++it) {
+        float mid = 0.5 * (a + b);
+        if (mid <= a || mid >= b) break;  // no float between the ends: converged
+        float fm;
+        if (!cellField(mesh, m, h, cell, go + mid * gd, false, fm, inside, unused)) break;
+        if ((fm < iso) == below) a = mid;
+        else b = mid;
+    }
+    float fr;
+    bool found = cellField(mesh, m, h, cell, go + b * gd, false, fr, inside, unused) && inside;
+    if (!found || !(b > tmin && b < tBest)) return false;
+    tBest = b;
+    return true;
 }
 
 bool intersectMeshIsoCell(vec3 origin, vec3 direction, IsoCellPrim prim, float tmin, inout float tBest) {
@@ -307,34 +344,39 @@ bool intersectMeshIsoCell(vec3 origin, vec3 direction, IsoCellPrim prim, float t
     vec3 go = isoMeshPoint(prim, origin), gd = direction * prim.values0.xyz;
     vec3 unused;
     bool inside;
-    float fa;
-    bool okA = cellField(mesh, m, h, cell, go + enter * gd, false, fa, inside, unused);
+    // Along the ray the field is linear in a tetrahedron: no derivatives, and no turning point to split at.
+    bool tetrahedron = (m.words[h.cellOffset + cell] & 3u) == UNSTRUCTURED_TETRAHEDRON;
+    float fa, da;
+    bool okA = tetrahedron ? meshIsoSample(mesh, m, h, cell, go, gd, enter, false, fa, da)
+                           : meshIsoSample(mesh, m, h, cell, go, gd, enter, true, fa, da);
     float ta = enter;
     const uint STEPS = 16u;
     for (uint k = 1u; k <= STEPS; ++k) {
         float tb = mix(enter, leave, float(k) / float(STEPS));
-        float fb;
-        bool okB = cellField(mesh, m, h, cell, go + tb * gd, false, fb, inside, unused);
-        if (okA && okB && ((fa < iso) != (fb < iso))) {
-            float a = ta, b = tb;
-            bool below = fa < iso;
-            for (int it = 0; it < 40; ++it) {
-                float mid = 0.5 * (a + b);
-                if (mid <= a || mid >= b) break;  // no float between the ends: converged
-                float fm;
-                if (!cellField(mesh, m, h, cell, go + mid * gd, false, fm, inside, unused)) break;
-                if ((fm < iso) == below) a = mid;
-                else b = mid;
-            }
-            float fr;
-            bool found = cellField(mesh, m, h, cell, go + b * gd, false, fr, inside, unused) && inside;
-            if (found && b > tmin && b < tBest) {
-                tBest = b;
-                return true;
+        float fb, db;
+        bool okB = tetrahedron ? meshIsoSample(mesh, m, h, cell, go, gd, tb, false, fb, db)
+                               : meshIsoSample(mesh, m, h, cell, go, gd, tb, true, fb, db);
+        if (okA && okB && (fa < iso) != (fb < iso)) {
+            if (meshIsoBisect(mesh, m, h, cell, go, gd, iso, ta, tb, fa < iso, tmin, tBest)) return true;
+        } else if (okA && okB && !tetrahedron) {
+            // Both ends on one side: the surface may still cross twice within the step. Where the Hermite cubic
+            // over the step (fa + c1 s + c2 s^2 + c3 s^3, s = 0..1) turns back across the isovalue, the
+            // interpolant at that turning point splits the step into two pieces that straddle it.
+            float len = tb - ta;
+            float c1 = len * da, c2 = 3.0 * (fb - fa) - len * (2.0 * da + db), c3 = 2.0 * (fa - fb) + len * (da + db);
+            float split[2];
+            uint splits = cubicExtrema(3.0 * c3, 2.0 * c2, c1, 1.0, split[0], split[1]);
+            for (uint e = 0u; e < splits; ++e) {
+                float se = split[e], te = mix(ta, tb, se), ve;
+                if ((fa + se * (c1 + se * (c2 + se * c3)) < iso) == (fa < iso)) continue;
+                if (!cellField(mesh, m, h, cell, go + te * gd, false, ve, inside, unused) || (ve < iso) == (fa < iso)) continue;
+                if (meshIsoBisect(mesh, m, h, cell, go, gd, iso, ta, te, fa < iso, tmin, tBest)) return true;
+                if (meshIsoBisect(mesh, m, h, cell, go, gd, iso, te, tb, ve < iso, tmin, tBest)) return true;
             }
         }
         ta = tb;
         fa = fb;
+        da = db;
         okA = okB;
     }
     return false;

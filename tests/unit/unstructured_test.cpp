@@ -560,6 +560,72 @@ TEST_CASE("unstructured iso-surfaces: a linear field's surfaces are exact planes
     }
 }
 
+TEST_CASE("unstructured iso-surfaces: a surface the ray crosses twice within one sampling step is found") {
+    // One hexahedron, a box of 1 x s x 1 (s = 17/15) with f = x y / s at its corners (x, y its edges' lengths
+    // from corner 0): the trilinear interpolant is that product itself. It stands rotated so that the camera's
+    // rays run along (1, -1, 0) in its coordinates: each ray keeps x + y = c, along it f = x (c - x) / s peaks
+    // at c^2 / (4 s), at the middle of the ray's depth through the box. The surface f = 0.2 is crossed twice when
+    // c > c0 = 2 sqrt(0.2 s), and the view is 0.01 wide across that silhouette (c = c0 + sqrt(2) X at image
+    // X). The 16 sampling steps over the box are 0.1 deep, and s puts the peak halfway between two samples:
+    // in 0 < X < 0.0016 (about four pixel columns) both crossings lie between the same two samples, where
+    // sampling alone sees the interpolant below the isovalue at every sample; the turning point of the step's
+    // cubic splits the step there. Pixels more than a column right of the silhouette must all be hit, those
+    // more than a column left of it none. Sampling alone (the code before) fails it.
+    test::ValidationGuard guard;
+    const float iso = 0.2f, s = 17.0f / 15.0f;
+    // Box coordinates to world: e1 -> (1, 0, -1) / sqrt 2, e2 -> (1, 0, 1) / sqrt 2, e3 -> (0, -1, 0) (a
+    // rotation), then the silhouette moved to X = 0 and the box's middle to Y = 0.
+    const float r = 1.0f / std::sqrt(2.0f);
+    const glm::mat3 rotation(glm::vec3(r, 0.0f, -r), glm::vec3(r, 0.0f, r), glm::vec3(0.0f, -1.0f, 0.0f));
+    const glm::vec3 shift(-r * 2.0f * std::sqrt(iso * s), 0.5f, 0.0f);
+    core::UnstructuredCells mesh;
+    for (const glm::vec3& corner : {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 1, 0), glm::vec3(0, 1, 0),
+                                    glm::vec3(0, 0, 1), glm::vec3(1, 0, 1), glm::vec3(1, 1, 1), glm::vec3(0, 1, 1)}) {
+        mesh.positions.push_back(rotation * (corner * glm::vec3(1.0f, s, 1.0f)) + shift);
+        mesh.values.push_back(corner.x * corner.y);  // x y / s at the corner (x, s y)
+    }
+    mesh.index = {0, 1, 2, 3, 4, 5, 6, 7};
+    mesh.cellIndex = {0};
+    mesh.cellType = {12};
+    core::SceneDescription scene;
+    core::IsosurfaceSet set;
+    set.mesh = core::prepareUnstructuredGrid(mesh);
+    CHECK(set.mesh->invertedCells == 0);
+    set.isovalues = {iso};
+    scene.isosurfaceSets.push_back(set);
+    scene.materials.push_back(core::Material{});
+    scene.instances.push_back({{core::GeometryKind::Isosurfaces, 0}, glm::mat4(1.0f), 0});
+    core::Scene built(test::testContext(), scene);
+    core::PathTracer tracer(test::testContext());
+    core::FrameChannels channels;
+    channels.depth = true;
+    const uint32_t n = 24;
+    const float width = 0.01f;
+    tracer.resize({n, n}, channels);
+    core::RenderSettings settings;
+    settings.pixelSamples = 1;
+    (void)tracer.render(built, test::lookingDown(3.0f, width), settings);
+    std::vector<float> depth(size_t(n) * n);
+    tracer.readDepth(depth.data());
+    size_t rightHit = 0, right = 0, leftHit = 0, left = 0;
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            const float X = test::groundPoint(width, n, float(x) + 0.5f, float(y) + 0.5f).x, pixel = width / float(n);
+            const bool hit = std::isfinite(depth[size_t(y) * n + x]);
+            if (X > pixel) {
+                ++right;
+                rightHit += hit ? 1 : 0;
+            } else if (X < -pixel) {
+                ++left;
+                leftHit += hit ? 1 : 0;
+            }
+        }
+    MESSAGE(rightHit << " of " << right << " pixels right of the silhouette hit, " << leftHit << " of " << left << " left of it");
+    CHECK(right > 0);
+    CHECK(rightHit == right);
+    CHECK(leftHit == 0);
+}
+
 TEST_CASE("unstructured volumes: random hostile meshes are refused by name or render without NaN") {
     // 400 meshes of random cells over few vertices: random types (some unknown), indices (some past the
     // vertices), index spans (some past the array), values and positions (some NaN, Inf or 1e38). Each is
