@@ -228,6 +228,18 @@ void jiggle(core::UnstructuredCells& mesh, uint32_t n, Random& random) {
     }
 }
 
+// `count` random points over boxMesh's [-1, 1]^2, at heights zLow..zHigh (the box spans 0..2).
+template <class Random>
+std::vector<glm::vec3> randomPoints(Random& random, int count, float zLow = 0.0f, float zHigh = 2.0f) {
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<glm::vec3> points;
+    for (int i = 0; i < count; ++i) points.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), zLow + (zHigh - zLow) * unit(random)});
+    return points;
+}
+
+// A linear field: every cell shape's interpolant reproduces it exactly.
+float linearField(glm::vec3 p) { return 0.5f + 0.3f * p.x - 0.15f * p.y + 0.2f * p.z; }
+
 }  // namespace
 
 TEST_CASE("unstructured volumes: point location and interpolation are exact, also in cells with curved faces") {
@@ -237,12 +249,9 @@ TEST_CASE("unstructured volumes: point location and interpolation are exact, als
     // box find none.
     test::ValidationGuard guard;
     const uint32_t n = 4;
-    const auto field = [](glm::vec3 p) { return 0.5f + 0.3f * p.x - 0.15f * p.y + 0.2f * p.z; };
+    const auto field = linearField;
     std::mt19937 random(7);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    std::vector<glm::vec3> inside, outside;
-    for (int i = 0; i < 2000; ++i) inside.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), 2.0f * unit(random)});
-    for (int i = 0; i < 200; ++i) outside.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), 2.05f + unit(random)});
+    const std::vector<glm::vec3> inside = randomPoints(random, 2000), outside = randomPoints(random, 200, 2.05f, 3.05f);
     for (const Shape shape : {Shape::Tetrahedra, Shape::Hexahedra, Shape::Wedges, Shape::Pyramids}) {
         core::UnstructuredCells mesh = boxMesh(shape, n, 2.0f, field);
         jiggle(mesh, n, random);
@@ -278,11 +287,9 @@ TEST_CASE("unstructured volumes: the walk across tetrahedra's shared faces finds
     // boundary and every other face linked both ways.
     test::ValidationGuard guard;
     const uint32_t n = 6;
-    const auto field = [](glm::vec3 p) { return 0.5f + 0.3f * p.x - 0.15f * p.y + 0.2f * p.z; };
+    const auto field = linearField;
     std::mt19937 random(5);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    std::vector<glm::vec3> points;
-    for (int i = 0; i < 2000; ++i) points.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), 2.0f * unit(random)});
+    const std::vector<glm::vec3> points = randomPoints(random, 2000);
     // The tetrahedra alone, and with one hexahedron above the box (the walk then reads each cell's word).
     for (const auto& [shape, mixed] : {std::pair{Shape::Tetrahedra, false}, std::pair{Shape::Tetrahedra, true}, std::pair{Shape::Hexahedra, false}}) {
         core::UnstructuredCells mesh = boxMesh(shape, n, 2.0f, field);
@@ -347,7 +354,6 @@ TEST_CASE("unstructured volumes: the walk through inverted tetrahedra with cell 
     test::ValidationGuard guard;
     const uint32_t n = 5;
     std::mt19937 random(9);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     core::UnstructuredCells mesh = boxMesh(Shape::Tetrahedra, n, 2.0f, [](glm::vec3) { return 0.0f; });
     jiggle(mesh, n, random);
     mesh.cellCentered = true;
@@ -358,8 +364,7 @@ TEST_CASE("unstructured volumes: the walk through inverted tetrahedra with cell 
     }
     const auto grid = core::prepareUnstructuredGrid(mesh);
     CHECK(grid->invertedCells == mesh.cellType.size() / 2);
-    std::vector<glm::vec3> points;
-    for (int i = 0; i < 2000; ++i) points.push_back({-1.0f + 2.0f * unit(random), -1.0f + 2.0f * unit(random), 2.0f * unit(random)});
+    const std::vector<glm::vec3> points = randomPoints(random, 2000);
     const std::vector<glm::vec2> results = probe(*grid, points);
     size_t found = 0, walked = 0, right = 0;
     for (size_t i = 0; i < points.size(); ++i) {
@@ -491,7 +496,7 @@ struct IsoView {
     std::vector<uint32_t> primitiveId;
 };
 
-IsoView viewIsosurface(const core::UnstructuredCells& mesh, std::vector<float> isovalues) {
+IsoView viewIsosurface(const core::UnstructuredCells& mesh, std::vector<float> isovalues, float height = 1.8f) {
     core::SceneDescription scene;
     core::IsosurfaceSet set;
     set.mesh = core::prepareUnstructuredGrid(mesh);
@@ -507,7 +512,7 @@ IsoView viewIsosurface(const core::UnstructuredCells& mesh, std::vector<float> i
     tracer.resize(size, channels);
     core::RenderSettings settings;
     settings.pixelSamples = 1;
-    (void)tracer.render(built, test::lookingDown(3.0f, 1.8f), settings);
+    (void)tracer.render(built, test::lookingDown(3.0f, height), settings);
     IsoView view;
     view.depth.resize(size_t(size.x) * size.y);
     view.normal.resize(view.depth.size());
@@ -587,26 +592,10 @@ TEST_CASE("unstructured iso-surfaces: a surface the ray crosses twice within one
     mesh.index = {0, 1, 2, 3, 4, 5, 6, 7};
     mesh.cellIndex = {0};
     mesh.cellType = {12};
-    core::SceneDescription scene;
-    core::IsosurfaceSet set;
-    set.mesh = core::prepareUnstructuredGrid(mesh);
-    CHECK(set.mesh->invertedCells == 0);
-    set.isovalues = {iso};
-    scene.isosurfaceSets.push_back(set);
-    scene.materials.push_back(core::Material{});
-    scene.instances.push_back({{core::GeometryKind::Isosurfaces, 0}, glm::mat4(1.0f), 0});
-    core::Scene built(test::testContext(), scene);
-    core::PathTracer tracer(test::testContext());
-    core::FrameChannels channels;
-    channels.depth = true;
-    const uint32_t n = 24;
+    CHECK(core::prepareUnstructuredGrid(mesh)->invertedCells == 0);
     const float width = 0.01f;
-    tracer.resize({n, n}, channels);
-    core::RenderSettings settings;
-    settings.pixelSamples = 1;
-    (void)tracer.render(built, test::lookingDown(3.0f, width), settings);
-    std::vector<float> depth(size_t(n) * n);
-    tracer.readDepth(depth.data());
+    const std::vector<float> depth = viewIsosurface(mesh, {iso}, width).depth;
+    const uint32_t n = 24;  // viewIsosurface's image
     size_t rightHit = 0, right = 0, leftHit = 0, left = 0;
     for (uint32_t y = 0; y < n; ++y)
         for (uint32_t x = 0; x < n; ++x) {
