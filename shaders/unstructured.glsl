@@ -205,7 +205,7 @@ UnstructuredHeader unstructuredHeader(uint64_t mesh) {
 // so a walk mostly takes a few cell tests, where the BVH's descent tests every cell whose box holds p.
 bool unstructuredWalk(uint64_t mesh, MeshWordsRef m, UnstructuredHeader h, vec3 p, uint startIndex, out float value) {
     value = 0.0;
-    if (h.neighbours == 0u) return false;
+    if (h.neighbours == UNSTRUCTURED_NEIGHBOURS_NONE) return false;
     uint cell = m.words[h.startCellOffset + startIndex];
     for (uint step = 0u; step < UNSTRUCTURED_WALK_STEPS && cell != UNSTRUCTURED_NO_CELL; ++step) {
         // Every cell a tetrahedron: cell c's 8 words are at 8c.

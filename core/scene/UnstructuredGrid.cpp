@@ -78,6 +78,26 @@ glm::uvec3 macrocellCounts(glm::dvec3 extent, double cellSize) {
 
 std::string cellName(uint64_t c) { return "cell " + std::to_string(c); }
 
+// The cells of a grid of `counts` cells, `perUnit` of them per grid unit, that the grid-space box [lo, hi]
+// overlaps, clamped to the grid: macrocells (perUnit 1/8) or start cells.
+struct CellSpan {
+    glm::uvec3 first, last;
+    double count() const {
+        const glm::dvec3 n = glm::dvec3(last) - glm::dvec3(first) + 1.0;
+        return n.x * n.y * n.z;
+    }
+    template <class Visit>
+    void forEach(const Visit& visit) const {
+        for (uint32_t z = first.z; z <= last.z; ++z)
+            for (uint32_t y = first.y; y <= last.y; ++y)
+                for (uint32_t x = first.x; x <= last.x; ++x) visit(glm::uvec3(x, y, z));
+    }
+};
+
+CellSpan overlappedCells(glm::vec3 lo, glm::vec3 hi, float perUnit, glm::uvec3 counts) {
+    return {glm::min(glm::uvec3(glm::max(lo * perUnit, 0.0f)), counts - 1u), glm::min(glm::uvec3(glm::max(hi * perUnit, 0.0f)), counts - 1u)};
+}
+
 // A tetrahedron's face planes, normals outward: a box wholly outside one of them misses the tetrahedron. Each
 // plane is moved out by 1e-4 of the cell's size, more than the kernels' inside tolerance (1e-5 of a barycentric
 // coordinate) reaches, plus the float rounding of those coordinates, which grows as the face's area shrinks
@@ -171,18 +191,14 @@ std::vector<uint32_t> startTetrahedra(const UnstructuredCells& cells, const std:
         const FacePlanes planes = facePlanes(cells, c, toGrid);
         if (!planes.finite()) continue;  // flat in grid space: no walk should start there
         const bvh::Aabb& box = boxes[leafOrder[leaf]];
-        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo * startScale, 0.0f)), startCells - 1u);
-        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi * startScale, 0.0f)), startCells - 1u);
-        for (uint32_t z = first.z; z <= last.z; ++z)
-            for (uint32_t y = first.y; y <= last.y; ++y)
-                for (uint32_t x = first.x; x <= last.x; ++x) {
-                    const dvec3 centre = (dvec3(x, y, z) + 0.5) / double(startScale);
-                    const size_t i = indexOf({x, y, z});
-                    if (distance[i] >= 0.0 && !planes.miss(centre, centre)) {
-                        distance[i] = -1.0;
-                        start[i] = leaf;
-                    }
-                }
+        overlappedCells(box.lo, box.hi, startScale, startCells).forEach([&](glm::uvec3 at) {
+            const dvec3 centre = (dvec3(at) + 0.5) / double(startScale);
+            const size_t i = indexOf(at);
+            if (distance[i] >= 0.0 && !planes.miss(centre, centre)) {
+                distance[i] = -1.0;
+                start[i] = leaf;
+            }
+        });
         dvec3 centroid(0.0);
         for (uint32_t k = 0; k < 4; ++k) centroid += 0.25 * dvec3(toGrid(cells.positions[cells.index[cells.cellIndex[c] + k]]));
         const glm::uvec3 at = glm::min(glm::uvec3(glm::max(centroid * double(startScale), 0.0)), startCells - 1u);
@@ -361,20 +377,17 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
         // vertices the field there is the neighbour's, to rounding; with a value per cell it may jump, so
         // the box is grown by 1e-4 of its size. (Growing every box cost the million-tetrahedra benchmark, whose
         // cubes' faces lie on macrocell planes, 0.53 -> 0.58 null/real.)
-        const float size = float(gpu::VOLUME_MACROCELL);
+        const double size = double(gpu::VOLUME_MACROCELL);
         const glm::vec3 extentK = boxes[k].hi - boxes[k].lo;
         const glm::vec3 grow(cells.cellCentered ? 1e-4f * std::max({extentK.x, extentK.y, extentK.z}) : 0.0f);
-        const glm::uvec3 first = glm::min(glm::uvec3(glm::max((boxes[k].lo - grow) / size, 0.0f)), m - 1u);
-        const glm::uvec3 last = glm::min(glm::uvec3(glm::max((boxes[k].hi + grow) / size, 0.0f)), m - 1u);
-        const bool tetrahedron = cells.cellType[c] == 10 && first != last;
+        const CellSpan span = overlappedCells(boxes[k].lo - grow, boxes[k].hi + grow, 1.0f / float(size), m);
+        const bool tetrahedron = cells.cellType[c] == 10 && span.first != span.last;
         const FacePlanes planes = tetrahedron ? facePlanes(cells, c, toGrid) : FacePlanes{};
-        for (uint32_t z = first.z; z <= last.z; ++z)
-            for (uint32_t y = first.y; y <= last.y; ++y)
-                for (uint32_t x = first.x; x <= last.x; ++x) {
-                    if (tetrahedron && planes.miss(dvec3(x, y, z) * double(size), dvec3(x + 1, y + 1, z + 1) * double(size))) continue;
-                    glm::vec2& r = grid->macrocellRanges[(size_t(z) * m.y + y) * m.x + x];
-                    r = glm::vec2(std::min(r.x, range.x), std::max(r.y, range.y));
-                }
+        span.forEach([&](glm::uvec3 at) {
+            if (tetrahedron && planes.miss(dvec3(at) * size, (dvec3(at) + 1.0) * size)) return;
+            glm::vec2& r = grid->macrocellRanges[(size_t(at.z) * m.y + at.y) * m.x + at.x];
+            r = glm::vec2(std::min(r.x, range.x), std::max(r.y, range.y));
+        });
     }
 
     for (uint32_t slot : tree.primOrder) {
@@ -412,18 +425,15 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     const dvec3 macrocellSide = extent / dvec3(m);
     uint32_t startPerMacrocell = uint32_t(std::clamp(
         std::round(std::max({macrocellSide.x, macrocellSide.y, macrocellSide.z}) / (kStartCellSide * medianCell)), 1.0, 8.0));
-    const auto startPairs = [&](float perUnit) {
+    const auto startPairs = [&](uint32_t perMacrocell) {
         double pairs = 0.0;
-        for (const bvh::Aabb& box : boxes) {
-            const glm::vec3 first = glm::floor(box.lo * perUnit), last = glm::floor(box.hi * perUnit);
-            pairs += (double(last.x) - first.x + 1.0) * (double(last.y) - first.y + 1.0) * (double(last.z) - first.z + 1.0);
-        }
+        for (const bvh::Aabb& box : boxes) pairs += overlappedCells(box.lo, box.hi, float(perMacrocell) * 0.125f, m * perMacrocell).count();
         return pairs;
     };
     while (startPerMacrocell > 1) {
         const double count = double(m.x) * m.y * m.z * std::pow(double(startPerMacrocell), 3.0);
         if (count <= std::max(2.0 * double(kept.size()), double(1 << 15)) &&
-            startPairs(float(startPerMacrocell) * 0.125f) <= 64.0 * (double(kept.size()) + count))
+            startPairs(startPerMacrocell) <= 64.0 * (double(kept.size()) + count))
             break;
         --startPerMacrocell;
     }
@@ -432,14 +442,10 @@ std::shared_ptr<const UnstructuredGrid> prepareUnstructuredGrid(const Unstructur
     std::vector<uint32_t> start(size_t(startCells.x) * startCells.y * startCells.z, gpu::UNSTRUCTURED_NO_NODE);
     for (size_t slot = 0; slot < kept.size(); ++slot) {
         const bvh::Aabb& box = boxes[tree.primOrder[slot]];
-        const glm::uvec3 first = glm::min(glm::uvec3(glm::max(box.lo * startScale, 0.0f)), startCells - 1u);
-        const glm::uvec3 last = glm::min(glm::uvec3(glm::max(box.hi * startScale, 0.0f)), startCells - 1u);
-        for (uint32_t z = first.z; z <= last.z; ++z)
-            for (uint32_t y = first.y; y <= last.y; ++y)
-                for (uint32_t x = first.x; x <= last.x; ++x) {
-                    uint32_t& s = start[(size_t(z) * startCells.y + y) * startCells.x + x];
-                    s = s == gpu::UNSTRUCTURED_NO_NODE ? nodeOfSlot[slot] : commonAncestor(s, nodeOfSlot[slot]);
-                }
+        overlappedCells(box.lo, box.hi, startScale, startCells).forEach([&](glm::uvec3 at) {
+            uint32_t& s = start[(size_t(at.z) * startCells.y + at.y) * startCells.x + at.x];
+            s = s == gpu::UNSTRUCTURED_NO_NODE ? nodeOfSlot[slot] : commonAncestor(s, nodeOfSlot[slot]);
+        });
     }
 
     // The words: header, vertices (grid space, with their values), cell values, cells in leaf order,
